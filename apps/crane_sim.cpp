@@ -1,0 +1,152 @@
+// crane-sim: simulate a multibody scene written in YAML and write HDF5 results.
+//   crane-sim run SCENE [-o results.h5] [--quiet]
+//   crane-sim check SCENE
+//   crane-sim info RESULTS
+// Exit codes: 0 success, 1 solver failure (results kept, marked incomplete), 2 bad input.
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+
+#include "cranesim/io/results_info.hpp"
+#include "cranesim/io/results_writer.hpp"
+#include "cranesim/io/scene_reader.hpp"
+#include "cranesim/model/compile.hpp"
+#include "cranesim/model/summary.hpp"
+#include "cranesim/version.hpp"
+
+namespace {
+
+using namespace cranesim;
+
+constexpr int kExitSolverFailure = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitInterrupted = 130;
+
+std::atomic<bool> g_interrupted{false};
+
+/// A one-line progress display on a terminal: simulated time, percent, real-time factor.
+class ProgressLine {
+ public:
+  ProgressLine(bool enabled, double t0, double t1) : enabled_(enabled), t0_(t0), t1_(t1) {}
+  void update(double t) {
+    if (!enabled_) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    const double wall = std::chrono::duration<double>(now - start_).count();
+    fmt::print(stderr, "\r  t = {:9.4f} s  ({:5.1f} %)  real-time factor {:8.3g}   ", t, 100.0 * (t - t0_) / (t1_ - t0_),
+               (t - t0_) / std::max(wall, 1e-9));
+  }
+  void finish() {
+    if (enabled_) fmt::print(stderr, "\r{:70}\r", "");
+  }
+
+ private:
+  bool enabled_;
+  double t0_, t1_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
+};
+
+int run(const std::string& scene_path, std::string out, bool quiet) {
+  const Scene scene = readScene(scene_path);
+  const Model model = compileModel(scene);
+  const Assembler assembler(model);
+  const DynamicState initial =
+      consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+  if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + ".h5";
+
+  ResultsRecorder recorder(assembler);
+  ProgressLine progress(!quiet && isatty(STDERR_FILENO), model.solver.t_start, model.solver.t_end);
+  SimulationControl control;
+  control.on_step = [&](double t) { progress.update(t); };
+  control.stop_requested = &g_interrupted;
+  std::signal(SIGINT, [](int) { g_interrupted = true; });
+  const SimulationOutcome outcome = simulate(assembler, initial, recorder, control);
+  progress.finish();
+
+  const ResultsRecorder::Metadata meta{scene_path, scene.text,
+                                       model.solver.formulation == Formulation::GGL ? "ggl" : "baumgarte",
+                                       model.solver.t_end};
+  recorder.write(out, meta, outcome);
+
+  const SolverStatistics& st = outcome.statistics;
+  const auto& balance = recorder.energyBalance();
+  double drift = 0.0;
+  for (double b : balance) drift = std::max(drift, std::abs(b - balance.front()));
+  const auto& rp = recorder.positionResidual();
+  if (!quiet || !outcome.complete) {
+    fmt::print(stderr, "{} t = {:g} … {:g} s in {:.3g} s wall (real-time factor {:.3g})\n",
+               outcome.complete ? "completed" : "stopped", model.solver.t_start, outcome.t_reached, st.wall_time_s,
+               (outcome.t_reached - model.solver.t_start) / std::max(st.wall_time_s, 1e-9));
+    fmt::print(stderr, "  steps {}, residual evaluations {}, Jacobians {}, error-test failures {}, "
+                       "nonlinear failures {}, restarts {}\n",
+               st.steps, st.residual_evaluations, st.jacobian_evaluations, st.error_test_failures,
+               st.nonlinear_failures, st.restarts);
+    fmt::print(stderr, "  max |Φ| {:.3g}, energy balance drift {:.3g} J\n",
+               rp.empty() ? 0.0 : *std::max_element(rp.begin(), rp.end()), drift);
+    fmt::print(stderr, "  results: {}{}\n", out, outcome.complete ? "" : " (incomplete)");
+  }
+  if (!outcome.complete) {
+    fmt::print(stderr, "error: {}\n", outcome.message);
+    return g_interrupted ? kExitInterrupted : kExitSolverFailure;
+  }
+  return 0;
+}
+
+int check(const std::string& scene_path) {
+  const Scene scene = readScene(scene_path);
+  const Model model = compileModel(scene);
+  const Assembler assembler(model);
+  consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+  fmt::print("{}", modelSummary(assembler));
+  fmt::print("initial state: consistent (within solver.initial_tolerance = {:g})\n", model.solver.initial_tolerance);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{fmt::format("cranesim {} — rigid-flexible multibody simulation of lattice boom cranes", kVersion)};
+  app.set_version_flag("--version", std::string(kVersion));
+  app.require_subcommand(1);
+
+  std::string scene_path, out_path, results_path;
+  bool quiet = false;
+  auto* run_cmd = app.add_subcommand("run", "simulate a scene and write HDF5 results");
+  run_cmd->add_option("scene", scene_path, "scene file (YAML)")->required();
+  run_cmd->add_option("-o,--output", out_path, "results file (default: <scene name>.h5 in the current directory)");
+  run_cmd->add_flag("-q,--quiet", quiet, "no progress line and no summary");
+  auto* check_cmd = app.add_subcommand("check", "validate a scene and print the model summary");
+  check_cmd->add_option("scene", scene_path, "scene file (YAML)")->required();
+  auto* info_cmd = app.add_subcommand("info", "describe what a results file holds");
+  info_cmd->add_option("results", results_path, "results file (HDF5)")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+  try {
+    if (*run_cmd) return run(scene_path, out_path, quiet);
+    if (*check_cmd) return check(scene_path);
+    if (*info_cmd) {
+      fmt::print("{}", describeResults(results_path));
+      return 0;
+    }
+  } catch (const SceneError& e) {
+    fmt::print(stderr, "error: {}: {}\n", scene_path, e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return *info_cmd ? kExitBadInput : kExitSolverFailure;
+  }
+  return 0;
+}

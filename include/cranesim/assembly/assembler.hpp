@@ -1,0 +1,83 @@
+#pragma once
+// The DAE residual of the multibody system and its sparse Jacobian, in the unknowns
+// y = [q, dq, λ] (+ μ for the stabilised index-2 form):
+//
+//   K(q) q̇ − dq (+ Gᵀμ)                 = 0   kinematics, K = diag(I, T(φ)) per node (2-10)
+//   M(q) d(dq)/dt + F(q, dq, t) + Gᵀλ − Q = 0   Lagrange's equations of the first kind (4-3)
+//   GGL:        G dq + Φ_t = 0,  Φ = 0   (Gear–Gupta–Leimkuhler, index 2)
+//   Baumgarte:  G d(dq)/dt + Γ + 2αβ Φ̇ + α² Φ = 0   (4-27, index 1)
+//
+// G = Bᵀ is the velocity Jacobian of Φ and Q the applied nodal loads (4-8, 4-9).
+
+#include <Eigen/Sparse>
+
+#include "cranesim/assembly/sparsity.hpp"
+#include "cranesim/model/model.hpp"
+
+namespace cranesim {
+
+/// Constraint quantities at one state, for initial conditions, restarts and output.
+struct ConstraintState {
+  VecX phi;                       // Φ
+  VecX phi_dot;                   // G dq + Φ_t
+  VecX gamma;                     // Γ = Ġ dq + dΦ_t/dt with q̇ = H dq
+  Eigen::SparseMatrix<double> G;  // m × nv
+  Eigen::SparseMatrix<double> Phi_q;  // m × nq
+  VecX phi_t;                     // Φ_t
+};
+
+class Assembler {
+ public:
+  explicit Assembler(const Model& model);
+
+  const Model& model() const { return model_; }
+  bool ggl() const { return model_.solver.formulation == Formulation::GGL; }
+  /// Size of y and offsets of its parts.
+  int size() const { return size_; }
+  int vOffset() const { return model_.nq; }
+  int lambdaOffset() const { return model_.nq + model_.nv; }
+  int muOffset() const { return model_.nq + model_.nv + model_.m; }
+  const SparsityPattern& pattern() const { return pattern_; }
+
+  /// F(t, y, ẏ) of the DAE.
+  void residual(double t, const double* y, const double* yp, double* res) const;
+  /// ∂F/∂y + cj ∂F/∂ẏ into `values`, laid out by pattern().
+  void jacobian(double t, double cj, const double* y, const double* yp, double* values) const;
+
+  // Pieces used by initial conditions, restarts and output.
+  Eigen::SparseMatrix<double> massMatrix(const double* q) const;
+  /// F(q, dq, t) − Q(q, t): everything but inertia and constraint forces.
+  VecX appliedForces(double t, const double* q, const double* v) const;
+  ConstraintState constraints(double t, const double* q, const double* v) const;
+  /// q̇ = H(q) dq.
+  VecX coordinateRates(const double* q, const double* v) const;
+  double kineticEnergy(const double* q, const double* v) const;
+  double potentialEnergy(const double* q) const;
+  /// Power of the applied loads, Q·dq.
+  double loadPower(double t, const double* q, const double* v) const;
+
+ private:
+  struct ConstraintBlocks {
+    std::vector<int> v_rows, q_cols, v_cols;
+    int vq = -1, vl = -1, lq = -1, lv = -1, qm = -1, qq = -1, mq = -1, la = -1;
+  };
+  struct NodeBlocks {
+    int qq = -1, qv = -1;
+  };
+
+  void buildPattern();
+  template <class S> Eigen::Matrix<S, 6, 1> loadVector(const Load& load, const double* q, double t,
+                                                       bool seed) const;
+
+  const Model& model_;
+  int size_ = 0;
+  SparsityPattern pattern_;
+  std::vector<NodeBlocks> node_blocks_;
+  std::vector<int> element_blocks_;
+  std::vector<int> load_blocks_;
+  std::vector<ConstraintBlocks> constraint_blocks_;
+  // Per-element scratch written in parallel and reduced in a fixed order.
+  mutable std::vector<std::vector<double>> element_scratch_;
+};
+
+}  // namespace cranesim

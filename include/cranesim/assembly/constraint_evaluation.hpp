@@ -1,0 +1,95 @@
+#pragma once
+// Evaluates a constraint and its derivatives at the generalized coordinates q.
+//
+// The equations are written in joint frames (model/constraint_equations.hpp). Each of the two
+// joints sits on a node whose frame is perturbed by a body-frame twist δ = [δr, δθ]:
+// r + δr, R (I + δθ̃). Differentiating with respect to δ at δ = 0 gives the velocity Jacobian
+// G = Bᵀ with Φ̇ = G dq + Φ_t (4-11), because dq holds [ṙ, ω_body]. Direction 12 is time.
+//
+// With Q = double this yields Φ, G and Φ_t. With Q = Dual<double, 13> the node coordinates
+// [r, φ] of both nodes and time are seeded once more, so every entry of G also carries its
+// derivatives with respect to q and t: the exact Jacobians of Gᵀλ and G dq, and Γ (4-27).
+
+#include "cranesim/math/autodiff.hpp"
+#include "cranesim/math/rotation.hpp"
+#include "cranesim/model/model.hpp"
+
+namespace cranesim {
+
+inline constexpr int kConstraintDirections = 13;  // twists of two nodes + time
+inline constexpr int kTimeDirection = 12;
+inline constexpr int kMaxConstraintRows = 6;
+
+using ConstraintQDual = Dual<double, kConstraintDirections>;
+
+template <class Q> struct ConstraintDerivatives {
+  int rows = 0;
+  Eigen::Matrix<Q, kMaxConstraintRows, 1> phi;
+  /// [∂Φ/∂δ₁ (6), ∂Φ/∂δ₂ (6), Φ_t]
+  Eigen::Matrix<Q, kMaxConstraintRows, kConstraintDirections> G;
+};
+
+namespace detail {
+template <class Q> Q seedCoordinate(double value, int direction) {
+  if constexpr (std::is_same_v<Q, double>) {
+    return value;
+  } else {
+    return seeded<double, kConstraintDirections>(value, direction);
+  }
+}
+
+/// The joint frame of `joint`, perturbed by the twist directions of `side` (0 or 1).
+template <class Q>
+FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, int joint,
+                                                           const double* q, int side) {
+  using D = Dual<Q, kConstraintDirections>;
+  const Joint& J = model.joints[joint];
+  FrameT<D> f;
+  if (J.node < 0) {
+    for (int k = 0; k < 3; ++k) f.r(k) = constant<Q, kConstraintDirections>(Q(J.offset(k)));
+    for (int k = 0; k < 9; ++k) f.R(k) = constant<Q, kConstraintDirections>(Q(J.rotation(k)));
+    return f;
+  }
+  const Node& N = model.nodes[J.node];
+  Vec3T<Q> r, phi;
+  for (int k = 0; k < 3; ++k) {
+    r(k) = seedCoordinate<Q>(q[N.q + k], 6 * side + k);
+    phi(k) = seedCoordinate<Q>(q[N.q + 3 + k], 6 * side + 3 + k);
+  }
+  const Mat3T<Q> Rq = rotationMatrix<Q>(phi);
+  Vec3T<D> rn, dtheta;
+  Mat3T<D> R;
+  for (int k = 0; k < 3; ++k) {
+    rn(k) = seeded<Q, kConstraintDirections>(r(k), 6 * side + k);
+    dtheta(k) = seeded<Q, kConstraintDirections>(Q(0.0), 6 * side + 3 + k);
+  }
+  for (int k = 0; k < 9; ++k) R(k) = constant<Q, kConstraintDirections>(Rq(k));
+  R = (R + R * skew<D>(dtheta)).eval();
+  const Vec3T<D> offset = J.offset.cast<Q>().template cast<D>();
+  const Mat3T<D> rotation = J.rotation.cast<Q>().template cast<D>();
+  f.r = rn + R * offset;
+  f.R = R * rotation;
+  return f;
+}
+}  // namespace detail
+
+template <class Q>
+ConstraintDerivatives<Q> evaluateConstraint(const Model& model, const Constraint& c,
+                                            const double* q, double t) {
+  using D = Dual<Q, kConstraintDirections>;
+  const FrameT<D> j1 = detail::perturbedJointFrame<Q>(model, c.joint1, q, 0);
+  const FrameT<D> j2 = detail::perturbedJointFrame<Q>(model, c.joint2, q, 1);
+  const D time = seeded<Q, kConstraintDirections>(detail::seedCoordinate<Q>(t, kTimeDirection),
+                                                  kTimeDirection);
+  D phi[kMaxConstraintRows];
+  constraintEquations<D>(c.law(), j1, j2, time, phi);
+  ConstraintDerivatives<Q> out;
+  out.rows = c.rows;
+  for (int i = 0; i < c.rows; ++i) {
+    out.phi(i) = phi[i].value();
+    out.G.row(i) = phi[i].derivatives().transpose();
+  }
+  return out;
+}
+
+}  // namespace cranesim

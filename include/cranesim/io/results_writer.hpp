@@ -1,0 +1,44 @@
+#pragma once
+// Collects the samples of a run and writes the HDF5 results file (docs/results-format.md).
+
+#include <string>
+#include <vector>
+
+#include "cranesim/assembly/assembler.hpp"
+#include "cranesim/solvers/dynamics.hpp"
+
+namespace cranesim {
+
+class ResultsRecorder final : public SampleSink {
+ public:
+  explicit ResultsRecorder(const Assembler& assembler);
+  void sample(double t, const double* y, double drive_work, double load_work) override;
+
+  std::size_t samples() const { return time_.size(); }
+  const std::vector<double>& time() const { return time_; }
+  /// Column k of the recorded DAE state over time.
+  std::vector<double> stateColumn(int k) const;
+  /// Position of a joint over time (3 per sample).
+  const std::vector<double>& jointPositions(int joint) const { return joint_position_[joint]; }
+  const std::vector<double>& energyBalance() const { return balance_; }
+  const std::vector<double>& positionResidual() const { return residual_position_; }
+  const std::vector<double>& velocityResidual() const { return residual_velocity_; }
+
+  struct Metadata {
+    std::string scene_path, scene_text, formulation;
+    double t_end_requested = 0.0;
+  };
+  /// Writes under `path`.partial and renames to `path`; marks the file incomplete when the
+  /// run did not finish.
+  void write(const std::string& path, const Metadata& meta, const SimulationOutcome& outcome) const;
+
+ private:
+  const Assembler& assembler_;
+  std::vector<double> time_, state_;
+  std::vector<std::vector<double>> body_position_, body_rotation_, body_velocity_, body_omega_;
+  std::vector<std::vector<double>> joint_position_, joint_rotation_;
+  std::vector<double> kinetic_, potential_, drive_work_, load_work_, balance_;
+  std::vector<double> residual_position_, residual_velocity_;
+};
+
+}  // namespace cranesim

@@ -1,0 +1,142 @@
+#pragma once
+// Time functions for drives and loads: the specified drive functions of Appendix E and
+// tabulated cubic splines. Templated on the scalar so drives get exact time derivatives.
+
+#include <cmath>
+#include <variant>
+#include <vector>
+
+#include "cranesim/math/autodiff.hpp"
+
+namespace cranesim {
+
+struct ConstantProfile {
+  double value = 0.0;
+};
+
+/// y = value + rate · (t − t_start) for t ≥ t_start, value before.
+struct RampProfile {
+  double value = 0.0, rate = 0.0, t_start = 0.0;
+};
+
+/// Trapezoidal velocity, three stages (E-1..E-5): moves by `distance` from `from` in
+/// `duration`, accelerating for `t_accel` and decelerating for `t_decel`.
+struct TrapezoidProfile {
+  double from = 0.0, distance = 0.0, t_start = 0.0, duration = 1.0, t_accel = 0.1, t_decel = 0.1;
+};
+
+/// Cosine step (E-6): from `from` to `to` between t_start and t_end.
+struct CosineStepProfile {
+  double from = 0.0, to = 0.0, t_start = 0.0, t_end = 1.0;
+};
+
+/// Full cosine (E-9): from `base` to `peak` at (t_start + t_end)/2 and back to `base`.
+struct CosineFullProfile {
+  double base = 0.0, peak = 0.0, t_start = 0.0, t_end = 1.0;
+};
+
+/// Hyperbolic tangent transition (E-13) with confidence coefficient λ(c) (Table E-1).
+struct TanhProfile {
+  double from = 0.0, to = 0.0, t_start = 0.0, t_end = 1.0, lambda = 2.6476;
+};
+
+/// Cubic spline through (t_i, y_i), held constant outside [t_0, t_n]. `slopes` are the
+/// first derivatives at the knots (computed once when the table is read).
+struct TableProfile {
+  std::vector<double> t, y, slopes;
+};
+
+/// λ(c) of Table E-1: atanh(c), the argument at which tanh reaches the confidence c.
+inline double tanhConfidenceCoefficient(double confidence) { return std::atanh(confidence); }
+
+/// Knot slopes of the interpolating cubic spline: clamped to zero at both ends when
+/// `zero_end_slopes` (smooth start and stop), natural otherwise.
+std::vector<double> splineSlopes(const std::vector<double>& t, const std::vector<double>& y,
+                                 bool zero_end_slopes);
+
+class Profile {
+ public:
+  using Kind = std::variant<ConstantProfile, RampProfile, TrapezoidProfile, CosineStepProfile,
+                            CosineFullProfile, TanhProfile, TableProfile>;
+
+  Profile() = default;
+  explicit Profile(Kind kind, double scale = 1.0) : kind_(std::move(kind)), scale_(scale) {}
+
+  template <class S> S operator()(const S& t) const {
+    return std::visit([&](const auto& p) { return S(scale_ * evaluate(p, t)); }, kind_);
+  }
+
+  /// Times where a derivative up to the second jumps; the integrator restarts there.
+  std::vector<double> breakpoints() const;
+
+  bool isConstant() const { return std::holds_alternative<ConstantProfile>(kind_); }
+
+ private:
+  template <class S> static S evaluate(const ConstantProfile& p, const S&) { return S(p.value); }
+
+  template <class S> static S evaluate(const RampProfile& p, const S& t) {
+    if (valueOf(t) < p.t_start) return S(p.value);
+    return p.value + p.rate * (t - p.t_start);
+  }
+
+  template <class S> static S evaluate(const TrapezoidProfile& p, const S& t) {
+    const double t1 = p.t_accel, t3 = p.t_decel, t0 = p.duration, t2 = t0 - t1 - t3;
+    const double a1 = 2.0 * p.distance / (t1 * (2.0 * t0 - t1 - t3));   // (E-5)
+    const double a3 = -2.0 * p.distance / (t3 * (2.0 * t0 - t1 - t3));  // (E-5)
+    const double vmax = a1 * t1, s1 = 0.5 * a1 * t1 * t1, s2 = vmax * t2;
+    const S tau = t - p.t_start;
+    const double tv = valueOf(tau);
+    if (tv <= 0.0) return S(p.from);
+    if (tv <= t1) return p.from + 0.5 * a1 * tau * tau;
+    if (tv <= t1 + t2) return p.from + s1 + vmax * (tau - t1);
+    if (tv <= t0) {
+      const S d = tau - (t1 + t2);
+      return p.from + s1 + s2 + vmax * d + 0.5 * a3 * d * d;
+    }
+    return S(p.from + p.distance);
+  }
+
+  template <class S> static S evaluate(const CosineStepProfile& p, const S& t) {
+    using std::cos;
+    const double tv = valueOf(t);
+    if (tv <= p.t_start) return S(p.from);
+    if (tv >= p.t_end) return S(p.to);
+    return 0.5 * (p.from + p.to) +
+           0.5 * (p.from - p.to) * cos((t - p.t_start) * std::numbers::pi / (p.t_end - p.t_start));
+  }
+
+  template <class S> static S evaluate(const CosineFullProfile& p, const S& t) {
+    using std::cos;
+    const double tv = valueOf(t);
+    if (tv <= p.t_start || tv >= p.t_end) return S(p.base);
+    return 0.5 * (p.base + p.peak) +
+           0.5 * (p.base - p.peak) *
+               cos(2.0 * std::numbers::pi * (t - p.t_start) / (p.t_end - p.t_start));
+  }
+
+  template <class S> static S evaluate(const TanhProfile& p, const S& t) {
+    using std::tanh;
+    return 0.5 * (p.from + p.to) +
+           0.5 * (p.to - p.from) *
+               tanh(p.lambda * (2.0 * t - (p.t_start + p.t_end)) / (p.t_end - p.t_start));
+  }
+
+  template <class S> static S evaluate(const TableProfile& p, const S& t) {
+    const double tv = valueOf(t);
+    if (tv <= p.t.front()) return S(p.y.front());
+    if (tv >= p.t.back()) return S(p.y.back());
+    std::size_t i = 1;
+    while (p.t[i] < tv) ++i;
+    const double h = p.t[i] - p.t[i - 1];
+    const S s = (t - p.t[i - 1]) / h;
+    const S s2 = s * s, s3 = s2 * s;
+    // Cubic Hermite basis (A-9..A-11).
+    return (2.0 * s3 - 3.0 * s2 + 1.0) * p.y[i - 1] + (s3 - 2.0 * s2 + s) * (h * p.slopes[i - 1]) +
+           (-2.0 * s3 + 3.0 * s2) * p.y[i] + (s3 - s2) * (h * p.slopes[i]);
+  }
+
+  Kind kind_ = ConstantProfile{};
+  double scale_ = 1.0;
+};
+
+}  // namespace cranesim

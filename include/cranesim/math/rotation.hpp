@@ -1,0 +1,102 @@
+#pragma once
+// Rotation-vector kinematics (thesis 2.1.2, B.2.1). All functions are templated on the
+// scalar so that the same code yields values and exact derivatives.
+//
+// Convention: R = exp(φ̃) maps body axes to inertial axes; the body-frame angular velocity is
+// ω = T(φ) φ̇ (2-10, B-8). The coefficient functions are evaluated through θ² with Taylor
+// series near θ = 0, so they and their derivatives stay finite at the identity.
+
+#include <cmath>
+#include <numbers>
+
+#include "cranesim/math/types.hpp"
+
+namespace cranesim {
+
+template <class S> Mat3T<S> skew(const Vec3T<S>& a) {
+  Mat3T<S> m;
+  m << S(0.0), -a(2), a(1), a(2), S(0.0), -a(0), -a(1), a(0), S(0.0);
+  return m;
+}
+
+inline Vec3 unskew(const Mat3& m) { return {m(2, 1), m(0, 2), m(1, 0)}; }
+
+namespace detail {
+inline constexpr double kSeriesThreshold = 1e-4;  // θ² below which Taylor series are used
+
+// sin θ / θ
+template <class S> S sinc(const S& t2) {
+  using std::sin, std::sqrt;
+  if (t2 < kSeriesThreshold) return 1.0 - t2 / 6.0 + t2 * t2 / 120.0 - t2 * t2 * t2 / 5040.0;
+  const S t = sqrt(t2);
+  return sin(t) / t;
+}
+// (1 − cos θ) / θ²
+template <class S> S cosc(const S& t2) {
+  using std::cos;
+  if (t2 < kSeriesThreshold) return 0.5 - t2 / 24.0 + t2 * t2 / 720.0 - t2 * t2 * t2 / 40320.0;
+  return (1.0 - cos(sqrt(t2))) / t2;
+}
+// (θ − sin θ) / θ³
+template <class S> S sinc3(const S& t2) {
+  using std::sin, std::sqrt;
+  if (t2 < kSeriesThreshold) return 1.0 / 6.0 - t2 / 120.0 + t2 * t2 / 5040.0 - t2 * t2 * t2 / 362880.0;
+  const S t = sqrt(t2);
+  return (t - sin(t)) / (t2 * t);
+}
+// (1 − (θ/2) cot(θ/2)) / θ²
+template <class S> S cotc(const S& t2) {
+  using std::sqrt, std::tan;
+  if (t2 < kSeriesThreshold) return 1.0 / 12.0 + t2 / 720.0 + t2 * t2 / 30240.0 + t2 * t2 * t2 / 1209600.0;
+  const S t = sqrt(t2);
+  return (1.0 - 0.5 * t / tan(0.5 * t)) / t2;
+}
+}  // namespace detail
+
+/// Rodrigues' formula (2-4): R = I + (sin θ/θ) φ̃ + ((1 − cos θ)/θ²) φ̃².
+template <class S> Mat3T<S> rotationMatrix(const Vec3T<S>& phi) {
+  const S t2 = phi.squaredNorm();
+  const Mat3T<S> P = skew(phi);
+  return Mat3T<S>::Identity() + detail::sinc(t2) * P + detail::cosc(t2) * (P * P);
+}
+
+/// T(φ) of (2-5)/(B-8): body angular velocity ω = T(φ) φ̇.
+template <class S> Mat3T<S> angularVelocityMap(const Vec3T<S>& phi) {
+  const S t2 = phi.squaredNorm();
+  const Mat3T<S> P = skew(phi);
+  return Mat3T<S>::Identity() - detail::cosc(t2) * P + detail::sinc3(t2) * (P * P);
+}
+
+/// T(φ)⁻¹: φ̇ = T(φ)⁻¹ ω. Singular at θ = 2π, hence the re-parameterisation below.
+template <class S> Mat3T<S> angularVelocityMapInverse(const Vec3T<S>& phi) {
+  const S t2 = phi.squaredNorm();
+  const Mat3T<S> P = skew(phi);
+  return Mat3T<S>::Identity() + 0.5 * P + detail::cotc(t2) * (P * P);
+}
+
+/// Rotation vector of a rotation matrix, with angle in [0, π].
+inline Vec3 rotationVector(const Mat3& R) {
+  const Eigen::AngleAxisd aa(R);
+  return aa.angle() * aa.axis();
+}
+
+/// Rotation about a unit axis by an angle.
+inline Mat3 axisAngle(const Vec3& axis, double angle) {
+  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+}
+
+/// Angle above which a rotation vector is re-parameterised. DESIGN §4 asks for θ > π; the
+/// margin above π is hysteresis, so a body rocking about θ = π does not trigger a restart of
+/// the integrator at every step (T⁻¹ is singular only at 2π).
+inline constexpr double kReparameterisationAngle = 1.25 * std::numbers::pi;
+
+/// Replaces φ by the rotation vector of the same rotation with angle θ − 2π (DESIGN §4) when
+/// θ exceeds kReparameterisationAngle. Returns whether φ changed.
+inline bool reparameterise(Vec3& phi) {
+  const double t = phi.norm();
+  if (t <= kReparameterisationAngle) return false;
+  phi *= 1.0 - 2.0 * std::numbers::pi / t;
+  return true;
+}
+
+}  // namespace cranesim

@@ -1,0 +1,79 @@
+#pragma once
+// Constraint equations Φ(J1, J2, t) = 0 between two joint frames (thesis 4.4), written once
+// and templated on the scalar: B (4-11) and Γ (4-14, 4-19, 4-22) follow by automatic
+// differentiation (see assembly/constraint_evaluation.hpp). e_i^k = R_Jk g_i are the joint axes.
+
+#include "cranesim/math/profile.hpp"
+#include "cranesim/math/types.hpp"
+#include "cranesim/model/scene.hpp"
+
+namespace cranesim {
+
+/// Number of scalar equations of a constraint.
+inline int constraintRows(ConstraintType type, bool driven) {
+  switch (type) {
+    case ConstraintType::Fixed: return 6;
+    case ConstraintType::Revolute: return 5 + (driven ? 1 : 0);
+    case ConstraintType::Prismatic: return 5 + (driven ? 1 : 0);
+    case ConstraintType::Spherical: return 3;
+    case ConstraintType::Distance: return 1;
+  }
+  return 0;
+}
+
+/// Parameters of one constraint that the equations need.
+struct ConstraintLaw {
+  ConstraintType type = ConstraintType::Fixed;
+  int axis = 2;                  // i: revolute/prismatic axis; p, q are the two others
+  const Profile* drive = nullptr;  // angle, displacement or length; may be null
+};
+
+template <class S>
+void constraintEquations(const ConstraintLaw& law, const FrameT<S>& j1, const FrameT<S>& j2,
+                         const S& t, S* phi) {
+  const int i = law.axis, p = (law.axis + 1) % 3, q = (law.axis + 2) % 3;
+  const Vec3T<S> d = j1.r - j2.r;
+  // Relative orientation locked: e_y¹·e_z², e_z¹·e_x², e_x¹·e_y² vanish for equal frames (4-13).
+  const auto lockRotation = [&](S* out) {
+    out[0] = j1.R.col(1).dot(j2.R.col(2));
+    out[1] = j1.R.col(2).dot(j2.R.col(0));
+    out[2] = j1.R.col(0).dot(j2.R.col(1));
+  };
+  switch (law.type) {
+    case ConstraintType::Spherical:  // (4-24)
+      for (int k = 0; k < 3; ++k) phi[k] = d(k);
+      return;
+    case ConstraintType::Fixed:  // (4-13)
+      for (int k = 0; k < 3; ++k) phi[k] = d(k);
+      lockRotation(phi + 3);
+      return;
+    case ConstraintType::Revolute: {  // (4-15): axes e_i¹ ∥ e_i²
+      for (int k = 0; k < 3; ++k) phi[k] = d(k);
+      phi[3] = j1.R.col(i).dot(j2.R.col(p));
+      phi[4] = j1.R.col(i).dot(j2.R.col(q));
+      if (law.drive) {
+        // Angle ψ of J2 about e_i relative to J1: cos ψ = e_p¹·e_p², sin ψ = e_q¹·e_p².
+        // sin(ψ − ψ_d(t)) = 0, regular wherever the joint is near its prescribed angle.
+        using std::cos, std::sin;
+        const S angle = (*law.drive)(t);
+        phi[5] = j1.R.col(q).dot(j2.R.col(p)) * cos(angle) - j1.R.col(p).dot(j2.R.col(p)) * sin(angle);
+      }
+      return;
+    }
+    case ConstraintType::Prismatic: {  // (4-21): slide along e_i¹
+      const Vec3T<S> s = j2.r - j1.r;
+      phi[0] = s.dot(j1.R.col(p));
+      phi[1] = s.dot(j1.R.col(q));
+      lockRotation(phi + 2);
+      if (law.drive) phi[5] = s.dot(j1.R.col(i)) - (*law.drive)(t);
+      return;
+    }
+    case ConstraintType::Distance: {
+      using std::sqrt;
+      phi[0] = sqrt(d.squaredNorm()) - (*law.drive)(t);
+      return;
+    }
+  }
+}
+
+}  // namespace cranesim

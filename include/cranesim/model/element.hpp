@@ -1,0 +1,109 @@
+#pragma once
+// The assembler's view of an element: equations of motion M(q) d(dq)/dt + F(q, dq, t) on a
+// few nodes, with their Jacobians. KernelElement adapts any header-only kernel to it and
+// obtains the Jacobians from the kernel's templated code by forward automatic differentiation.
+
+#include <array>
+#include <vector>
+
+#include "cranesim/math/autodiff.hpp"
+
+namespace cranesim {
+
+/// Global state vectors an element reads its local coordinates from.
+struct ElementInput {
+  const double* q;   // generalized coordinates
+  const double* v;   // generalized velocities
+  const double* a;   // generalized accelerations d(dq)/dt
+  double t;
+  Vec3 gravity;
+};
+
+class Element {
+ public:
+  virtual ~Element() = default;
+  /// The element's nodes, and for each node the offsets of its coordinates in q and v.
+  virtual const std::vector<int>& nodes() const = 0;
+  /// Local size of dq: the number of equations the element contributes.
+  virtual int size() const = 0;
+  /// Global v indices of the local equations (and of the local velocities), in order.
+  virtual const std::vector<int>& velocityIndices() const = 0;
+  /// Global q indices of the local coordinates, in order.
+  virtual const std::vector<int>& coordinateIndices() const = 0;
+  /// r = M(q) a + F(q, v, t).
+  virtual void residual(const ElementInput& in, double* r) const = 0;
+  /// J = [∂r/∂q | ∂r/∂v + cj M], column-major, size() × (nq_local + size()).
+  virtual void jacobian(const ElementInput& in, double cj, double* J) const = 0;
+  /// Local mass matrix M(q), column-major, size() × size().
+  virtual void mass(const ElementInput& in, double* M) const = 0;
+  virtual double kineticEnergy(const ElementInput& in) const = 0;
+  virtual double potentialEnergy(const ElementInput& in) const = 0;
+};
+
+template <class Kernel> class KernelElement final : public Element {
+ public:
+  static constexpr int kNq = Kernel::kNq, kNv = Kernel::kNv;
+  using Qd = Eigen::Matrix<double, kNq, 1>;
+  using Vd = Eigen::Matrix<double, kNv, 1>;
+
+  KernelElement(Kernel kernel, std::vector<int> nodes, std::vector<int> q_indices,
+                std::vector<int> v_indices)
+      : kernel_(std::move(kernel)), nodes_(std::move(nodes)), q_(std::move(q_indices)),
+        v_(std::move(v_indices)) {}
+
+  const Kernel& kernel() const { return kernel_; }
+  const std::vector<int>& nodes() const override { return nodes_; }
+  int size() const override { return kNv; }
+  const std::vector<int>& velocityIndices() const override { return v_; }
+  const std::vector<int>& coordinateIndices() const override { return q_; }
+
+  void residual(const ElementInput& in, double* r) const override {
+    const Qd q = gatherQ(in.q);
+    Eigen::Map<Vd> out(r);
+    out = kernel_.template massMatrix<double>(q) * gatherV(in.a) + kernel_.template force<double>(q, gatherV(in.v), in.gravity);
+  }
+
+  void jacobian(const ElementInput& in, double cj, double* J) const override {
+    using D = Dual<double, kNq + kNv>;
+    const Qd qd = gatherQ(in.q);
+    const Vd vd = gatherV(in.v), ad = gatherV(in.a);
+    Eigen::Matrix<D, kNq, 1> q;
+    Eigen::Matrix<D, kNv, 1> v;
+    for (int k = 0; k < kNq; ++k) q(k) = seeded<double, kNq + kNv>(qd(k), k);
+    for (int k = 0; k < kNv; ++k) v(k) = seeded<double, kNq + kNv>(vd(k), kNq + k);
+    const Eigen::Matrix<D, kNv, 1> r =
+        kernel_.template massMatrix<D>(q) * ad.template cast<D>() + kernel_.template force<D>(q, v, in.gravity);
+    Eigen::Map<Eigen::Matrix<double, kNv, kNq + kNv>> Jm(J);
+    for (int i = 0; i < kNv; ++i) Jm.row(i) = r(i).derivatives().transpose();
+    Jm.template rightCols<kNv>() += cj * kernel_.template massMatrix<double>(qd);
+  }
+
+  void mass(const ElementInput& in, double* M) const override {
+    Eigen::Map<Eigen::Matrix<double, kNv, kNv>> out(M);
+    out = kernel_.template massMatrix<double>(gatherQ(in.q));
+  }
+
+  double kineticEnergy(const ElementInput& in) const override {
+    return kernel_.kineticEnergy(gatherQ(in.q), gatherV(in.v));
+  }
+  double potentialEnergy(const ElementInput& in) const override {
+    return kernel_.potentialEnergy(gatherQ(in.q), in.gravity);
+  }
+
+ private:
+  Qd gatherQ(const double* x) const {
+    Qd out;
+    for (int k = 0; k < kNq; ++k) out(k) = x[q_[k]];
+    return out;
+  }
+  Vd gatherV(const double* x) const {
+    Vd out;
+    for (int k = 0; k < kNv; ++k) out(k) = x[v_[k]];
+    return out;
+  }
+
+  Kernel kernel_;
+  std::vector<int> nodes_, q_, v_;
+};
+
+}  // namespace cranesim

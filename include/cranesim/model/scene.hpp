@@ -1,0 +1,95 @@
+#pragma once
+// The scene: plain data read from YAML, in SI units, before compilation into a Model.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cranesim/math/profile.hpp"
+#include "cranesim/math/types.hpp"
+#include "cranesim/model/source_location.hpp"
+
+namespace cranesim {
+
+struct JointSpec {
+  std::string name;
+  Vec3 position = Vec3::Zero();     // in the body frame
+  Mat3 rotation = Mat3::Identity();  // joint axes → body axes
+  SourceLocation where;
+};
+
+struct RigidBodySpec {
+  std::string name;
+  double mass = 0.0;
+  Vec3 centroid = Vec3::Zero();        // body frame, from the body origin
+  Mat3 inertia = Mat3::Identity();     // about the centroid, body axes
+  Vec3 position = Vec3::Zero();        // initial origin position, inertial
+  Mat3 rotation = Mat3::Identity();    // initial body axes → inertial
+  Vec3 velocity = Vec3::Zero();        // initial origin velocity, inertial
+  Vec3 angular_velocity = Vec3::Zero();  // initial, body frame
+  std::vector<JointSpec> joints;
+  SourceLocation where;
+};
+
+enum class ConstraintType { Fixed, Revolute, Prismatic, Spherical, Distance };
+
+struct ConstraintSpec {
+  std::string name;
+  ConstraintType type = ConstraintType::Fixed;
+  std::string joint1, joint2;  // "<body>.<joint>", "ground.<joint>"
+  int axis = 2;                // revolute/prismatic axis of the joint frames: 0=x, 1=y, 2=z
+  std::optional<Profile> drive;  // prescribed angle (revolute), displacement (prismatic), length (distance)
+  SourceLocation where, where_joint1, where_joint2;
+};
+
+enum class LoadFrame { Inertial, Joint };
+
+struct LoadSpec {
+  std::string name;
+  std::string joint;
+  Vec3 force = Vec3::Zero();
+  Vec3 torque = Vec3::Zero();
+  LoadFrame frame = LoadFrame::Inertial;
+  Profile scale = Profile(ConstantProfile{1.0});
+  SourceLocation where, where_joint;
+};
+
+enum class Formulation { GGL, Baumgarte };
+
+struct SolverSpec {
+  Formulation formulation = Formulation::GGL;
+  double t_start = 0.0;
+  double t_end = 1.0;
+  double rtol = 1e-6;
+  double atol = 1e-8;
+  /// Absolute tolerance of the multipliers λ, μ in IDAS' Newton convergence test. They are
+  /// excluded from the error test; a tight value there stalls Newton at small steps, where
+  /// round-off in the index-2 multipliers grows like 1/h².
+  double atol_multipliers = 1e-6;
+  double max_step = 0.0;  // 0: unlimited
+  int max_order = 5;
+  double initial_step = 0.0;  // 0: chosen by IDAS
+  double baumgarte_alpha = 10.0;
+  double baumgarte_beta = 1.0;
+  double initial_tolerance = 1e-6;  // largest initial constraint violation that is projected away
+};
+
+struct OutputSpec {
+  double interval = 0.01;
+};
+
+struct Scene {
+  std::string name;
+  std::string path;
+  std::string text;
+  Vec3 gravity = Vec3(0.0, 0.0, -9.81);
+  std::vector<JointSpec> ground_joints;
+  std::vector<RigidBodySpec> bodies;
+  std::vector<ConstraintSpec> constraints;
+  std::vector<LoadSpec> loads;
+  SolverSpec solver;
+  OutputSpec output;
+  SourceLocation where_solver;
+};
+
+}  // namespace cranesim

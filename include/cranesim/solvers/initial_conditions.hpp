@@ -1,0 +1,26 @@
+#pragma once
+// Consistent initial conditions (DESIGN §5): positions on Φ = 0, velocities on Φ̇ = 0, and
+// accelerations and multipliers from the saddle-point system (4-3)
+//   [M  Gᵀ] [d(dq)/dt]   [−F + Q]
+//   [G  0 ] [   λ    ] = [  −Γ  ].
+
+#include "cranesim/assembly/assembler.hpp"
+
+namespace cranesim {
+
+struct DynamicState {
+  double t = 0.0;
+  VecX q, v, a, lambda, qdot;
+};
+
+/// Checks the constraint Jacobian for redundant equations; throws SceneError naming them.
+void requireIndependentConstraints(const Assembler& assembler, const VecX& q, double t);
+
+/// Projects (q, v) onto the constraint manifold and solves for a and λ. Throws SceneError
+/// naming the constraint when the initial violation exceeds `tolerance`.
+DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance);
+
+/// Recomputes a, λ and q̇ for a state whose q and v are already consistent (restarts).
+void solveAccelerations(const Assembler& assembler, DynamicState& state);
+
+}  // namespace cranesim

@@ -1,0 +1,419 @@
+#include "cranesim/assembly/assembler.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include "cranesim/assembly/constraint_evaluation.hpp"
+#include "cranesim/math/rotation.hpp"
+
+namespace cranesim {
+namespace {
+
+constexpr std::size_t kParallelElementThreshold = 32;  // below: the loop is cheaper than TBB
+
+template <class Body> void forEachElement(std::size_t n, const Body& body) {
+  if (n < kParallelElementThreshold) {
+    for (std::size_t e = 0; e < n; ++e) body(e);
+    return;
+  }
+  tbb::parallel_for(std::size_t{0}, n, body);
+}
+
+std::vector<int> range(int first, int count) {
+  std::vector<int> out(count);
+  for (int k = 0; k < count; ++k) out[k] = first + k;
+  return out;
+}
+
+/// The node of each side of a constraint (−1 for the ground) and the active twist directions.
+struct ConstraintSides {
+  int node[2] = {-1, -1};
+  std::vector<int> directions;  // subset of 0..11
+};
+
+ConstraintSides sidesOf(const Model& model, const Constraint& c) {
+  ConstraintSides s;
+  s.node[0] = model.joints[c.joint1].node;
+  s.node[1] = model.joints[c.joint2].node;
+  for (int side = 0; side < 2; ++side)
+    if (s.node[side] >= 0)
+      for (int k = 0; k < 6; ++k) s.directions.push_back(6 * side + k);
+  return s;
+}
+
+int vIndex(const Model& model, const ConstraintSides& s, int direction) {
+  return model.nodes[s.node[direction / 6]].v + direction % 6;
+}
+int qIndex(const Model& model, const ConstraintSides& s, int direction) {
+  return model.nodes[s.node[direction / 6]].q + direction % 6;
+}
+
+/// Local coordinates [q₁, q₂] of a constraint's nodes, or their rates, extended by 1 for time.
+Eigen::Matrix<double, kConstraintDirections, 1> localExtended(const Model& model,
+                                                               const ConstraintSides& s,
+                                                               const double* x, bool q_layout) {
+  Eigen::Matrix<double, kConstraintDirections, 1> out = Eigen::Matrix<double, kConstraintDirections, 1>::Zero();
+  for (int d : s.directions) out(d) = x[q_layout ? qIndex(model, s, d) : vIndex(model, s, d)];
+  out(kTimeDirection) = 1.0;
+  return out;
+}
+
+}  // namespace
+
+Assembler::Assembler(const Model& model) : model_(model) {
+  size_ = model.nq + model.nv + model.m * (ggl() ? 2 : 1);
+  element_scratch_.resize(model.elements.size());
+  buildPattern();
+}
+
+void Assembler::buildPattern() {
+  const int nq = model_.nq;
+  for (const Node& n : model_.nodes) {
+    NodeBlocks b;
+    b.qq = pattern_.addBlock(range(n.q, 6), range(n.q, 6));
+    b.qv = pattern_.addBlock(range(n.q, 6), range(nq + n.v, 6), true);
+    node_blocks_.push_back(b);
+  }
+  for (const auto& e : model_.elements) {
+    std::vector<int> rows, cols;
+    for (int i : e->velocityIndices()) rows.push_back(nq + i);
+    for (int i : e->coordinateIndices()) cols.push_back(i);
+    for (int i : e->velocityIndices()) cols.push_back(nq + i);
+    element_blocks_.push_back(pattern_.addBlock(rows, cols));
+  }
+  for (const Load& l : model_.loads) {
+    const Node& n = model_.nodes[model_.joints[l.joint].node];
+    load_blocks_.push_back(pattern_.addBlock(range(nq + n.v, 6), range(n.q, 6)));
+  }
+  for (const Constraint& c : model_.constraints) {
+    const ConstraintSides s = sidesOf(model_, c);
+    ConstraintBlocks b;
+    std::vector<int> q_rows;
+    for (int d : s.directions) {
+      b.v_rows.push_back(nq + vIndex(model_, s, d));
+      b.q_cols.push_back(qIndex(model_, s, d));
+      b.v_cols.push_back(nq + vIndex(model_, s, d));
+      q_rows.push_back(qIndex(model_, s, d));
+    }
+    const std::vector<int> lambda = range(lambdaOffset() + c.row, c.rows);
+    b.vq = pattern_.addBlock(b.v_rows, b.q_cols);
+    b.vl = pattern_.addBlock(b.v_rows, lambda);
+    b.lq = pattern_.addBlock(lambda, b.q_cols);
+    b.lv = pattern_.addBlock(lambda, b.v_cols);
+    if (ggl()) {
+      const std::vector<int> mu = range(muOffset() + c.row, c.rows);
+      b.qm = pattern_.addBlock(q_rows, mu);
+      b.qq = pattern_.addBlock(q_rows, b.q_cols);
+      b.mq = pattern_.addBlock(mu, b.q_cols);
+    }
+    constraint_blocks_.push_back(std::move(b));
+  }
+  pattern_.finalize(size_);
+}
+
+template <class S>
+Eigen::Matrix<S, 6, 1> Assembler::loadVector(const Load& load, const double* q, double t,
+                                             bool seed) const {
+  const Joint& J = model_.joints[load.joint];
+  const Node& N = model_.nodes[J.node];
+  Vec3T<S> phi;
+  for (int k = 0; k < 3; ++k) {
+    if constexpr (std::is_same_v<S, double>) {
+      phi(k) = q[N.q + 3 + k];
+    } else {
+      phi(k) = seed ? seeded<double, 6>(q[N.q + 3 + k], 3 + k) : S(q[N.q + 3 + k]);
+    }
+  }
+  const Mat3T<S> R = rotationMatrix<S>(phi);
+  const double s = load.scale(t);
+  Vec3T<S> F = (s * load.force).cast<S>(), M = (s * load.torque).cast<S>();
+  if (load.frame == LoadFrame::Joint) {
+    const Mat3T<S> RJ = R * J.rotation.cast<S>();
+    F = (RJ * F).eval();
+    M = (RJ * M).eval();
+  }
+  // (4-8, 4-9): power F·ṙ_J + M·ω with ṙ_J = ṙ − R r̃_BJ ω.
+  Eigen::Matrix<S, 6, 1> Q;
+  Q.template head<3>() = F;
+  Q.template tail<3>() = J.offset.cast<S>().cross(R.transpose() * F) + R.transpose() * M;
+  return Q;
+}
+
+void Assembler::residual(double t, const double* y, const double* yp, double* res) const {
+  const int nq = model_.nq;
+  const double* q = y;
+  const double* v = y + nq;
+  const double* lambda = y + lambdaOffset();
+  const double* qdot = yp;
+  const double* a = yp + nq;
+  std::fill(res, res + size_, 0.0);
+  double* res_v = res + nq;
+
+  for (const Node& n : model_.nodes) {
+    const Vec3 phi(q + n.q + 3);
+    const Vec3 w = angularVelocityMap<double>(phi) * Vec3(qdot + n.q + 3);
+    for (int k = 0; k < 3; ++k) {
+      res[n.q + k] = qdot[n.q + k] - v[n.v + k];
+      res[n.q + 3 + k] = w(k) - v[n.v + 3 + k];
+    }
+  }
+
+  const ElementInput in{q, v, a, t, model_.gravity};
+  forEachElement(model_.elements.size(), [&](std::size_t e) {
+    element_scratch_[e].resize(model_.elements[e]->size());
+    model_.elements[e]->residual(in, element_scratch_[e].data());
+  });
+  for (std::size_t e = 0; e < model_.elements.size(); ++e) {
+    const auto& idx = model_.elements[e]->velocityIndices();
+    for (std::size_t k = 0; k < idx.size(); ++k) res_v[idx[k]] += element_scratch_[e][k];
+  }
+
+  for (const Load& l : model_.loads) {
+    const Node& n = model_.nodes[model_.joints[l.joint].node];
+    const auto Q = loadVector<double>(l, q, t, false);
+    for (int k = 0; k < 6; ++k) res_v[n.v + k] -= Q(k);
+  }
+
+  const SolverSpec& sv = model_.solver;
+  for (const Constraint& c : model_.constraints) {
+    const ConstraintSides s = sidesOf(model_, c);
+    const auto vloc = localExtended(model_, s, v, false);
+    double* res_l = res + lambdaOffset() + c.row;
+    if (ggl()) {
+      const auto C = evaluateConstraint<double>(model_, c, q, t);
+      const double* mu = y + muOffset() + c.row;
+      for (int i = 0; i < c.rows; ++i) {
+        res_l[i] = (C.G.row(i) * vloc).value();
+        res[muOffset() + c.row + i] = C.phi(i);
+        for (int d : s.directions) {
+          res_v[vIndex(model_, s, d)] += C.G(i, d) * lambda[c.row + i];
+          res[qIndex(model_, s, d)] += C.G(i, d) * mu[i];
+        }
+      }
+    } else {
+      const auto C = evaluateConstraint<ConstraintQDual>(model_, c, q, t);
+      const auto aloc = localExtended(model_, s, a, false);
+      const auto qdloc = localExtended(model_, s, qdot, true);
+      const double alpha = sv.baumgarte_alpha, beta = sv.baumgarte_beta;
+      for (int i = 0; i < c.rows; ++i) {
+        double phidot = 0.0, g_a = 0.0, gamma = 0.0;
+        for (int j = 0; j < kConstraintDirections; ++j) {
+          phidot += C.G(i, j).value() * vloc(j);
+          if (j != kTimeDirection) g_a += C.G(i, j).value() * aloc(j);
+          gamma += C.G(i, j).derivatives().dot(qdloc) * vloc(j);  // (4-27): Γ = Ġ dq + Φ̇_t
+        }
+        res_l[i] = g_a + gamma + 2.0 * alpha * beta * phidot + alpha * alpha * C.phi(i).value();
+        for (int d : s.directions) res_v[vIndex(model_, s, d)] += C.G(i, d).value() * lambda[c.row + i];
+      }
+    }
+  }
+}
+
+void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
+                         double* values) const {
+  const int nq = model_.nq;
+  const double* q = y;
+  const double* v = y + nq;
+  const double* lambda = y + lambdaOffset();
+  const double* qdot = yp;
+  const double* a = yp + nq;
+  std::fill(values, values + pattern_.nonZeros(), 0.0);
+  const auto scatter = [&](int block, const double* local) {
+    const auto& slots = pattern_.slots(block);
+    for (std::size_t k = 0; k < slots.size(); ++k) values[slots[k]] += local[k];
+  };
+
+  for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
+    const Node& node = model_.nodes[n];
+    using D = Dual<double, 3>;
+    Vec3T<D> phi;
+    for (int k = 0; k < 3; ++k) phi(k) = seeded<double, 3>(q[node.q + 3 + k], k);
+    const Vec3T<D> w = angularVelocityMap<D>(phi) * Vec3(qdot + node.q + 3).cast<D>();
+    Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Zero();
+    J.topLeftCorner<3, 3>() = cj * Mat3::Identity();
+    for (int k = 0; k < 3; ++k) J.block<1, 3>(3 + k, 3) = w(k).derivatives().transpose();
+    J.bottomRightCorner<3, 3>() += cj * angularVelocityMap<double>(Vec3(q + node.q + 3));
+    scatter(node_blocks_[n].qq, J.data());
+    const double minus_one[6] = {-1, -1, -1, -1, -1, -1};
+    scatter(node_blocks_[n].qv, minus_one);
+  }
+
+  const ElementInput in{q, v, a, t, model_.gravity};
+  forEachElement(model_.elements.size(), [&](std::size_t e) {
+    const auto& el = *model_.elements[e];
+    element_scratch_[e].resize(el.size() * (el.coordinateIndices().size() + el.size()));
+    el.jacobian(in, cj, element_scratch_[e].data());
+  });
+  for (std::size_t e = 0; e < model_.elements.size(); ++e) scatter(element_blocks_[e], element_scratch_[e].data());
+
+  for (std::size_t l = 0; l < model_.loads.size(); ++l) {
+    const auto Q = loadVector<Dual<double, 6>>(model_.loads[l], q, t, true);
+    Eigen::Matrix<double, 6, 6> J;
+    for (int k = 0; k < 6; ++k) J.row(k) = -Q(k).derivatives().transpose();
+    scatter(load_blocks_[l], J.data());
+  }
+
+  const SolverSpec& sv = model_.solver;
+  for (std::size_t ci = 0; ci < model_.constraints.size(); ++ci) {
+    const Constraint& c = model_.constraints[ci];
+    const ConstraintBlocks& b = constraint_blocks_[ci];
+    const ConstraintSides s = sidesOf(model_, c);
+    const auto C = evaluateConstraint<ConstraintQDual>(model_, c, q, t);
+    const auto vloc = localExtended(model_, s, v, false);
+    const int nd = static_cast<int>(s.directions.size());
+    const int m = c.rows;
+    MatX vq = MatX::Zero(nd, nd), vl(nd, m), lq = MatX::Zero(m, nd), lv(m, nd);
+    // dGv(i, k) = ∂(G dq + Φ_t)_i/∂q_k
+    MatX dGv = MatX::Zero(m, nd), phi_q(m, nd);
+    for (int i = 0; i < m; ++i) {
+      for (int jj = 0; jj < nd; ++jj) {
+        const int j = s.directions[jj];
+        vl(jj, i) = C.G(i, j).value();
+        lv(i, jj) = C.G(i, j).value();
+        phi_q(i, jj) = C.phi(i).derivatives()(j);
+        for (int kk = 0; kk < nd; ++kk) {
+          const int k = s.directions[kk];
+          vq(jj, kk) += lambda[c.row + i] * C.G(i, j).derivatives()(k);
+        }
+      }
+      for (int kk = 0; kk < nd; ++kk)
+        for (int j = 0; j < kConstraintDirections; ++j)
+          dGv(i, kk) += C.G(i, j).derivatives()(s.directions[kk]) * vloc(j);
+    }
+    if (ggl()) {
+      lq = dGv;
+      const double* mu = y + muOffset() + c.row;
+      MatX qq = MatX::Zero(nd, nd);
+      for (int i = 0; i < m; ++i)
+        for (int jj = 0; jj < nd; ++jj)
+          for (int kk = 0; kk < nd; ++kk)
+            qq(jj, kk) += mu[i] * C.G(i, s.directions[jj]).derivatives()(s.directions[kk]);
+      scatter(b.qm, vl.data());
+      scatter(b.qq, qq.data());
+      scatter(b.mq, phi_q.data());
+    } else {
+      // Exact except for ∂Γ/∂q, which needs third derivatives and only slows Newton slightly.
+      const auto qdloc = localExtended(model_, s, qdot, true);
+      const auto aloc = localExtended(model_, s, a, false);
+      const double alpha = sv.baumgarte_alpha, beta = sv.baumgarte_beta;
+      for (int i = 0; i < m; ++i) {
+        for (int kk = 0; kk < nd; ++kk) {
+          double dGa = 0.0;
+          for (int j = 0; j < kTimeDirection; ++j) dGa += C.G(i, j).derivatives()(s.directions[kk]) * aloc(j);
+          lq(i, kk) = dGa + (2.0 * alpha * beta + cj) * dGv(i, kk) + alpha * alpha * phi_q(i, kk);
+        }
+        for (int jj = 0; jj < nd; ++jj) {
+          const int j = s.directions[jj];
+          lv(i, jj) = (cj + 2.0 * alpha * beta) * C.G(i, j).value() + C.G(i, j).derivatives().dot(qdloc);
+        }
+      }
+    }
+    scatter(b.vq, vq.data());
+    scatter(b.vl, vl.data());
+    scatter(b.lq, lq.data());
+    scatter(b.lv, lv.data());
+  }
+}
+
+Eigen::SparseMatrix<double> Assembler::massMatrix(const double* q) const {
+  std::vector<Eigen::Triplet<double>> triplets;
+  const ElementInput in{q, nullptr, nullptr, 0.0, model_.gravity};
+  std::vector<double> local;
+  for (const auto& e : model_.elements) {
+    const int n = e->size();
+    local.resize(n * n);
+    e->mass(in, local.data());
+    const auto& idx = e->velocityIndices();
+    for (int c = 0; c < n; ++c)
+      for (int r = 0; r < n; ++r) triplets.emplace_back(idx[r], idx[c], local[c * n + r]);
+  }
+  Eigen::SparseMatrix<double> M(model_.nv, model_.nv);
+  M.setFromTriplets(triplets.begin(), triplets.end());
+  return M;
+}
+
+VecX Assembler::appliedForces(double t, const double* q, const double* v) const {
+  VecX zero_a = VecX::Zero(model_.nv);
+  VecX F = VecX::Zero(model_.nv);
+  const ElementInput in{q, v, zero_a.data(), t, model_.gravity};
+  std::vector<double> local;
+  for (const auto& e : model_.elements) {
+    local.resize(e->size());
+    e->residual(in, local.data());
+    const auto& idx = e->velocityIndices();
+    for (std::size_t k = 0; k < idx.size(); ++k) F(idx[k]) += local[k];
+  }
+  for (const Load& l : model_.loads) {
+    const Node& n = model_.nodes[model_.joints[l.joint].node];
+    F.segment<6>(n.v) -= loadVector<double>(l, q, t, false);
+  }
+  return F;
+}
+
+ConstraintState Assembler::constraints(double t, const double* q, const double* v) const {
+  ConstraintState out;
+  const int m = model_.m;
+  out.phi = VecX::Zero(m);
+  out.phi_dot = VecX::Zero(m);
+  out.gamma = VecX::Zero(m);
+  out.phi_t = VecX::Zero(m);
+  const VecX qdot = coordinateRates(q, v);
+  std::vector<Eigen::Triplet<double>> g, pq;
+  for (const Constraint& c : model_.constraints) {
+    const ConstraintSides s = sidesOf(model_, c);
+    const auto C = evaluateConstraint<ConstraintQDual>(model_, c, q, t);
+    const auto vloc = localExtended(model_, s, v, false);
+    const auto qdloc = localExtended(model_, s, qdot.data(), true);
+    for (int i = 0; i < c.rows; ++i) {
+      const int row = c.row + i;
+      out.phi(row) = C.phi(i).value();
+      out.phi_t(row) = C.G(i, kTimeDirection).value();
+      for (int j = 0; j < kConstraintDirections; ++j) {
+        out.phi_dot(row) += C.G(i, j).value() * vloc(j);
+        out.gamma(row) += C.G(i, j).derivatives().dot(qdloc) * vloc(j);
+      }
+      for (int d : s.directions) {
+        g.emplace_back(row, vIndex(model_, s, d), C.G(i, d).value());
+        pq.emplace_back(row, qIndex(model_, s, d), C.phi(i).derivatives()(d));
+      }
+    }
+  }
+  out.G.resize(m, model_.nv);
+  out.G.setFromTriplets(g.begin(), g.end());
+  out.Phi_q.resize(m, model_.nq);
+  out.Phi_q.setFromTriplets(pq.begin(), pq.end());
+  return out;
+}
+
+VecX Assembler::coordinateRates(const double* q, const double* v) const {
+  VecX qdot(model_.nq);
+  for (const Node& n : model_.nodes) {
+    qdot.segment<3>(n.q) = Vec3(v + n.v);
+    qdot.segment<3>(n.q + 3) = angularVelocityMapInverse<double>(Vec3(q + n.q + 3)) * Vec3(v + n.v + 3);
+  }
+  return qdot;
+}
+
+double Assembler::kineticEnergy(const double* q, const double* v) const {
+  const ElementInput in{q, v, nullptr, 0.0, model_.gravity};
+  double sum = 0.0;
+  for (const auto& e : model_.elements) sum += e->kineticEnergy(in);
+  return sum;
+}
+
+double Assembler::potentialEnergy(const double* q) const {
+  const ElementInput in{q, nullptr, nullptr, 0.0, model_.gravity};
+  double sum = 0.0;
+  for (const auto& e : model_.elements) sum += e->potentialEnergy(in);
+  return sum;
+}
+
+double Assembler::loadPower(double t, const double* q, const double* v) const {
+  double p = 0.0;
+  for (const Load& l : model_.loads) {
+    const Node& n = model_.nodes[model_.joints[l.joint].node];
+    p += loadVector<double>(l, q, t, false).dot(Eigen::Matrix<double, 6, 1>(v + n.v));
+  }
+  return p;
+}
+
+}  // namespace cranesim

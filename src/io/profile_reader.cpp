@@ -1,0 +1,64 @@
+#include "profile_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <numbers>
+
+namespace cranesim {
+
+Profile readProfile(const YamlField& f) {
+  if (f.isScalar()) return Profile(ConstantProfile{f.number()});
+  const std::string type =
+      f.at("type").choice({"constant", "ramp", "trapezoid", "cosine_step", "cosine_full", "tanh", "table"});
+  double scale = 1.0;
+  if (const auto unit = f.find("unit")) scale = unit->choice({"deg", "rad", "m"}) == "deg" ? std::numbers::pi / 180.0 : 1.0;
+  if (type == "constant") {
+    f.allowKeys({"type", "unit", "value"});
+    return Profile(ConstantProfile{f.at("value").number()}, scale);
+  }
+  if (type == "ramp") {
+    f.allowKeys({"type", "unit", "value", "rate", "t_start"});
+    return Profile(RampProfile{f.number("value", 0.0), f.at("rate").number(), f.number("t_start", 0.0)}, scale);
+  }
+  if (type == "trapezoid") {
+    f.allowKeys({"type", "unit", "from", "distance", "t_start", "duration", "t_accel", "t_decel"});
+    TrapezoidProfile p{f.number("from", 0.0), f.at("distance").number(), f.number("t_start", 0.0),
+                       f.at("duration").positive(), f.at("t_accel").positive(), f.at("t_decel").positive()};
+    if (p.t_accel + p.t_decel > p.duration)
+      f.fail(fmt::format("t_accel + t_decel ({}) exceeds duration ({})", p.t_accel + p.t_decel, p.duration));
+    return Profile(p, scale);
+  }
+  if (type == "cosine_step" || type == "tanh") {
+    f.allowKeys({"type", "unit", "from", "to", "t_start", "t_end", "confidence"});
+    const double from = f.at("from").number(), to = f.at("to").number();
+    const double t0 = f.at("t_start").number(), t1 = f.at("t_end").number();
+    if (!(t1 > t0)) f.at("t_end").fail(fmt::format("t_end ({}) must be after t_start ({})", t1, t0));
+    if (type == "cosine_step") {
+      if (f.has("confidence")) f.at("confidence").fail("only a tanh profile has a confidence");
+      return Profile(CosineStepProfile{from, to, t0, t1}, scale);
+    }
+    const double c = f.number("confidence", 0.99);
+    if (!(c > 0.0 && c < 1.0)) f.at("confidence").fail(fmt::format("confidence must lie in (0, 1), found {}", c));
+    return Profile(TanhProfile{from, to, t0, t1, tanhConfidenceCoefficient(c)}, scale);
+  }
+  if (type == "cosine_full") {
+    f.allowKeys({"type", "unit", "base", "peak", "t_start", "t_end"});
+    const double t0 = f.at("t_start").number(), t1 = f.at("t_end").number();
+    if (!(t1 > t0)) f.at("t_end").fail(fmt::format("t_end ({}) must be after t_start ({})", t1, t0));
+    return Profile(CosineFullProfile{f.number("base", 0.0), f.at("peak").number(), t0, t1}, scale);
+  }
+  f.allowKeys({"type", "unit", "t", "value", "end_slopes"});
+  TableProfile p;
+  p.t = f.at("t").numbers();
+  p.y = f.at("value").numbers();
+  if (p.t.size() < 2) f.at("t").fail("a table needs at least two points");
+  if (p.t.size() != p.y.size())
+    f.at("value").fail(fmt::format("has {} values for {} times", p.y.size(), p.t.size()));
+  for (std::size_t k = 1; k < p.t.size(); ++k)
+    if (!(p.t[k] > p.t[k - 1])) f.at("t").fail(fmt::format("times must increase strictly (entry {})", k));
+  const bool zero_end_slopes = !f.has("end_slopes") || f.at("end_slopes").choice({"zero", "natural"}) == "zero";
+  p.slopes = splineSlopes(p.t, p.y, zero_end_slopes);
+  return Profile(p, scale);
+}
+
+}  // namespace cranesim

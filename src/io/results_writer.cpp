@@ -1,0 +1,156 @@
+#include "cranesim/io/results_writer.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "cranesim/version.hpp"
+#include "hdf5_file.hpp"
+
+namespace cranesim {
+namespace {
+
+void append(std::vector<double>& out, const double* data, int n) { out.insert(out.end(), data, data + n); }
+
+/// Row-major copy of a rotation matrix, so that h5py reads R[i, j] as Eigen's R(i, j).
+void appendRowMajor(std::vector<double>& out, const Mat3& R) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) out.push_back(R(i, j));
+}
+
+}  // namespace
+
+ResultsRecorder::ResultsRecorder(const Assembler& assembler)
+    : assembler_(assembler),
+      body_position_(assembler.model().nodes.size()),
+      body_rotation_(assembler.model().nodes.size()),
+      body_velocity_(assembler.model().nodes.size()),
+      body_omega_(assembler.model().nodes.size()),
+      joint_position_(assembler.model().joints.size()),
+      joint_rotation_(assembler.model().joints.size()) {}
+
+void ResultsRecorder::sample(double t, const double* y, double drive_work, double load_work) {
+  const Model& model = assembler_.model();
+  const double* q = y;
+  const double* v = y + assembler_.vOffset();
+  time_.push_back(t);
+  append(state_, y, model.nq + model.nv + model.m);
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    const Frame f = model.nodeFrame(q, static_cast<int>(n));
+    append(body_position_[n], f.r.data(), 3);
+    appendRowMajor(body_rotation_[n], f.R);
+    append(body_velocity_[n], v + model.nodes[n].v, 3);
+    append(body_omega_[n], v + model.nodes[n].v + 3, 3);
+  }
+  for (std::size_t j = 0; j < model.joints.size(); ++j) {
+    const Frame f = model.jointFrame(q, static_cast<int>(j));
+    append(joint_position_[j], f.r.data(), 3);
+    appendRowMajor(joint_rotation_[j], f.R);
+  }
+  const double T = assembler_.kineticEnergy(q, v), V = assembler_.potentialEnergy(q);
+  kinetic_.push_back(T);
+  potential_.push_back(V);
+  drive_work_.push_back(drive_work);
+  load_work_.push_back(load_work);
+  balance_.push_back(T + V - drive_work - load_work);
+  if (model.m > 0) {
+    const ConstraintState C = assembler_.constraints(t, q, v);
+    residual_position_.push_back(C.phi.cwiseAbs().maxCoeff());
+    residual_velocity_.push_back(C.phi_dot.cwiseAbs().maxCoeff());
+  } else {
+    residual_position_.push_back(0.0);
+    residual_velocity_.push_back(0.0);
+  }
+}
+
+std::vector<double> ResultsRecorder::stateColumn(int k) const {
+  const Model& model = assembler_.model();
+  const int width = model.nq + model.nv + model.m;
+  std::vector<double> out(time_.size());
+  for (std::size_t s = 0; s < time_.size(); ++s) out[s] = state_[s * width + k];
+  return out;
+}
+
+void ResultsRecorder::write(const std::string& path, const Metadata& meta, const SimulationOutcome& outcome) const {
+  const Model& model = assembler_.model();
+  const std::string partial = path + ".partial";
+  {
+    Hdf5File file(partial);
+    const hsize_t N = time_.size();
+    const int width = model.nq + model.nv + model.m;
+    file.attribute("/", "engine_version", std::string(kVersion));
+    file.attribute("/", "scene_path", meta.scene_path);
+    file.attribute("/", "scene_text", meta.scene_text);
+    file.attribute("/", "status", std::string(outcome.complete ? "complete" : "incomplete"));
+    file.attribute("/", "message", outcome.message);
+    file.attribute("/", "formulation", meta.formulation);
+    file.attribute("/", "t_end_requested", meta.t_end_requested);
+    file.attribute("/", "t_reached", outcome.t_reached);
+
+    file.writeDoubles("/time", {N}, time_.data());
+    std::vector<double> q, v, lambda;
+    for (std::size_t s = 0; s < N; ++s) {
+      const double* row = state_.data() + s * width;
+      append(q, row, model.nq);
+      append(v, row + model.nq, model.nv);
+      append(lambda, row + model.nq + model.nv, model.m);
+    }
+    file.writeDoubles("/q", {N, hsize_t(model.nq)}, q.data());
+    file.writeDoubles("/v", {N, hsize_t(model.nv)}, v.data());
+    file.writeDoubles("/lambda", {N, hsize_t(model.m)}, lambda.data());
+
+    std::vector<std::string> bodies, joints, rows, constraints, constraint_joints;
+    for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+      const std::string g = "/bodies/" + model.nodes[n].name;
+      bodies.push_back(model.nodes[n].name);
+      file.writeDoubles(g + "/position", {N, 3}, body_position_[n].data());
+      file.writeDoubles(g + "/rotation", {N, 3, 3}, body_rotation_[n].data());
+      file.writeDoubles(g + "/velocity", {N, 3}, body_velocity_[n].data());
+      file.writeDoubles(g + "/angular_velocity", {N, 3}, body_omega_[n].data());
+    }
+    for (std::size_t j = 0; j < model.joints.size(); ++j) {
+      const std::string g = "/joints/" + model.joints[j].name;
+      joints.push_back(model.joints[j].name);
+      file.writeDoubles(g + "/position", {N, 3}, joint_position_[j].data());
+      file.writeDoubles(g + "/rotation", {N, 3, 3}, joint_rotation_[j].data());
+    }
+    for (const Constraint& c : model.constraints) {
+      constraints.push_back(c.name);
+      constraint_joints.push_back(model.joints[c.joint1].name);
+      constraint_joints.push_back(model.joints[c.joint2].name);
+      rows.insert(rows.end(), c.row_labels.begin(), c.row_labels.end());
+    }
+    file.writeStrings("/model/bodies", {bodies.size()}, bodies);
+    file.writeStrings("/model/joints", {joints.size()}, joints);
+    file.writeStrings("/model/constraints", {constraints.size()}, constraints);
+    file.writeStrings("/model/constraint_joints", {constraints.size(), 2}, constraint_joints);
+    file.writeStrings("/model/constraint_rows", {rows.size()}, rows);
+
+    file.writeDoubles("/energy/kinetic", {N}, kinetic_.data());
+    file.writeDoubles("/energy/potential", {N}, potential_.data());
+    file.writeDoubles("/energy/drive_work", {N}, drive_work_.data());
+    file.writeDoubles("/energy/load_work", {N}, load_work_.data());
+    file.writeDoubles("/energy/balance", {N}, balance_.data());
+    file.writeDoubles("/residual/position", {N}, residual_position_.data());
+    file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());
+
+    const SolverStatistics& st = outcome.statistics;
+    file.ensureGroup("/solver");
+    file.attribute("/solver", "steps", st.steps);
+    file.attribute("/solver", "residual_evaluations", st.residual_evaluations);
+    file.attribute("/solver", "jacobian_evaluations", st.jacobian_evaluations);
+    file.attribute("/solver", "linear_setups", st.linear_setups);
+    file.attribute("/solver", "nonlinear_iterations", st.nonlinear_iterations);
+    file.attribute("/solver", "nonlinear_failures", st.nonlinear_failures);
+    file.attribute("/solver", "error_test_failures", st.error_test_failures);
+    file.attribute("/solver", "reparameterisations", st.reparameterisations);
+    file.attribute("/solver", "restarts", st.restarts);
+    file.attribute("/solver", "wall_time_s", st.wall_time_s);
+    file.attribute("/solver", "rtol", model.solver.rtol);
+    file.attribute("/solver", "atol", model.solver.atol);
+    file.attribute("/solver", "last_step_size", st.last_step_size);
+    file.attribute("/solver", "last_order", static_cast<long>(st.last_order));
+  }
+  std::filesystem::rename(partial, path);
+}
+
+}  // namespace cranesim

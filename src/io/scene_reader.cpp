@@ -1,0 +1,231 @@
+#include "cranesim/io/scene_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "cranesim/math/rotation.hpp"
+#include "profile_reader.hpp"
+#include "yaml_field.hpp"
+
+namespace cranesim {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+/// `{axis: [..], angle: rad | angle_deg: deg}`, `{rotation_vector: [..]}` or `{matrix: [[..]x3]}`.
+Mat3 readRotation(const YamlField& f) {
+  f.allowKeys({"axis", "angle", "angle_deg", "rotation_vector", "matrix"});
+  if (const auto rv = f.find("rotation_vector")) return rotationMatrix<double>(rv->vec3());
+  if (const auto mf = f.find("matrix")) {
+    const auto rows = mf->items();
+    if (rows.size() != 3) mf->fail("expected 3 rows of 3 numbers");
+    Mat3 R;
+    for (int r = 0; r < 3; ++r) R.row(r) = rows[r].vec3().transpose();
+    if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-9 || R.determinant() < 0.0)
+      mf->fail("is not a rotation matrix (orthonormal, determinant +1) to 1e-9");
+    return R;
+  }
+  const YamlField axis_field = f.at("axis");
+  const Vec3 axis = axis_field.vec3();
+  if (axis.norm() < 1e-12) axis_field.fail("axis must not be the zero vector");
+  if (f.has("angle") && f.has("angle_deg")) f.at("angle_deg").fail("give either angle (rad) or angle_deg, not both");
+  const double angle = f.has("angle") ? f.at("angle").number() : f.at("angle_deg").number() * kDeg;
+  return axisAngle(axis, angle);
+}
+
+Mat3 readInertia(const YamlField& f) {
+  const std::vector<double> v = f.isSequence() && !f.items().empty() && f.items()[0].isSequence()
+                                    ? std::vector<double>{}
+                                    : f.numbers();
+  Mat3 I = Mat3::Zero();
+  if (v.size() == 3) {
+    I.diagonal() << v[0], v[1], v[2];
+  } else if (v.size() == 6) {
+    I << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
+  } else if (v.empty()) {
+    const auto rows = f.items();
+    if (rows.size() != 3) f.fail("expected [Ixx, Iyy, Izz], [Ixx, Iyy, Izz, Ixy, Ixz, Iyz] or a 3×3 matrix");
+    for (int r = 0; r < 3; ++r) I.row(r) = rows[r].vec3().transpose();
+    if ((I - I.transpose()).norm() > 1e-12 * I.norm()) f.fail("inertia matrix must be symmetric");
+  } else {
+    f.fail("expected [Ixx, Iyy, Izz], [Ixx, Iyy, Izz, Ixy, Ixz, Iyz] or a 3×3 matrix");
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(I);
+  const Vec3 p = eig.eigenvalues();
+  if (p.minCoeff() <= 0.0) f.fail(fmt::format("inertia must be positive definite (principal moments {}, {}, {})", p(0), p(1), p(2)));
+  if (p(0) + p(1) < p(2) * (1.0 - 1e-9))
+    f.fail(fmt::format("principal moments {}, {}, {} violate the triangle inequality: no physical body has them", p(0), p(1), p(2)));
+  return I;
+}
+
+std::vector<JointSpec> readJoints(const YamlField& list) {
+  std::vector<JointSpec> joints;
+  std::set<std::string> names;
+  for (const YamlField& f : list.items()) {
+    f.allowKeys({"name", "position", "rotation"});
+    JointSpec j;
+    j.name = f.at("name").text();
+    if (!names.insert(j.name).second) f.at("name").fail(fmt::format("duplicate joint name '{}'", j.name));
+    if (j.name.find('.') != std::string::npos) f.at("name").fail("joint names must not contain '.'");
+    j.position = f.vec3("position", Vec3::Zero());
+    if (const auto r = f.find("rotation")) j.rotation = readRotation(*r);
+    j.where = f.where();
+    joints.push_back(std::move(j));
+  }
+  return joints;
+}
+
+RigidBodySpec readBody(const YamlField& f) {
+  f.allowKeys({"name", "type", "mass", "centroid", "inertia", "position", "rotation", "velocity",
+               "angular_velocity", "joints"});
+  RigidBodySpec b;
+  b.name = f.at("name").text();
+  if (b.name == "ground") f.at("name").fail("'ground' is reserved for the inertial frame");
+  if (b.name.find('.') != std::string::npos) f.at("name").fail("body names must not contain '.'");
+  if (const auto type = f.find("type")) type->choice({"rigid"});
+  b.mass = f.at("mass").positive();
+  b.centroid = f.vec3("centroid", Vec3::Zero());
+  b.inertia = readInertia(f.at("inertia"));
+  b.position = f.vec3("position", Vec3::Zero());
+  if (const auto r = f.find("rotation")) b.rotation = readRotation(*r);
+  b.velocity = f.vec3("velocity", Vec3::Zero());
+  b.angular_velocity = f.vec3("angular_velocity", Vec3::Zero());
+  if (const auto j = f.find("joints")) b.joints = readJoints(*j);
+  b.where = f.where();
+  return b;
+}
+
+int readAxis(const YamlField& f) {
+  const std::string a = f.choice({"x", "y", "z"});
+  return a[0] - 'x';
+}
+
+ConstraintSpec readConstraint(const YamlField& f) {
+  ConstraintSpec c;
+  c.where = f.where();
+  c.name = f.at("name").text();
+  const std::string type = f.at("type").choice({"fixed", "revolute", "prismatic", "spherical", "distance"});
+  const auto joints = f.at("joints");
+  const auto items = joints.items();
+  if (items.size() != 2) joints.fail(fmt::format("a constraint connects exactly 2 joints, found {}", items.size()));
+  c.joint1 = items[0].text();
+  c.joint2 = items[1].text();
+  c.where_joint1 = items[0].where();
+  c.where_joint2 = items[1].where();
+  if (type == "fixed" || type == "spherical") {
+    f.allowKeys({"name", "type", "joints"});
+    c.type = type == "fixed" ? ConstraintType::Fixed : ConstraintType::Spherical;
+  } else if (type == "distance") {
+    f.allowKeys({"name", "type", "joints", "length"});
+    c.type = ConstraintType::Distance;
+    c.drive = readProfile(f.at("length"));
+  } else {
+    f.allowKeys({"name", "type", "joints", "axis", "drive"});
+    c.type = type == "revolute" ? ConstraintType::Revolute : ConstraintType::Prismatic;
+    c.axis = readAxis(f.at("axis"));
+    if (const auto d = f.find("drive")) c.drive = readProfile(*d);
+  }
+  return c;
+}
+
+LoadSpec readLoad(const YamlField& f) {
+  f.allowKeys({"name", "joint", "force", "torque", "frame", "scale"});
+  LoadSpec l;
+  l.where = f.where();
+  l.name = f.at("name").text();
+  l.joint = f.at("joint").text();
+  l.where_joint = f.at("joint").where();
+  l.force = f.vec3("force", Vec3::Zero());
+  l.torque = f.vec3("torque", Vec3::Zero());
+  if (const auto fr = f.find("frame")) l.frame = fr->choice({"inertial", "joint"}) == "joint" ? LoadFrame::Joint : LoadFrame::Inertial;
+  if (const auto s = f.find("scale")) l.scale = readProfile(*s);
+  return l;
+}
+
+SolverSpec readSolver(const YamlField& f) {
+  f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "max_step", "max_order", "initial_step",
+               "baumgarte", "initial_tolerance"});
+  SolverSpec s;
+  if (const auto form = f.find("formulation"))
+    s.formulation = form->choice({"ggl", "baumgarte"}) == "ggl" ? Formulation::GGL : Formulation::Baumgarte;
+  s.t_start = f.number("t_start", 0.0);
+  s.t_end = f.at("t_end").number();
+  if (!(s.t_end > s.t_start)) f.at("t_end").fail(fmt::format("t_end ({}) must be after t_start ({})", s.t_end, s.t_start));
+  s.rtol = f.positive("rtol", s.rtol);
+  s.atol = f.positive("atol", s.atol);
+  s.atol_multipliers = f.positive("atol_multipliers", s.atol_multipliers);
+  if (const auto ms = f.find("max_step")) s.max_step = ms->positive();
+  if (const auto h0 = f.find("initial_step")) s.initial_step = h0->positive();
+  if (const auto mo = f.find("max_order")) {
+    s.max_order = mo->integer();
+    if (s.max_order < 1 || s.max_order > 5) mo->fail(fmt::format("max_order must be 1…5, found {}", s.max_order));
+  }
+  if (const auto b = f.find("baumgarte")) {
+    b->allowKeys({"alpha", "beta"});
+    s.baumgarte_alpha = b->positive("alpha", s.baumgarte_alpha);
+    s.baumgarte_beta = b->positive("beta", s.baumgarte_beta);
+  }
+  s.initial_tolerance = f.positive("initial_tolerance", s.initial_tolerance);
+  return s;
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError({"<document>", e.mark.line + 1, e.mark.column + 1}, "not valid YAML: " + e.msg);
+  }
+  const YamlField f(root, "");
+  if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
+  f.allowKeys({"name", "gravity", "ground", "bodies", "constraints", "loads", "solver", "output"});
+  Scene s;
+  s.path = path;
+  s.text = text;
+  s.name = f.has("name") ? f.at("name").text() : path;
+  s.gravity = f.vec3("gravity", s.gravity);
+  if (const auto g = f.find("ground")) {
+    g->allowKeys({"joints"});
+    s.ground_joints = readJoints(g->at("joints"));
+  }
+  std::set<std::string> body_names;
+  for (const YamlField& b : f.at("bodies").items()) {
+    s.bodies.push_back(readBody(b));
+    if (!body_names.insert(s.bodies.back().name).second)
+      b.at("name").fail(fmt::format("duplicate body name '{}'", s.bodies.back().name));
+  }
+  if (s.bodies.empty()) f.at("bodies").fail("a scene needs at least one body");
+  std::set<std::string> constraint_names;
+  if (const auto cs = f.find("constraints"))
+    for (const YamlField& c : cs->items()) {
+      s.constraints.push_back(readConstraint(c));
+      if (!constraint_names.insert(s.constraints.back().name).second)
+        c.at("name").fail(fmt::format("duplicate constraint name '{}'", s.constraints.back().name));
+    }
+  if (const auto ls = f.find("loads"))
+    for (const YamlField& l : ls->items()) s.loads.push_back(readLoad(l));
+  const YamlField solver = f.at("solver");
+  s.solver = readSolver(solver);
+  s.where_solver = solver.where();
+  if (const auto o = f.find("output")) {
+    o->allowKeys({"interval"});
+    s.output.interval = o->positive("interval", s.output.interval);
+  }
+  return s;
+}
+
+Scene readScene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError({path, 0, 0}, "cannot open the scene file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parseScene(buffer.str(), path);
+}
+
+}  // namespace cranesim

@@ -1,0 +1,162 @@
+#include "yaml_field.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cranesim {
+namespace {
+
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t next = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = row[j];
+      row[j] = next;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string typeName(const YAML::Node& n) {
+  switch (n.Type()) {
+    case YAML::NodeType::Map: return "a mapping";
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Scalar: return fmt::format("'{}'", n.Scalar());
+    case YAML::NodeType::Null: return "nothing";
+    default: return "an undefined value";
+  }
+}
+
+}  // namespace
+
+SourceLocation YamlField::where() const {
+  const YAML::Mark mark = node_.Mark();
+  return {path_, mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0};
+}
+
+void YamlField::fail(const std::string& message) const { throw SceneError(where(), message); }
+
+bool YamlField::has(const std::string& key) const { return node_.IsMap() && node_[key]; }
+
+YamlField YamlField::at(const std::string& key) const {
+  if (!node_.IsMap()) fail(fmt::format("expected a mapping with field '{}', found {}", key, typeName(node_)));
+  const YAML::Node child = node_[key];
+  if (!child) fail(fmt::format("missing field '{}'", key));
+  return YamlField(child, path_.empty() ? key : path_ + "." + key);
+}
+
+std::optional<YamlField> YamlField::find(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return at(key);
+}
+
+void YamlField::allowKeys(std::initializer_list<const char*> allowed) const {
+  if (!node_.IsMap()) fail(fmt::format("expected a mapping, found {}", typeName(node_)));
+  for (const auto& kv : node_) {
+    const std::string key = kv.first.as<std::string>();
+    if (std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) continue;
+    std::string best;
+    std::size_t best_distance = 3;
+    for (const char* a : allowed) {
+      const std::size_t d = editDistance(key, a);
+      if (d < best_distance) best_distance = d, best = a;
+    }
+    const YAML::Mark mark = kv.first.Mark();
+    const SourceLocation at{path_.empty() ? key : path_ + "." + key, mark.line + 1, mark.column + 1};
+    std::string allowed_list;
+    for (const char* a : allowed) allowed_list += (allowed_list.empty() ? "" : ", ") + std::string(a);
+    throw SceneError(at, best.empty() ? fmt::format("unknown key '{}' (allowed: {})", key, allowed_list)
+                                      : fmt::format("unknown key '{}'; did you mean '{}'?", key, best));
+  }
+}
+
+double YamlField::number() const {
+  if (!node_.IsScalar()) fail(fmt::format("expected a number, found {}", typeName(node_)));
+  double value = 0.0;
+  if (!YAML::convert<double>::decode(node_, value) || !std::isfinite(value))
+    fail(fmt::format("expected a finite number, found {}", typeName(node_)));
+  return value;
+}
+
+double YamlField::positive() const {
+  const double x = number();
+  if (!(x > 0.0)) fail(fmt::format("must be positive, found {}", x));
+  return x;
+}
+
+double YamlField::nonNegative() const {
+  const double x = number();
+  if (x < 0.0) fail(fmt::format("must not be negative, found {}", x));
+  return x;
+}
+
+int YamlField::integer() const {
+  const double x = number();
+  if (x != std::floor(x)) fail(fmt::format("expected an integer, found {}", x));
+  return static_cast<int>(x);
+}
+
+bool YamlField::boolean() const {
+  bool value = false;
+  if (!node_.IsScalar() || !YAML::convert<bool>::decode(node_, value))
+    fail(fmt::format("expected true or false, found {}", typeName(node_)));
+  return value;
+}
+
+std::string YamlField::text() const {
+  if (!node_.IsScalar()) fail(fmt::format("expected a string, found {}", typeName(node_)));
+  return node_.Scalar();
+}
+
+std::vector<double> YamlField::numbers() const {
+  std::vector<double> out;
+  for (const YamlField& item : items()) out.push_back(item.number());
+  return out;
+}
+
+Vec3 YamlField::vec3() const {
+  if (!node_.IsSequence() || node_.size() != 3)
+    fail(fmt::format("expected a list of 3 numbers, found {}", typeName(node_)));
+  const std::vector<double> v = numbers();
+  return {v[0], v[1], v[2]};
+}
+
+std::vector<YamlField> YamlField::items() const {
+  if (!node_.IsSequence()) fail(fmt::format("expected a list, found {}", typeName(node_)));
+  std::vector<YamlField> out;
+  for (std::size_t k = 0; k < node_.size(); ++k) out.emplace_back(node_[k], fmt::format("{}[{}]", path_, k));
+  return out;
+}
+
+std::string YamlField::choice(std::initializer_list<const char*> choices) const {
+  const std::string value = text();
+  std::string list;
+  for (const char* c : choices) {
+    if (value == c) return value;
+    list += (list.empty() ? "" : ", ") + std::string(c);
+  }
+  fail(fmt::format("'{}' is not one of: {}", value, list));
+}
+
+double YamlField::number(const std::string& key, double fallback) const {
+  const auto f = find(key);
+  return f ? f->number() : fallback;
+}
+
+double YamlField::positive(const std::string& key, double fallback) const {
+  const auto f = find(key);
+  return f ? f->positive() : fallback;
+}
+
+Vec3 YamlField::vec3(const std::string& key, const Vec3& fallback) const {
+  const auto f = find(key);
+  return f ? f->vec3() : fallback;
+}
+
+}  // namespace cranesim

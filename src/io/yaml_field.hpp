@@ -1,0 +1,56 @@
+#pragma once
+// A YAML node together with its path in the document, for reading with precise errors.
+
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cranesim/math/types.hpp"
+#include "cranesim/model/source_location.hpp"
+
+namespace cranesim {
+
+class YamlField {
+ public:
+  YamlField(YAML::Node node, std::string path) : node_(std::move(node)), path_(std::move(path)) {}
+
+  const std::string& path() const { return path_; }
+  SourceLocation where() const;
+  [[noreturn]] void fail(const std::string& message) const;
+
+  bool isMap() const { return node_.IsMap(); }
+  bool isSequence() const { return node_.IsSequence(); }
+  bool isScalar() const { return node_.IsScalar(); }
+  bool has(const std::string& key) const;
+
+  /// The value under `key`; fails with "missing field" when absent.
+  YamlField at(const std::string& key) const;
+  std::optional<YamlField> find(const std::string& key) const;
+  /// Fails on any key not in `allowed`, suggesting the closest allowed key.
+  void allowKeys(std::initializer_list<const char*> allowed) const;
+
+  double number() const;
+  double positive() const;
+  double nonNegative() const;
+  int integer() const;
+  bool boolean() const;
+  std::string text() const;
+  Vec3 vec3() const;
+  std::vector<double> numbers() const;
+  std::vector<YamlField> items() const;
+  /// One of `choices`; fails listing them.
+  std::string choice(std::initializer_list<const char*> choices) const;
+
+  double number(const std::string& key, double fallback) const;
+  double positive(const std::string& key, double fallback) const;
+  Vec3 vec3(const std::string& key, const Vec3& fallback) const;
+
+ private:
+  YAML::Node node_;
+  std::string path_;
+};
+
+}  // namespace cranesim

@@ -1,0 +1,120 @@
+#include "cranesim/model/compile.hpp"
+
+#include <fmt/format.h>
+
+#include "cranesim/elements/rigid_body.hpp"
+#include "cranesim/math/rotation.hpp"
+
+namespace cranesim {
+namespace {
+
+const char* kAxisNames[] = {"x", "y", "z"};
+
+std::vector<std::string> rowLabels(const Constraint& c) {
+  const std::vector<std::string> position = {"x", "y", "z"};
+  const std::vector<std::string> lock = {"rot_yz", "rot_zx", "rot_xy"};
+  const std::string i = kAxisNames[c.axis], p = kAxisNames[(c.axis + 1) % 3], q = kAxisNames[(c.axis + 2) % 3];
+  std::vector<std::string> out;
+  switch (c.type) {
+    case ConstraintType::Spherical: out = position; break;
+    case ConstraintType::Fixed:
+      out = position;
+      out.insert(out.end(), lock.begin(), lock.end());
+      break;
+    case ConstraintType::Revolute:
+      out = position;
+      out.push_back("rot_" + i + p);
+      out.push_back("rot_" + i + q);
+      if (c.drive) out.push_back("angle");
+      break;
+    case ConstraintType::Prismatic:
+      out = {"slide_" + p, "slide_" + q};
+      out.insert(out.end(), lock.begin(), lock.end());
+      if (c.drive) out.push_back("displacement");
+      break;
+    case ConstraintType::Distance: out = {"length"}; break;
+  }
+  for (auto& label : out) label = c.name + "/" + label;
+  return out;
+}
+
+}  // namespace
+
+Model compileModel(const Scene& scene) {
+  Model model;
+  model.name = scene.name;
+  model.gravity = scene.gravity;
+  model.solver = scene.solver;
+  model.output = scene.output;
+
+  for (const JointSpec& j : scene.ground_joints) model.joints.push_back({"ground." + j.name, -1, j.position, j.rotation});
+
+  model.q0.resize(6 * scene.bodies.size());
+  model.v0.resize(6 * scene.bodies.size());
+  for (const RigidBodySpec& b : scene.bodies) {
+    const int node = static_cast<int>(model.nodes.size());
+    const Node n{b.name, 6 * node, 6 * node};
+    model.nodes.push_back(n);
+    model.q0.segment<3>(n.q) = b.position;
+    model.q0.segment<3>(n.q + 3) = rotationVector(b.rotation);
+    model.v0.segment<3>(n.v) = b.velocity;
+    model.v0.segment<3>(n.v + 3) = b.angular_velocity;
+    RigidBodyKernel kernel;
+    kernel.mass = b.mass;
+    kernel.centroid = b.centroid;
+    kernel.inertia_origin = RigidBodyKernel::inertiaAboutOrigin(b.mass, b.centroid, b.inertia);
+    model.elements.push_back(std::make_unique<KernelElement<RigidBodyKernel>>(
+        kernel, std::vector<int>{node}, std::vector<int>{n.q, n.q + 1, n.q + 2, n.q + 3, n.q + 4, n.q + 5},
+        std::vector<int>{n.v, n.v + 1, n.v + 2, n.v + 3, n.v + 4, n.v + 5}));
+    model.joints.push_back({b.name + ".origin", node, Vec3::Zero(), Mat3::Identity()});
+    for (const JointSpec& j : b.joints) {
+      if (j.name == "origin") throw SceneError(j.where, "'origin' is reserved: every body has a joint <body>.origin at its origin");
+      model.joints.push_back({b.name + "." + j.name, node, j.position, j.rotation});
+    }
+  }
+  model.nq = model.nv = 6 * static_cast<int>(scene.bodies.size());
+
+  const auto resolve = [&](const std::string& name, const SourceLocation& where) {
+    const int j = model.findJoint(name);
+    if (j >= 0) return j;
+    std::string known;
+    for (const Joint& joint : model.joints) known += (known.empty() ? "" : ", ") + joint.name;
+    throw SceneError(where, fmt::format("unknown joint '{}' (known joints: {})", name, known));
+  };
+
+  for (const ConstraintSpec& cs : scene.constraints) {
+    Constraint c;
+    c.name = cs.name;
+    c.type = cs.type;
+    c.joint1 = resolve(cs.joint1, cs.where_joint1);
+    c.joint2 = resolve(cs.joint2, cs.where_joint2);
+    const int n1 = model.joints[c.joint1].node, n2 = model.joints[c.joint2].node;
+    if (n1 == n2)
+      throw SceneError(cs.where, n1 < 0 ? "both joints are on the ground: the constraint constrains nothing"
+                                        : fmt::format("both joints are on body '{}': a constraint connects two different bodies",
+                                                      model.nodes[n1].name));
+    c.axis = cs.axis;
+    c.drive = cs.drive;
+    c.rows = constraintRows(c.type, c.drive.has_value());
+    c.row = model.m;
+    c.where = cs.where;
+    c.row_labels = rowLabels(c);
+    model.m += c.rows;
+    model.constraints.push_back(std::move(c));
+  }
+
+  for (const LoadSpec& ls : scene.loads) {
+    Load l;
+    l.name = ls.name;
+    l.joint = resolve(ls.joint, ls.where_joint);
+    if (model.joints[l.joint].node < 0) throw SceneError(ls.where_joint, "a load on a ground joint acts on nothing");
+    l.force = ls.force;
+    l.torque = ls.torque;
+    l.frame = ls.frame;
+    l.scale = ls.scale;
+    model.loads.push_back(std::move(l));
+  }
+  return model;
+}
+
+}  // namespace cranesim

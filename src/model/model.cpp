@@ -1,0 +1,41 @@
+#include "cranesim/model/model.hpp"
+
+#include <algorithm>
+
+#include "cranesim/math/rotation.hpp"
+
+namespace cranesim {
+
+Frame Model::nodeFrame(const double* q, int node) const {
+  const Node& n = nodes[node];
+  return {Vec3(q + n.q), rotationMatrix<double>(Vec3(q + n.q + 3))};
+}
+
+Frame Model::jointFrame(const double* q, int joint) const {
+  const Joint& j = joints[joint];
+  if (j.node < 0) return {j.offset, j.rotation};
+  const Frame n = nodeFrame(q, j.node);
+  return {n.r + n.R * j.offset, n.R * j.rotation};
+}
+
+int Model::findJoint(const std::string& name) const {
+  for (std::size_t k = 0; k < joints.size(); ++k)
+    if (joints[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
+std::vector<double> Model::breakpoints() const {
+  std::vector<double> out;
+  const auto add = [&](const Profile& p) {
+    for (double t : p.breakpoints())
+      if (t > solver.t_start && t < solver.t_end) out.push_back(t);
+  };
+  for (const Constraint& c : constraints)
+    if (c.drive) add(*c.drive);
+  for (const Load& l : loads) add(l.scale);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace cranesim

@@ -1,0 +1,54 @@
+#include "cranesim/model/summary.hpp"
+
+#include <fmt/format.h>
+
+namespace cranesim {
+namespace {
+
+const char* typeName(ConstraintType t) {
+  switch (t) {
+    case ConstraintType::Fixed: return "fixed";
+    case ConstraintType::Revolute: return "revolute";
+    case ConstraintType::Prismatic: return "prismatic";
+    case ConstraintType::Spherical: return "spherical";
+    case ConstraintType::Distance: return "distance";
+  }
+  return "?";
+}
+
+}  // namespace
+
+std::string modelSummary(const Assembler& assembler) {
+  const Model& model = assembler.model();
+  std::string out = fmt::format("scene: {}\n", model.name);
+  out += fmt::format("bodies: {} (rigid)\n", model.nodes.size());
+  for (std::size_t k = 0; k < model.elements.size(); ++k) out += fmt::format("  {}\n", model.nodes[k].name);
+  int rank = 0;
+  if (model.m > 0) {
+    const VecX v = VecX::Zero(model.nv);
+    const MatX G = MatX(assembler.constraints(model.solver.t_start, model.q0.data(), v.data()).G);
+    Eigen::ColPivHouseholderQR<MatX> qr(G.transpose());
+    qr.setThreshold(1e-10);
+    rank = static_cast<int>(qr.rank());
+  }
+  int drives = 0;
+  out += fmt::format("constraints: {} with {} equations (rank {} at the initial state)\n", model.constraints.size(),
+                     model.m, rank);
+  for (const Constraint& c : model.constraints) {
+    drives += c.drive ? 1 : 0;
+    out += fmt::format("  {:<20} {:<10} {} — {}{}\n", c.name, typeName(c.type), model.joints[c.joint1].name,
+                       model.joints[c.joint2].name, c.drive ? "  [driven]" : "");
+  }
+  out += fmt::format("coordinates: {} (q), {} (dq); DAE unknowns: {}\n", model.nq, model.nv, assembler.size());
+  out += fmt::format("degrees of freedom: {} (= {} − {})\n", model.nv - rank, model.nv, rank);
+  out += fmt::format("drives: {}   loads: {}\n", drives, model.loads.size());
+  out += fmt::format("solver: {} formulation, rtol {:g}, atol {:g}, t = {:g} … {:g} s, output every {:g} s\n",
+                     model.solver.formulation == Formulation::GGL ? "GGL index-2" : "Baumgarte index-1",
+                     model.solver.rtol, model.solver.atol, model.solver.t_start, model.solver.t_end,
+                     model.output.interval);
+  out += fmt::format("Jacobian: {} × {}, {} non-zeros\n", assembler.size(), assembler.size(),
+                     assembler.pattern().nonZeros());
+  return out;
+}
+
+}  // namespace cranesim

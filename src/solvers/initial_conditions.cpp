@@ -1,0 +1,108 @@
+#include "cranesim/solvers/initial_conditions.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/SparseLU>
+
+namespace cranesim {
+namespace {
+
+constexpr double kProjectionTolerance = 1e-12;
+constexpr int kMaxProjectionIterations = 25;
+
+std::string rowLabel(const Model& model, int row) {
+  for (const Constraint& c : model.constraints)
+    if (row >= c.row && row < c.row + c.rows) return c.row_labels[row - c.row];
+  return fmt::format("row {}", row);
+}
+
+const Constraint& constraintOfRow(const Model& model, int row) {
+  for (const Constraint& c : model.constraints)
+    if (row >= c.row && row < c.row + c.rows) return c;
+  throw std::logic_error("constraint row out of range");
+}
+
+/// Minimum-norm correction x = Aᵀ (A Aᵀ)⁻¹ b.
+VecX minimumNormSolution(const Eigen::SparseMatrix<double>& A, const VecX& b) {
+  const MatX AAt = MatX(A * A.transpose());
+  return A.transpose() * AAt.ldlt().solve(b);
+}
+
+}  // namespace
+
+void requireIndependentConstraints(const Assembler& assembler, const VecX& q, double t) {
+  const Model& model = assembler.model();
+  if (model.m == 0) return;
+  const VecX v = VecX::Zero(model.nv);
+  const MatX Gt = MatX(assembler.constraints(t, q.data(), v.data()).G).transpose();
+  Eigen::ColPivHouseholderQR<MatX> qr(Gt);
+  qr.setThreshold(1e-10);
+  const int rank = static_cast<int>(qr.rank());
+  if (rank == model.m) return;
+  std::string redundant;
+  for (int k = rank; k < model.m; ++k) redundant += (redundant.empty() ? "" : ", ") + rowLabel(model, qr.colsPermutation().indices()(k));
+  const Constraint& first = constraintOfRow(model, qr.colsPermutation().indices()(rank));
+  throw SceneError(first.where, fmt::format("the constraints are redundant: {} equations but rank {}; "
+                                            "dependent equations: {}. Replace a revolute or fixed "
+                                            "constraint in the closed loop by a spherical one.",
+                                            model.m, rank, redundant));
+}
+
+void solveAccelerations(const Assembler& assembler, DynamicState& s) {
+  const Model& model = assembler.model();
+  const int nv = model.nv, m = model.m;
+  const Eigen::SparseMatrix<double> M = assembler.massMatrix(s.q.data());
+  const VecX F = assembler.appliedForces(s.t, s.q.data(), s.v.data());
+  const ConstraintState C = assembler.constraints(s.t, s.q.data(), s.v.data());
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < M.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+  for (int k = 0; k < C.G.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(C.G, k); it; ++it) {
+      t.emplace_back(nv + it.row(), it.col(), it.value());
+      t.emplace_back(it.col(), nv + it.row(), it.value());
+    }
+  Eigen::SparseMatrix<double> K(nv + m, nv + m);
+  K.setFromTriplets(t.begin(), t.end());
+  VecX rhs(nv + m);
+  rhs << -F, -C.gamma;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(K);
+  if (lu.info() != Eigen::Success)
+    throw std::runtime_error(fmt::format("t = {} s: the saddle-point matrix [M Gᵀ; G 0] is singular "
+                                         "(a body without mass or inertia in a free direction?)", s.t));
+  const VecX x = lu.solve(rhs);
+  s.a = x.head(nv);
+  s.lambda = x.tail(m);
+  s.qdot = assembler.coordinateRates(s.q.data(), s.v.data());
+}
+
+DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance) {
+  const Model& model = assembler.model();
+  DynamicState s;
+  s.t = t;
+  if (model.m > 0) {
+    requireIndependentConstraints(assembler, q, t);
+    ConstraintState C = assembler.constraints(t, q.data(), v.data());
+    int worst = 0;
+    const double violation = C.phi.cwiseAbs().maxCoeff(&worst);
+    if (violation > tolerance) {
+      const Constraint& c = constraintOfRow(model, worst);
+      throw SceneError(c.where, fmt::format("the initial state violates the constraint: |Φ| = {:.3g} in "
+                                            "'{}' exceeds solver.initial_tolerance = {:.3g}; correct the "
+                                            "initial positions or rotations of the bodies it connects",
+                                            violation, rowLabel(model, worst), tolerance));
+    }
+    for (int it = 0; it < kMaxProjectionIterations && C.phi.cwiseAbs().maxCoeff() > kProjectionTolerance; ++it) {
+      q -= minimumNormSolution(C.Phi_q, C.phi);
+      C = assembler.constraints(t, q.data(), v.data());
+    }
+    v -= minimumNormSolution(C.G, C.phi_dot);
+  }
+  s.q = std::move(q);
+  s.v = std::move(v);
+  solveAccelerations(assembler, s);
+  return s;
+}
+
+}  // namespace cranesim

@@ -1,0 +1,88 @@
+// Rotation-vector kinematics (2-4, 2-5, B-8) against finite differences and identities.
+
+#include <catch2/catch.hpp>
+
+#include <numbers>
+#include <random>
+
+#include "cranesim/math/autodiff.hpp"
+#include "cranesim/math/rotation.hpp"
+
+using namespace cranesim;
+
+namespace {
+
+std::vector<Vec3> samplePhis() {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> out = {Vec3::Zero(), Vec3(1e-5, -2e-5, 3e-6), Vec3(0.004, 0.003, -0.002), Vec3(0, 0, 3.0)};
+  for (int k = 0; k < 20; ++k) {
+    Vec3 axis(u(rng), u(rng), u(rng));
+    out.push_back(axis.normalized() * (3.9 * std::abs(u(rng))));
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("Rodrigues' formula is a rotation and agrees with Eigen's angle-axis", "[rotation]") {
+  for (const Vec3& phi : samplePhis()) {
+    const Mat3 R = rotationMatrix<double>(phi);
+    CHECK((R.transpose() * R - Mat3::Identity()).norm() < 1e-14);
+    CHECK(R.determinant() == Approx(1.0).margin(1e-14));
+    const Mat3 expected = phi.norm() > 0 ? axisAngle(phi, phi.norm()) : Mat3::Identity();
+    CHECK((R - expected).norm() < 1e-14);
+  }
+}
+
+TEST_CASE("T(φ) maps φ̇ to the body angular velocity Rᵀ Ṙ", "[rotation]") {
+  const Vec3 phidot(0.3, -0.7, 0.5);
+  for (const Vec3& phi : samplePhis()) {
+    const double h = 1e-6;
+    const Mat3 Rdot = (rotationMatrix<double>(phi + h * phidot) - rotationMatrix<double>(phi - h * phidot)) / (2 * h);
+    const Vec3 omega_fd = unskew(rotationMatrix<double>(phi).transpose() * Rdot);
+    CHECK((angularVelocityMap<double>(phi) * phidot - omega_fd).norm() < 1e-8);
+  }
+}
+
+TEST_CASE("T(φ)⁻¹ inverts T(φ) up to the re-parameterisation threshold", "[rotation]") {
+  for (const Vec3& phi : samplePhis()) {
+    CHECK((angularVelocityMapInverse<double>(phi) * angularVelocityMap<double>(phi) - Mat3::Identity()).norm() < 1e-12);
+  }
+}
+
+TEST_CASE("Derivatives of T(φ) by automatic differentiation equal finite differences, also at φ = 0", "[rotation]") {
+  using D = Dual<double, 3>;
+  const Vec3 w(0.2, -0.4, 0.9);
+  for (const Vec3& phi : samplePhis()) {
+    Vec3T<D> p;
+    for (int k = 0; k < 3; ++k) p(k) = seeded<double, 3>(phi(k), k);
+    const Vec3T<D> Tw = angularVelocityMap<D>(p) * w.cast<D>();
+    for (int k = 0; k < 3; ++k) {
+      const double h = 1e-6;
+      const Vec3 e = Vec3::Unit(k) * h;
+      const Vec3 fd = (angularVelocityMap<double>(phi + e) * w - angularVelocityMap<double>(phi - e) * w) / (2 * h);
+      for (int i = 0; i < 3; ++i) CHECK(Tw(i).derivatives()(k) == Approx(fd(i)).margin(1e-8));
+    }
+  }
+}
+
+TEST_CASE("Series and closed forms of the coefficient functions join continuously", "[rotation]") {
+  // Just below and above the switching point θ² = 1e-4 the two branches must agree.
+  const double below = std::sqrt(detail::kSeriesThreshold) * (1 - 1e-13);
+  const double above = std::sqrt(detail::kSeriesThreshold) * (1 + 1e-13);
+  const Vec3 n = Vec3(1, 2, 2) / 3.0;
+  CHECK((rotationMatrix<double>(below * n) - rotationMatrix<double>(above * n)).norm() < 1e-12);
+  CHECK((angularVelocityMap<double>(below * n) - angularVelocityMap<double>(above * n)).norm() < 1e-12);
+  CHECK((angularVelocityMapInverse<double>(below * n) - angularVelocityMapInverse<double>(above * n)).norm() < 1e-12);
+}
+
+TEST_CASE("Re-parameterisation keeps the rotation and maps θ to 2π − θ", "[rotation]") {
+  Vec3 phi = Vec3(0.2, -0.5, 0.8).normalized() * (1.3 * std::numbers::pi);
+  const Mat3 before = rotationMatrix<double>(phi);
+  REQUIRE(reparameterise(phi));
+  CHECK(phi.norm() == Approx(0.7 * std::numbers::pi));
+  CHECK((rotationMatrix<double>(phi) - before).norm() < 1e-14);
+  Vec3 small = Vec3(0.1, 0.2, 0.3);
+  CHECK_FALSE(reparameterise(small));
+}
