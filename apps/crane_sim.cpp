@@ -89,8 +89,8 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
                        "nonlinear failures {}, restarts {}\n",
                st.steps, st.residual_evaluations, st.jacobian_evaluations, st.error_test_failures,
                st.nonlinear_failures, st.restarts);
-    fmt::print(stderr, "  max |Φ| {:.3g}, energy balance drift {:.3g} J\n",
-               rp.empty() ? 0.0 : *std::max_element(rp.begin(), rp.end()), drift);
+    fmt::print(stderr, "  max |Φ| {:.3g} at steps, {:.3g} at samples; energy balance drift {:.3g} J\n",
+               st.max_step_constraint_residual, rp.empty() ? 0.0 : *std::max_element(rp.begin(), rp.end()), drift);
     fmt::print(stderr, "  results: {}{}\n", out, outcome.complete ? "" : " (incomplete)");
   }
   if (!outcome.complete) {

@@ -416,4 +416,24 @@ double Assembler::loadPower(double t, const double* q, const double* v) const {
   return p;
 }
 
+double Assembler::constraintResidual(double t, const double* y) const {
+  double worst = 0.0;
+  double phi[kMaxConstraintRows];
+  for (const Constraint& c : model_.constraints) {
+    constraintEquations<double>(c.law(), model_.jointFrame(y, c.joint1), model_.jointFrame(y, c.joint2), t, phi);
+    for (int i = 0; i < c.rows; ++i) worst = std::max(worst, std::abs(phi[i]));
+  }
+  return worst;
+}
+
+double Assembler::drivePower(double t, const double* q, const double* lambda) const {
+  double p = 0.0;
+  for (const Constraint& c : model_.constraints) {
+    if (!c.drive || c.drive->isConstant()) continue;
+    const auto C = evaluateConstraint<double>(model_, c, q, t);
+    for (int i = 0; i < c.rows; ++i) p += C.G(i, kTimeDirection) * lambda[c.row + i];
+  }
+  return p;
+}
+
 }  // namespace cranesim

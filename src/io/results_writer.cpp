@@ -28,12 +28,28 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
       joint_position_(assembler.model().joints.size()),
       joint_rotation_(assembler.model().joints.size()) {}
 
+VecX ResultsRecorder::multipliersAt(double t, const double* y, const ConstraintState& constraints) const {
+  const Model& model = assembler_.model();
+  DynamicState s;
+  s.t = t;
+  s.q = Eigen::Map<const VecX>(y, model.nq);
+  s.v = Eigen::Map<const VecX>(y + assembler_.vOffset(), model.nv);
+  try {
+    solveAccelerations(assembler_, s, constraints);
+    return s.lambda;
+  } catch (const std::exception&) {
+    return Eigen::Map<const VecX>(y + assembler_.lambdaOffset(), model.m);
+  }
+}
+
 void ResultsRecorder::sample(double t, const double* y, double drive_work, double load_work) {
   const Model& model = assembler_.model();
   const double* q = y;
   const double* v = y + assembler_.vOffset();
+  const ConstraintState C = assembler_.constraints(t, q, v);
   time_.push_back(t);
-  append(state_, y, model.nq + model.nv + model.m);
+  append(state_, y, model.nq + model.nv);
+  append(state_, multipliersAt(t, y, C).data(), model.m);
   for (std::size_t n = 0; n < model.nodes.size(); ++n) {
     const Frame f = model.nodeFrame(q, static_cast<int>(n));
     append(body_position_[n], f.r.data(), 3);
@@ -53,7 +69,6 @@ void ResultsRecorder::sample(double t, const double* y, double drive_work, doubl
   load_work_.push_back(load_work);
   balance_.push_back(T + V - drive_work - load_work);
   if (model.m > 0) {
-    const ConstraintState C = assembler_.constraints(t, q, v);
     residual_position_.push_back(C.phi.cwiseAbs().maxCoeff());
     residual_velocity_.push_back(C.phi_dot.cwiseAbs().maxCoeff());
   } else {
@@ -145,6 +160,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     file.attribute("/solver", "reparameterisations", st.reparameterisations);
     file.attribute("/solver", "restarts", st.restarts);
     file.attribute("/solver", "wall_time_s", st.wall_time_s);
+    file.attribute("/solver", "max_step_constraint_residual", st.max_step_constraint_residual);
     file.attribute("/solver", "rtol", model.solver.rtol);
     file.attribute("/solver", "atol", model.solver.atol);
     file.attribute("/solver", "last_step_size", st.last_step_size);

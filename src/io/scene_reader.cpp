@@ -147,7 +147,7 @@ LoadSpec readLoad(const YamlField& f) {
 }
 
 SolverSpec readSolver(const YamlField& f) {
-  f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "max_step", "max_order", "initial_step",
+  f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_order", "initial_step",
                "baumgarte", "initial_tolerance"});
   SolverSpec s;
   if (const auto form = f.find("formulation"))
@@ -158,6 +158,9 @@ SolverSpec readSolver(const YamlField& f) {
   s.rtol = f.positive("rtol", s.rtol);
   s.atol = f.positive("atol", s.atol);
   s.atol_multipliers = f.positive("atol_multipliers", s.atol_multipliers);
+  s.newton_coefficient = f.positive("newton_coefficient", s.newton_coefficient);
+  if (const auto w = f.find("work_error_control")) s.work_error_control = w->boolean();
+  if (s.newton_coefficient >= 1.0) f.at("newton_coefficient").fail("must lie in (0, 1)");
   if (const auto ms = f.find("max_step")) s.max_step = ms->positive();
   if (const auto h0 = f.find("initial_step")) s.initial_step = h0->positive();
   if (const auto mo = f.find("max_order")) {

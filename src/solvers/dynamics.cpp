@@ -40,17 +40,11 @@ int jacobianCallback(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_V
 int quadratureCallback(sunrealtype t, N_Vector y, N_Vector, N_Vector rq, void* data) {
   const auto* d = static_cast<IdaUserData*>(data);
   const Assembler& a = *d->assembler;
-  const Model& model = a.model();
   const double* yy = N_VGetArrayPointer(y);
   const double* q = yy;
   const double* v = yy + a.vOffset();
-  const double* lambda = yy + a.lambdaOffset();
   double* out = N_VGetArrayPointer(rq);
-  out[0] = 0.0;
-  if (model.m > 0) {
-    const ConstraintState C = a.constraints(t, q, v);
-    out[0] = C.phi_t.dot(Eigen::Map<const VecX>(lambda, model.m));
-  }
+  out[0] = a.drivePower(t, q, yy + a.lambdaOffset());
   out[1] = a.loadPower(t, q, v);
   return 0;
 }
@@ -101,7 +95,12 @@ class Integrator {
     if (model.solver.max_step > 0.0) check(IDASetMaxStep(mem_, model.solver.max_step), "IDASetMaxStep");
     if (model.solver.initial_step > 0.0) check(IDASetInitStep(mem_, model.solver.initial_step), "IDASetInitStep");
     check(IDASetMaxNumSteps(mem_, 100000), "IDASetMaxNumSteps");
+    check(IDASetNonlinConvCoef(mem_, model.solver.newton_coefficient), "IDASetNonlinConvCoef");
     check(IDAQuadInit(mem_, quadratureCallback, yq_), "IDAQuadInit");
+    if (model.solver.work_error_control) {
+      check(IDAQuadSStolerances(mem_, model.solver.rtol, model.solver.atol), "IDAQuadSStolerances");
+      check(IDASetQuadErrCon(mem_, SUNTRUE), "IDASetQuadErrCon");
+    }
   }
 
   ~Integrator() {
@@ -244,6 +243,11 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
       sampled_end = ts == t_end;
     }
     t = t_ret;
+    if (model.m > 0) {
+      const double* yy = N_VGetArrayPointer(ida.y());
+      total.max_step_constraint_residual =
+          std::max(total.max_step_constraint_residual, assembler.constraintResidual(t, yy));
+    }
     if (control.on_step) control.on_step(t);
     if (control.stop_requested && control.stop_requested->load())
       return finish(false, fmt::format("interrupted at t = {:.6g} s", t));

@@ -49,11 +49,14 @@ void requireIndependentConstraints(const Assembler& assembler, const VecX& q, do
 }
 
 void solveAccelerations(const Assembler& assembler, DynamicState& s) {
+  solveAccelerations(assembler, s, assembler.constraints(s.t, s.q.data(), s.v.data()));
+}
+
+void solveAccelerations(const Assembler& assembler, DynamicState& s, const ConstraintState& C) {
   const Model& model = assembler.model();
   const int nv = model.nv, m = model.m;
   const Eigen::SparseMatrix<double> M = assembler.massMatrix(s.q.data());
   const VecX F = assembler.appliedForces(s.t, s.q.data(), s.v.data());
-  const ConstraintState C = assembler.constraints(s.t, s.q.data(), s.v.data());
   std::vector<Eigen::Triplet<double>> t;
   for (int k = 0; k < M.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) t.emplace_back(it.row(), it.col(), it.value());

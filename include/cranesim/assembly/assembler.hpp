@@ -55,6 +55,10 @@ class Assembler {
   double potentialEnergy(const double* q) const;
   /// Power of the applied loads, Q·dq.
   double loadPower(double t, const double* q, const double* v) const;
+  /// max |Φ(q, t)| over all constraint equations, for y = [q, …].
+  double constraintResidual(double t, const double* y) const;
+  /// Power of the rheonomic drives on the system, λ·Φ_t (constraint forces −Gᵀλ, G dq = −Φ_t).
+  double drivePower(double t, const double* q, const double* lambda) const;
 
  private:
   struct ConstraintBlocks {

@@ -38,7 +38,9 @@ template <class Q> Q seedCoordinate(double value, int direction) {
   }
 }
 
-/// The joint frame of `joint`, perturbed by the twist directions of `side` (0 or 1).
+/// The joint frame of `joint`, perturbed by the twist directions of `side` (0 or 1). The
+/// perturbation is linear in δ, so its derivatives are written down directly:
+/// ∂r_J/∂δr = I, ∂r_J/∂δθ_k = R (e_k × r_BJ), ∂R_J/∂δθ_k = R ẽ_k R_BJ (4-5, 4-7).
 template <class Q>
 FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, int joint,
                                                            const double* q, int side) {
@@ -56,19 +58,20 @@ FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, i
     r(k) = seedCoordinate<Q>(q[N.q + k], 6 * side + k);
     phi(k) = seedCoordinate<Q>(q[N.q + 3 + k], 6 * side + 3 + k);
   }
-  const Mat3T<Q> Rq = rotationMatrix<Q>(phi);
-  Vec3T<D> rn, dtheta;
-  Mat3T<D> R;
+  const Mat3T<Q> R = rotationMatrix<Q>(phi);
+  const Vec3T<Q> offset = J.offset.cast<Q>();
+  const Mat3T<Q> rotation = J.rotation.cast<Q>();
+  const Vec3T<Q> rJ = r + R * offset;
+  const Mat3T<Q> RJ = R * rotation;
+  for (int i = 0; i < 3; ++i) f.r(i) = constant<Q, kConstraintDirections>(rJ(i));
+  for (int i = 0; i < 9; ++i) f.R(i) = constant<Q, kConstraintDirections>(RJ(i));
+  for (int i = 0; i < 3; ++i) f.r(i).derivatives()(6 * side + i) = Q(1.0);
   for (int k = 0; k < 3; ++k) {
-    rn(k) = seeded<Q, kConstraintDirections>(r(k), 6 * side + k);
-    dtheta(k) = seeded<Q, kConstraintDirections>(Q(0.0), 6 * side + 3 + k);
+    const Vec3T<Q> dr = R * Vec3::Unit(k).cast<Q>().cross(offset);
+    const Mat3T<Q> dR = R * skew<Q>(Vec3::Unit(k).cast<Q>()) * rotation;
+    for (int i = 0; i < 3; ++i) f.r(i).derivatives()(6 * side + 3 + k) = dr(i);
+    for (int i = 0; i < 9; ++i) f.R(i).derivatives()(6 * side + 3 + k) = dR(i);
   }
-  for (int k = 0; k < 9; ++k) R(k) = constant<Q, kConstraintDirections>(Rq(k));
-  R = (R + R * skew<D>(dtheta)).eval();
-  const Vec3T<D> offset = J.offset.cast<Q>().template cast<D>();
-  const Mat3T<D> rotation = J.rotation.cast<Q>().template cast<D>();
-  f.r = rn + R * offset;
-  f.R = R * rotation;
   return f;
 }
 }  // namespace detail

@@ -9,6 +9,9 @@
 
 namespace cranesim {
 
+/// Multipliers are recomputed at each sample from the saddle-point system (4-3) for the
+/// sampled (q, dq): the integrator's index-2 λ is converged only to Newton accuracy, while the
+/// recorded constraint forces should be as accurate as the recorded state.
 class ResultsRecorder final : public SampleSink {
  public:
   explicit ResultsRecorder(const Assembler& assembler);
@@ -21,6 +24,11 @@ class ResultsRecorder final : public SampleSink {
   /// Position of a joint over time (3 per sample).
   const std::vector<double>& jointPositions(int joint) const { return joint_position_[joint]; }
   const std::vector<double>& energyBalance() const { return balance_; }
+  const std::vector<double>& kineticEnergy() const { return kinetic_; }
+  /// Body rotation matrices over time (9 per sample, row-major).
+  const std::vector<double>& bodyRotations(int node) const { return body_rotation_[node]; }
+  /// Body angular velocities over time (3 per sample, body frame).
+  const std::vector<double>& bodyAngularVelocities(int node) const { return body_omega_[node]; }
   const std::vector<double>& positionResidual() const { return residual_position_; }
   const std::vector<double>& velocityResidual() const { return residual_velocity_; }
 
@@ -33,6 +41,8 @@ class ResultsRecorder final : public SampleSink {
   void write(const std::string& path, const Metadata& meta, const SimulationOutcome& outcome) const;
 
  private:
+  VecX multipliersAt(double t, const double* y, const ConstraintState& constraints) const;
+
   const Assembler& assembler_;
   std::vector<double> time_, state_;
   std::vector<std::vector<double>> body_position_, body_rotation_, body_velocity_, body_omega_;

@@ -25,6 +25,9 @@ struct SolverStatistics {
   long error_test_failures = 0;
   long reparameterisations = 0;
   long restarts = 0;
+  /// max |Φ| over the accepted steps: the drift of the formulation itself, free of the
+  /// interpolation error that samples between steps carry.
+  double max_step_constraint_residual = 0.0;
   double last_step_size = 0.0;
   int last_order = 0;
   double wall_time_s = 0.0;

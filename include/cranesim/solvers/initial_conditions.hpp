@@ -22,5 +22,7 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
 
 /// Recomputes a, λ and q̇ for a state whose q and v are already consistent (restarts).
 void solveAccelerations(const Assembler& assembler, DynamicState& state);
+/// The same with the constraint quantities at (state.t, state.q, state.v) already evaluated.
+void solveAccelerations(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints);
 
 }  // namespace cranesim

@@ -1,0 +1,83 @@
+// bench_kernels: Google Benchmark timings of the DAE kernels, Assembler::residual and
+// Assembler::jacobian, for pendulum chains of 8 and 64 links (chain_scene.hpp) in both
+// formulations, at the consistent initial state.
+
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "chain_scene.hpp"
+#include "cranesim/assembly/assembler.hpp"
+#include "cranesim/io/scene_reader.hpp"
+#include "cranesim/model/compile.hpp"
+#include "cranesim/solvers/initial_conditions.hpp"
+
+namespace {
+
+/// A compiled chain with a consistent state y = [q, dq, λ, (μ = 0)], ẏ = [q̇, d(dq)/dt, 0, (0)].
+struct Fixture {
+  cranesim::Model model;
+  std::unique_ptr<cranesim::Assembler> assembler;
+  std::vector<double> y, yp, res, values;
+
+  Fixture(int n, const std::string& formulation) {
+    cranesim_bench::ChainSolver s;
+    s.formulation = formulation;
+    model = cranesim::compileModel(cranesim::parseScene(cranesim_bench::chainSceneYaml(n, s), "<chain>"));
+    assembler = std::make_unique<cranesim::Assembler>(model);
+    const cranesim::DynamicState st = cranesim::consistentInitialState(
+        *assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+    const auto& a = *assembler;
+    y.assign(a.size(), 0.0);
+    yp.assign(a.size(), 0.0);
+    for (int i = 0; i < model.nq; ++i) y[i] = st.q[i], yp[i] = st.qdot[i];
+    for (int i = 0; i < model.nv; ++i) y[a.vOffset() + i] = st.v[i], yp[a.vOffset() + i] = st.a[i];
+    for (int i = 0; i < model.m; ++i) y[a.lambdaOffset() + i] = st.lambda[i];
+    res.assign(a.size(), 0.0);
+    values.assign(a.pattern().nonZeros(), 0.0);
+  }
+};
+
+Fixture& fixture(int n, bool ggl) {
+  // One fixture per case, built on first use (Model must outlive its Assembler).
+  static std::unique_ptr<Fixture> cache[2][2];
+  auto& f = cache[n == 64][ggl];
+  if (!f) f = std::make_unique<Fixture>(n, ggl ? "ggl" : "baumgarte");
+  return *f;
+}
+
+void BM_Residual(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Fixture& f = fixture(n, state.range(1) != 0);
+  for (auto _ : state) {
+    f.assembler->residual(0.0, f.y.data(), f.yp.data(), f.res.data());
+    benchmark::DoNotOptimize(f.res.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["unknowns"] = f.assembler->size();
+  state.SetLabel(state.range(1) ? "ggl" : "baumgarte");
+}
+
+void BM_Jacobian(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Fixture& f = fixture(n, state.range(1) != 0);
+  const double cj = 1e3;  // 1/h for a typical step
+  for (auto _ : state) {
+    f.assembler->jacobian(0.0, cj, f.y.data(), f.yp.data(), f.values.data());
+    benchmark::DoNotOptimize(f.values.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["unknowns"] = f.assembler->size();
+  state.counters["nonzeros"] = static_cast<double>(f.values.size());
+  state.SetLabel(state.range(1) ? "ggl" : "baumgarte");
+}
+
+// Args: {links, ggl (1) or baumgarte (0)}.
+BENCHMARK(BM_Residual)->ArgsProduct({{8, 64}, {1, 0}})->ArgNames({"N", "ggl"})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Jacobian)->ArgsProduct({{8, 64}, {1, 0}})->ArgNames({"N", "ggl"})->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
