@@ -29,14 +29,18 @@ Profile readProfile(const YamlField& f) {
     return Profile(p, scale);
   }
   if (type == "cosine_step" || type == "tanh") {
-    f.allowKeys({"type", "unit", "from", "to", "t_start", "t_end", "confidence"});
+    f.allowKeys({"type", "unit", "from", "to", "t_start", "t_end", "confidence", "lambda"});
     const double from = f.at("from").number(), to = f.at("to").number();
     const double t0 = f.at("t_start").number(), t1 = f.at("t_end").number();
     if (!(t1 > t0)) f.at("t_end").fail(fmt::format("t_end ({}) must be after t_start ({})", t1, t0));
     if (type == "cosine_step") {
-      if (f.has("confidence")) f.at("confidence").fail("only a tanh profile has a confidence");
+      if (f.has("confidence") || f.has("lambda")) f.fail("only a tanh profile has a confidence or lambda");
       return Profile(CosineStepProfile{from, to, t0, t1}, scale);
     }
+    // λ(c) = atanh(c) (E-13). Table E-1's printed λ differ from atanh(c) in the 3rd–4th digit
+    // (2.6476 for 99 % where atanh gives 2.6467); `lambda:` takes a value as printed.
+    if (f.has("lambda") && f.has("confidence")) f.at("lambda").fail("give either confidence or lambda, not both");
+    if (f.has("lambda")) return Profile(TanhProfile{from, to, t0, t1, f.at("lambda").positive()}, scale);
     const double c = f.number("confidence", 0.99);
     if (!(c > 0.0 && c < 1.0)) f.at("confidence").fail(fmt::format("confidence must lie in (0, 1), found {}", c));
     return Profile(TanhProfile{from, to, t0, t1, tanhConfidenceCoefficient(c)}, scale);

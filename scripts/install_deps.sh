@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs what cranesim needs on Debian (bookworm) when it is missing: the C++ toolchain and
+# libraries from Debian's packages, the Python plotting stack from PyPI. Safe to run repeatedly.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+
+debian_packages=(
+  g++ cmake ninja-build pkg-config
+  libeigen3-dev libsundials-dev libsuitesparse-dev coinor-libipopt-dev libhdf5-dev
+  libyaml-cpp-dev catch2 libcli11-dev libfmt-dev libspdlog-dev libtbb-dev libbenchmark-dev
+  python3 python3-pip
+)
+missing=()
+for p in "${debian_packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "installing Debian packages: ${missing[*]}"
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}"
+fi
+
+if ! python3 -c "import numpy, h5py, matplotlib, pytest" 2>/dev/null; then
+  echo "installing Python packages from scripts/requirements.txt"
+  python3 -m pip install --quiet -r "$here/requirements.txt" ||
+    python3 -m pip install --quiet --break-system-packages -r "$here/requirements.txt"
+fi
