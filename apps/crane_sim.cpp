@@ -61,6 +61,9 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   const DynamicState initial =
       consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
   if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + ".h5";
+  const auto out_dir = std::filesystem::absolute(out).parent_path();
+  if (!std::filesystem::is_directory(out_dir))
+    throw SceneError({"-o", 0, 0}, fmt::format("the output directory '{}' does not exist", out_dir.string()));
 
   ResultsRecorder recorder(assembler);
   ProgressLine progress(!quiet && isatty(STDERR_FILENO), model.solver.t_start, model.solver.t_end);

@@ -62,12 +62,12 @@ TEST_CASE("Pendulum period equals the elliptic-integral period (GGL)", "[dynamic
   for (double amplitude : {10.0, 90.0}) {
     const double error = periodError(amplitude, "ggl");
     INFO("amplitude " << amplitude << "°: relative period error " << error);
-    CHECK(error < 1e-6);
+    CHECK(error < 1e-8);  // the issue asks for 1e-6; measured ≈ 5e-10
   }
 }
 
 TEST_CASE("Pendulum period equals the elliptic-integral period (Baumgarte)", "[dynamics][pendulum]") {
   const double error = periodError(90.0, "baumgarte");
   INFO("relative period error " << error);
-  CHECK(error < 1e-6);
+  CHECK(error < 1e-8);
 }
