@@ -34,9 +34,11 @@ ConstraintSides sidesOf(const Model& model, const Constraint& c) {
   ConstraintSides s;
   s.node[0] = model.joints[c.joint1].node;
   s.node[1] = model.joints[c.joint2].node;
-  for (int side = 0; side < 2; ++side)
-    if (s.node[side] >= 0)
-      for (int k = 0; k < 6; ++k) s.directions.push_back(6 * side + k);
+  for (int side = 0; side < 2; ++side) {
+    if (s.node[side] < 0) continue;
+    const int count = model.nodes[s.node[side]].hasRotation() ? 6 : 3;
+    for (int k = 0; k < count; ++k) s.directions.push_back(6 * side + k);
+  }
   return s;
 }
 
@@ -69,8 +71,8 @@ void Assembler::buildPattern() {
   const int nq = model_.nq;
   for (const Node& n : model_.nodes) {
     NodeBlocks b;
-    b.qq = pattern_.addBlock(range(n.q, 6), range(n.q, 6));
-    b.qv = pattern_.addBlock(range(n.q, 6), range(nq + n.v, 6), true);
+    b.qq = pattern_.addBlock(range(n.q, n.size()), range(n.q, n.size()), !n.hasRotation());
+    b.qv = pattern_.addBlock(range(n.q, n.size()), range(nq + n.v, n.size()), true);
     node_blocks_.push_back(b);
   }
   for (const auto& e : model_.elements) {
@@ -82,7 +84,7 @@ void Assembler::buildPattern() {
   }
   for (const Load& l : model_.loads) {
     const Node& n = model_.nodes[model_.joints[l.joint].node];
-    load_blocks_.push_back(pattern_.addBlock(range(nq + n.v, 6), range(n.q, 6)));
+    if (n.hasRotation()) load_blocks_.push_back(pattern_.addBlock(range(nq + n.v, 6), range(n.q, 6)));
   }
   for (const Constraint& c : model_.constraints) {
     const ConstraintSides s = sidesOf(model_, c);
@@ -115,6 +117,12 @@ Eigen::Matrix<S, 6, 1> Assembler::loadVector(const Load& load, const double* q, 
                                              bool seed) const {
   const Joint& J = model_.joints[load.joint];
   const Node& N = model_.nodes[J.node];
+  const double s = load.scale(t);
+  if (!N.hasRotation()) {  // a point: the force acts on r, torques are rejected by the compiler
+    Eigen::Matrix<S, 6, 1> Q = Eigen::Matrix<S, 6, 1>::Zero();
+    Q.template head<3>() = (s * load.force).cast<S>();
+    return Q;
+  }
   Vec3T<S> phi;
   for (int k = 0; k < 3; ++k) {
     if constexpr (std::is_same_v<S, double>) {
@@ -124,7 +132,6 @@ Eigen::Matrix<S, 6, 1> Assembler::loadVector(const Load& load, const double* q, 
     }
   }
   const Mat3T<S> R = rotationMatrix<S>(phi);
-  const double s = load.scale(t);
   Vec3T<S> F = (s * load.force).cast<S>(), M = (s * load.torque).cast<S>();
   if (load.frame == LoadFrame::Joint) {
     const Mat3T<S> RJ = R * J.rotation.cast<S>();
@@ -149,12 +156,10 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
   double* res_v = res + nq;
 
   for (const Node& n : model_.nodes) {
-    const Vec3 phi(q + n.q + 3);
-    const Vec3 w = angularVelocityMap<double>(phi) * Vec3(qdot + n.q + 3);
-    for (int k = 0; k < 3; ++k) {
-      res[n.q + k] = qdot[n.q + k] - v[n.v + k];
-      res[n.q + 3 + k] = w(k) - v[n.v + 3 + k];
-    }
+    for (int k = 0; k < n.size(); ++k) res[n.q + k] = qdot[n.q + k] - v[n.v + k];
+    if (!n.hasRotation()) continue;
+    const Vec3 w = angularVelocityMap<double>(Vec3(q + n.q + 3)) * Vec3(qdot + n.q + 3);
+    for (int k = 0; k < 3; ++k) res[n.q + 3 + k] = w(k) - v[n.v + 3 + k];
   }
 
   const ElementInput in{q, v, a, t, model_.gravity};
@@ -170,7 +175,7 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
   for (const Load& l : model_.loads) {
     const Node& n = model_.nodes[model_.joints[l.joint].node];
     const auto Q = loadVector<double>(l, q, t, false);
-    for (int k = 0; k < 6; ++k) res_v[n.v + k] -= Q(k);
+    for (int k = 0; k < (n.hasRotation() ? 6 : 3); ++k) res_v[n.v + k] -= Q(k);
   }
 
   const SolverSpec& sv = model_.solver;
@@ -222,19 +227,24 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     for (std::size_t k = 0; k < slots.size(); ++k) values[slots[k]] += local[k];
   };
 
+  const std::vector<double> minus_one(kMaxNodeSize, -1.0), cj_diagonal(kMaxNodeSize, cj);
   for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
     const Node& node = model_.nodes[n];
+    scatter(node_blocks_[n].qv, minus_one.data());
+    if (!node.hasRotation()) {
+      scatter(node_blocks_[n].qq, cj_diagonal.data());
+      continue;
+    }
+    // ∂/∂q (K(q) q̇) + cj K(q) with K = diag(I, T(φ), 1…)
     using D = Dual<double, 3>;
     Vec3T<D> phi;
     for (int k = 0; k < 3; ++k) phi(k) = seeded<double, 3>(q[node.q + 3 + k], k);
     const Vec3T<D> w = angularVelocityMap<D>(phi) * Vec3(qdot + node.q + 3).cast<D>();
-    Eigen::Matrix<double, 6, 6> J = Eigen::Matrix<double, 6, 6>::Zero();
-    J.topLeftCorner<3, 3>() = cj * Mat3::Identity();
-    for (int k = 0; k < 3; ++k) J.block<1, 3>(3 + k, 3) = w(k).derivatives().transpose();
-    J.bottomRightCorner<3, 3>() += cj * angularVelocityMap<double>(Vec3(q + node.q + 3));
+    const int size = node.size();
+    MatX J = cj * MatX::Identity(size, size);
+    J.block<3, 3>(3, 3) = cj * angularVelocityMap<double>(Vec3(q + node.q + 3));
+    for (int k = 0; k < 3; ++k) J.block<1, 3>(3 + k, 3) += w(k).derivatives().transpose();
     scatter(node_blocks_[n].qq, J.data());
-    const double minus_one[6] = {-1, -1, -1, -1, -1, -1};
-    scatter(node_blocks_[n].qv, minus_one);
   }
 
   const ElementInput in{q, v, a, t, model_.gravity};
@@ -245,11 +255,12 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
   });
   for (std::size_t e = 0; e < model_.elements.size(); ++e) scatter(element_blocks_[e], element_scratch_[e].data());
 
-  for (std::size_t l = 0; l < model_.loads.size(); ++l) {
+  for (std::size_t l = 0, block = 0; l < model_.loads.size(); ++l) {
+    if (!model_.nodes[model_.joints[model_.loads[l].joint].node].hasRotation()) continue;  // constant force
     const auto Q = loadVector<Dual<double, 6>>(model_.loads[l], q, t, true);
     Eigen::Matrix<double, 6, 6> J;
     for (int k = 0; k < 6; ++k) J.row(k) = -Q(k).derivatives().transpose();
-    scatter(load_blocks_[l], J.data());
+    scatter(load_blocks_[block++], J.data());
   }
 
   const SolverSpec& sv = model_.solver;
@@ -344,7 +355,8 @@ VecX Assembler::appliedForces(double t, const double* q, const double* v) const 
   }
   for (const Load& l : model_.loads) {
     const Node& n = model_.nodes[model_.joints[l.joint].node];
-    F.segment<6>(n.v) -= loadVector<double>(l, q, t, false);
+    const auto Q = loadVector<double>(l, q, t, false);
+    for (int k = 0; k < (n.hasRotation() ? 6 : 3); ++k) F(n.v + k) -= Q(k);
   }
   return F;
 }
@@ -387,8 +399,9 @@ ConstraintState Assembler::constraints(double t, const double* q, const double* 
 VecX Assembler::coordinateRates(const double* q, const double* v) const {
   VecX qdot(model_.nq);
   for (const Node& n : model_.nodes) {
-    qdot.segment<3>(n.q) = Vec3(v + n.v);
-    qdot.segment<3>(n.q + 3) = angularVelocityMapInverse<double>(Vec3(q + n.q + 3)) * Vec3(v + n.v + 3);
+    for (int k = 0; k < n.size(); ++k) qdot(n.q + k) = v[n.v + k];
+    if (n.hasRotation())
+      qdot.segment<3>(n.q + 3) = angularVelocityMapInverse<double>(Vec3(q + n.q + 3)) * Vec3(v + n.v + 3);
   }
   return qdot;
 }
@@ -411,7 +424,8 @@ double Assembler::loadPower(double t, const double* q, const double* v) const {
   double p = 0.0;
   for (const Load& l : model_.loads) {
     const Node& n = model_.nodes[model_.joints[l.joint].node];
-    p += loadVector<double>(l, q, t, false).dot(Eigen::Matrix<double, 6, 1>(v + n.v));
+    const auto Q = loadVector<double>(l, q, t, false);
+    for (int k = 0; k < (n.hasRotation() ? 6 : 3); ++k) p += Q(k) * v[n.v + k];
   }
   return p;
 }

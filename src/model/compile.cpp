@@ -49,12 +49,9 @@ Model compileModel(const Scene& scene) {
 
   for (const JointSpec& j : scene.ground_joints) model.joints.push_back({"ground." + j.name, -1, j.position, j.rotation});
 
-  model.q0.resize(6 * scene.bodies.size());
-  model.v0.resize(6 * scene.bodies.size());
   for (const RigidBodySpec& b : scene.bodies) {
-    const int node = static_cast<int>(model.nodes.size());
-    const Node n{b.name, 6 * node, 6 * node};
-    model.nodes.push_back(n);
+    const int node = model.addNode(b.name, NodeKind::Frame);
+    const Node& n = model.nodes[node];
     model.q0.segment<3>(n.q) = b.position;
     model.q0.segment<3>(n.q + 3) = rotationVector(b.rotation);
     model.v0.segment<3>(n.v) = b.velocity;
@@ -72,7 +69,6 @@ Model compileModel(const Scene& scene) {
       model.joints.push_back({b.name + "." + j.name, node, j.position, j.rotation});
     }
   }
-  model.nq = model.nv = 6 * static_cast<int>(scene.bodies.size());
 
   const auto resolve = [&](const std::string& name, const SourceLocation& where) {
     const int j = model.findJoint(name);

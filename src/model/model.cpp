@@ -6,9 +6,21 @@
 
 namespace cranesim {
 
+int Model::addNode(std::string name, NodeKind kind) {
+  Node n{std::move(name), kind, nq, nv};
+  nq += n.size();
+  nv += n.size();
+  nodes.push_back(std::move(n));
+  q0.conservativeResize(nq);
+  v0.conservativeResize(nv);
+  q0.tail(nodes.back().size()).setZero();
+  v0.tail(nodes.back().size()).setZero();
+  return static_cast<int>(nodes.size()) - 1;
+}
+
 Frame Model::nodeFrame(const double* q, int node) const {
   const Node& n = nodes[node];
-  return {Vec3(q + n.q), rotationMatrix<double>(Vec3(q + n.q + 3))};
+  return {Vec3(q + n.q), n.hasRotation() ? rotationMatrix<double>(Vec3(q + n.q + 3)) : Mat3::Identity()};
 }
 
 Frame Model::jointFrame(const double* q, int joint) const {

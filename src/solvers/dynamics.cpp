@@ -161,6 +161,7 @@ DynamicState stateOf(const Assembler& assembler, double t, const double* y) {
 int reparameterise(const Model& model, double* q) {
   int changed = 0;
   for (const Node& n : model.nodes) {
+    if (!n.hasRotation()) continue;
     Vec3 phi(q + n.q + 3);
     if (cranesim::reparameterise(phi)) {
       std::copy(phi.data(), phi.data() + 3, q + n.q + 3);

@@ -53,12 +53,12 @@ FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, i
     return f;
   }
   const Node& N = model.nodes[J.node];
-  Vec3T<Q> r, phi;
+  Vec3T<Q> r, phi = Vec3T<Q>::Zero();
   for (int k = 0; k < 3; ++k) {
     r(k) = seedCoordinate<Q>(q[N.q + k], 6 * side + k);
-    phi(k) = seedCoordinate<Q>(q[N.q + 3 + k], 6 * side + 3 + k);
+    if (N.hasRotation()) phi(k) = seedCoordinate<Q>(q[N.q + 3 + k], 6 * side + 3 + k);
   }
-  const Mat3T<Q> R = rotationMatrix<Q>(phi);
+  const Mat3T<Q> R = N.hasRotation() ? rotationMatrix<Q>(phi) : Mat3T<Q>::Identity();
   const Vec3T<Q> offset = J.offset.cast<Q>();
   const Mat3T<Q> rotation = J.rotation.cast<Q>();
   const Vec3T<Q> rJ = r + R * offset;
@@ -66,6 +66,7 @@ FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, i
   for (int i = 0; i < 3; ++i) f.r(i) = constant<Q, kConstraintDirections>(rJ(i));
   for (int i = 0; i < 9; ++i) f.R(i) = constant<Q, kConstraintDirections>(RJ(i));
   for (int i = 0; i < 3; ++i) f.r(i).derivatives()(6 * side + i) = Q(1.0);
+  if (!N.hasRotation()) return f;  // a point: its joint frame only translates
   for (int k = 0; k < 3; ++k) {
     const Vec3T<Q> dr = R * Vec3::Unit(k).cast<Q>().cross(offset);
     const Mat3T<Q> dR = R * skew<Q>(Vec3::Unit(k).cast<Q>()) * rotation;

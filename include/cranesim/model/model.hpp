@@ -13,11 +13,38 @@
 
 namespace cranesim {
 
-/// A frame node: q = [r, φ] (6), dq = [ṙ, ω_body] (6), at offsets `q` and `v`.
+/// What a node's generalized coordinates are. Every kind starts with the position r; the
+/// velocity of each coordinate is its time derivative except for the rotation vector φ,
+/// whose velocity is the body-frame angular velocity ω = T(φ) φ̇ (2-10).
+enum class NodeKind {
+  Point,         // [r]: strut tie ends (3-7)
+  Frame,         // [r, φ]: rigid bodies (3-1), Timoshenko beam nodes (3-28)
+  FrameStretch,  // [r, φ, ‖r'‖]: cubic spline beam nodes (3-54)
+  PointSlope,    // [r, r']: cubic spline rope nodes (C-141)
+};
+
+inline constexpr int kMaxNodeSize = 7;
+
+inline int nodeSize(NodeKind kind) {
+  switch (kind) {
+    case NodeKind::Point: return 3;
+    case NodeKind::Frame: return 6;
+    case NodeKind::FrameStretch: return 7;
+    case NodeKind::PointSlope: return 6;
+  }
+  return 0;
+}
+
+/// A node's coordinates sit at q[q … q + size) and its velocities at dq[v … v + size).
 struct Node {
   std::string name;
+  NodeKind kind = NodeKind::Frame;
   int q = 0;
   int v = 0;
+
+  int size() const { return nodeSize(kind); }
+  /// Whether coordinates 3…5 are a rotation vector (and velocities 3…5 a body angular velocity).
+  bool hasRotation() const { return kind == NodeKind::Frame || kind == NodeKind::FrameStretch; }
 };
 
 /// A frame fixed on a node (4-5): r_J = r + R r_BJ, R_J = R R_BJ. `node` < 0: the ground,
@@ -67,7 +94,9 @@ struct Model {
   SolverSpec solver;
   OutputSpec output;
 
-  /// Frame of a node at coordinates q.
+  /// Appends a node of the given kind, placing its coordinates after the existing ones.
+  int addNode(std::string name, NodeKind kind);
+  /// Frame of a node at coordinates q (identity rotation for nodes without one).
   Frame nodeFrame(const double* q, int node) const;
   /// Frame of a joint at coordinates q.
   Frame jointFrame(const double* q, int joint) const;
