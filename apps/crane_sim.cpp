@@ -19,6 +19,7 @@
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/model/summary.hpp"
+#include "cranesim/solvers/statics.hpp"
 #include "cranesim/version.hpp"
 
 namespace {
@@ -54,16 +55,38 @@ class ProgressLine {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
 
+std::string outputPath(const std::string& scene_path, std::string out, const char* suffix) {
+  if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + suffix;
+  const auto out_dir = std::filesystem::absolute(out).parent_path();
+  if (!std::filesystem::is_directory(out_dir))
+    throw SceneError({"-o", 0, 0}, fmt::format("the output directory '{}' does not exist", out_dir.string()));
+  return out;
+}
+
+/// Static equilibrium near the scene's initial state; throws when it is not found.
+StaticResult equilibrium(const Model& model, const DynamicState& given) {
+  StaticResult eq = solveStatics(model, given.q, model.solver.t_start);
+  if (!eq.converged) throw std::runtime_error(eq.message);
+  return eq;
+}
+
+void printEquilibrium(const StaticResult& eq) {
+  fmt::print(stderr, "static equilibrium: {} Newton iterations in {} load steps; max |F + Gᵀλ| {:.3g}, max |Φ| {:.3g}\n",
+             eq.iterations, eq.load_steps, eq.force_residual, eq.constraint_residual);
+}
+
 int run(const std::string& scene_path, std::string out, bool quiet) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  const DynamicState initial =
+  DynamicState initial =
       consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
-  if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + ".h5";
-  const auto out_dir = std::filesystem::absolute(out).parent_path();
-  if (!std::filesystem::is_directory(out_dir))
-    throw SceneError({"-o", 0, 0}, fmt::format("the output directory '{}' does not exist", out_dir.string()));
+  out = outputPath(scene_path, out, ".h5");
+  if (model.solver.start_from_equilibrium) {
+    const StaticResult eq = equilibrium(model, initial);
+    if (!quiet) printEquilibrium(eq);
+    initial = consistentInitialState(assembler, model.solver.t_start, eq.q, VecX::Zero(model.nv), model.solver.initial_tolerance);
+  }
 
   ResultsRecorder recorder(assembler);
   ProgressLine progress(!quiet && isatty(STDERR_FILENO), model.solver.t_start, model.solver.t_end);
@@ -103,6 +126,28 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   return 0;
 }
 
+int statics(const std::string& scene_path, std::string out) {
+  const Scene scene = readScene(scene_path);
+  const Model model = compileModel(scene);
+  const Assembler assembler(model);
+  const DynamicState given =
+      consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+  out = outputPath(scene_path, out, "_static.h5");
+  const StaticResult eq = equilibrium(model, given);
+  printEquilibrium(eq);
+  ResultsRecorder recorder(assembler);
+  VecX y = VecX::Zero(assembler.size());
+  y.head(model.nq) = eq.q;
+  y.segment(assembler.lambdaOffset(), model.m) = eq.lambda;
+  recorder.sample(eq.t, y.data(), 0.0, 0.0);
+  SimulationOutcome outcome;
+  outcome.complete = true;
+  outcome.t_reached = eq.t;
+  recorder.write(out, {scene_path, scene.text, "static", eq.t}, outcome);
+  fmt::print(stderr, "  results: {}\n", out);
+  return 0;
+}
+
 int check(const std::string& scene_path) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
@@ -126,6 +171,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scene", scene_path, "scene file (YAML)")->required();
   run_cmd->add_option("-o,--output", out_path, "results file (default: <scene name>.h5 in the current directory)");
   run_cmd->add_flag("-q,--quiet", quiet, "no progress line and no summary");
+  auto* static_cmd = app.add_subcommand("static", "solve the static equilibrium and write it as a one-sample results file");
+  static_cmd->add_option("scene", scene_path, "scene file (YAML)")->required();
+  static_cmd->add_option("-o,--output", out_path, "results file (default: <scene name>_static.h5 in the current directory)");
   auto* check_cmd = app.add_subcommand("check", "validate a scene and print the model summary");
   check_cmd->add_option("scene", scene_path, "scene file (YAML)")->required();
   auto* info_cmd = app.add_subcommand("info", "describe what a results file holds");
@@ -140,6 +188,7 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return run(scene_path, out_path, quiet);
     if (*check_cmd) return check(scene_path);
+    if (*static_cmd) return statics(scene_path, out_path);
     if (*info_cmd) {
       fmt::print("{}", describeResults(results_path));
       return 0;

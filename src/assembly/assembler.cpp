@@ -61,7 +61,7 @@ Eigen::Matrix<double, kConstraintDirections, 1> localExtended(const Model& model
 
 }  // namespace
 
-Assembler::Assembler(const Model& model) : model_(model) {
+Assembler::Assembler(const Model& model, Formulation formulation) : model_(model), formulation_(formulation) {
   size_ = model.nq + model.nv + model.m * (ggl() ? 2 : 1);
   element_scratch_.resize(model.elements.size());
   buildPattern();
@@ -114,10 +114,10 @@ void Assembler::buildPattern() {
 
 template <class S>
 Eigen::Matrix<S, 6, 1> Assembler::loadVector(const Load& load, const double* q, double t,
-                                             bool seed) const {
+                                             bool seed, Limit limit) const {
   const Joint& J = model_.joints[load.joint];
   const Node& N = model_.nodes[J.node];
-  const double s = load.scale(t);
+  const double s = load_factor_ * load.scale(t, limit);
   if (!N.hasRotation()) {  // a point: the force acts on r, torques are rejected by the compiler
     Eigen::Matrix<S, 6, 1> Q = Eigen::Matrix<S, 6, 1>::Zero();
     Q.template head<3>() = (s * load.force).cast<S>();
@@ -162,7 +162,7 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
     for (int k = 0; k < 3; ++k) res[n.q + 3 + k] = w(k) - v[n.v + 3 + k];
   }
 
-  const ElementInput in{q, v, a, t, model_.gravity};
+  const ElementInput in{q, v, a, t, gravity()};
   forEachElement(model_.elements.size(), [&](std::size_t e) {
     element_scratch_[e].resize(model_.elements[e]->size());
     model_.elements[e]->residual(in, element_scratch_[e].data());
@@ -247,7 +247,7 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     scatter(node_blocks_[n].qq, J.data());
   }
 
-  const ElementInput in{q, v, a, t, model_.gravity};
+  const ElementInput in{q, v, a, t, gravity()};
   forEachElement(model_.elements.size(), [&](std::size_t e) {
     const auto& el = *model_.elements[e];
     element_scratch_[e].resize(el.size() * (el.coordinateIndices().size() + el.size()));
@@ -325,9 +325,9 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
   }
 }
 
-Eigen::SparseMatrix<double> Assembler::massMatrix(const double* q) const {
+Eigen::SparseMatrix<double> Assembler::massMatrix(double t, const double* q) const {
   std::vector<Eigen::Triplet<double>> triplets;
-  const ElementInput in{q, nullptr, nullptr, 0.0, model_.gravity};
+  const ElementInput in{q, nullptr, nullptr, t, gravity()};
   std::vector<double> local;
   for (const auto& e : model_.elements) {
     const int n = e->size();
@@ -342,10 +342,10 @@ Eigen::SparseMatrix<double> Assembler::massMatrix(const double* q) const {
   return M;
 }
 
-VecX Assembler::appliedForces(double t, const double* q, const double* v) const {
+VecX Assembler::appliedForces(double t, const double* q, const double* v, Limit limit) const {
   VecX zero_a = VecX::Zero(model_.nv);
   VecX F = VecX::Zero(model_.nv);
-  const ElementInput in{q, v, zero_a.data(), t, model_.gravity};
+  const ElementInput in{q, v, zero_a.data(), t, gravity()};
   std::vector<double> local;
   for (const auto& e : model_.elements) {
     local.resize(e->size());
@@ -355,13 +355,13 @@ VecX Assembler::appliedForces(double t, const double* q, const double* v) const 
   }
   for (const Load& l : model_.loads) {
     const Node& n = model_.nodes[model_.joints[l.joint].node];
-    const auto Q = loadVector<double>(l, q, t, false);
+    const auto Q = loadVector<double>(l, q, t, false, limit);
     for (int k = 0; k < (n.hasRotation() ? 6 : 3); ++k) F(n.v + k) -= Q(k);
   }
   return F;
 }
 
-ConstraintState Assembler::constraints(double t, const double* q, const double* v) const {
+ConstraintState Assembler::constraints(double t, const double* q, const double* v, Limit limit) const {
   ConstraintState out;
   const int m = model_.m;
   out.phi = VecX::Zero(m);
@@ -372,7 +372,7 @@ ConstraintState Assembler::constraints(double t, const double* q, const double* 
   std::vector<Eigen::Triplet<double>> g, pq;
   for (const Constraint& c : model_.constraints) {
     const ConstraintSides s = sidesOf(model_, c);
-    const auto C = evaluateConstraint<ConstraintQDual>(model_, c, q, t);
+    const auto C = evaluateConstraint<ConstraintQDual>(model_, c, q, t, limit);
     const auto vloc = localExtended(model_, s, v, false);
     const auto qdloc = localExtended(model_, s, qdot.data(), true);
     for (int i = 0; i < c.rows; ++i) {
@@ -406,15 +406,15 @@ VecX Assembler::coordinateRates(const double* q, const double* v) const {
   return qdot;
 }
 
-double Assembler::kineticEnergy(const double* q, const double* v) const {
-  const ElementInput in{q, v, nullptr, 0.0, model_.gravity};
+double Assembler::kineticEnergy(double t, const double* q, const double* v) const {
+  const ElementInput in{q, v, nullptr, t, gravity()};
   double sum = 0.0;
   for (const auto& e : model_.elements) sum += e->kineticEnergy(in);
   return sum;
 }
 
-double Assembler::potentialEnergy(const double* q) const {
-  const ElementInput in{q, nullptr, nullptr, 0.0, model_.gravity};
+double Assembler::potentialEnergy(double t, const double* q) const {
+  const ElementInput in{q, nullptr, nullptr, t, gravity()};
   double sum = 0.0;
   for (const auto& e : model_.elements) sum += e->potentialEnergy(in);
   return sum;

@@ -62,7 +62,7 @@ void ResultsRecorder::sample(double t, const double* y, double drive_work, doubl
     append(joint_position_[j], f.r.data(), 3);
     appendRowMajor(joint_rotation_[j], f.R);
   }
-  const double T = assembler_.kineticEnergy(q, v), V = assembler_.potentialEnergy(q);
+  const double T = assembler_.kineticEnergy(t, q, v), V = assembler_.potentialEnergy(t, q);
   kinetic_.push_back(T);
   potential_.push_back(V);
   drive_work_.push_back(drive_work);

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/rotation.hpp"
 #include "profile_reader.hpp"
 #include "yaml_field.hpp"
@@ -19,6 +20,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 /// `{axis: [..], angle: rad | angle_deg: deg}`, `{rotation_vector: [..]}` or `{matrix: [[..]x3]}`.
 Mat3 readRotation(const YamlField& f) {
   f.allowKeys({"axis", "angle", "angle_deg", "rotation_vector", "matrix"});
+  const int forms = f.has("rotation_vector") + f.has("matrix") + f.has("axis");
+  if (forms != 1) f.fail("give exactly one of: axis with angle or angle_deg, rotation_vector, matrix");
   if (const auto rv = f.find("rotation_vector")) return rotationMatrix<double>(rv->vec3());
   if (const auto mf = f.find("matrix")) {
     const auto rows = mf->items();
@@ -33,6 +36,7 @@ Mat3 readRotation(const YamlField& f) {
   const Vec3 axis = axis_field.vec3();
   if (axis.norm() < 1e-12) axis_field.fail("axis must not be the zero vector");
   if (f.has("angle") && f.has("angle_deg")) f.at("angle_deg").fail("give either angle (rad) or angle_deg, not both");
+  if (!f.has("angle") && !f.has("angle_deg")) f.fail("an axis needs an angle (rad) or angle_deg");
   const double angle = f.has("angle") ? f.at("angle").number() : f.at("angle_deg").number() * kDeg;
   return axisAngle(axis, angle);
 }
@@ -68,9 +72,8 @@ std::vector<JointSpec> readJoints(const YamlField& list) {
   for (const YamlField& f : list.items()) {
     f.allowKeys({"name", "position", "rotation"});
     JointSpec j;
-    j.name = f.at("name").text();
+    j.name = f.at("name").identifier();
     if (!names.insert(j.name).second) f.at("name").fail(fmt::format("duplicate joint name '{}'", j.name));
-    if (j.name.find('.') != std::string::npos) f.at("name").fail("joint names must not contain '.'");
     j.position = f.vec3("position", Vec3::Zero());
     if (const auto r = f.find("rotation")) j.rotation = readRotation(*r);
     j.where = f.where();
@@ -83,9 +86,8 @@ RigidBodySpec readBody(const YamlField& f) {
   f.allowKeys({"name", "type", "mass", "centroid", "inertia", "position", "rotation", "velocity",
                "angular_velocity", "joints"});
   RigidBodySpec b;
-  b.name = f.at("name").text();
+  b.name = f.at("name").identifier();
   if (b.name == "ground") f.at("name").fail("'ground' is reserved for the inertial frame");
-  if (b.name.find('.') != std::string::npos) f.at("name").fail("body names must not contain '.'");
   if (const auto type = f.find("type")) type->choice({"rigid"});
   b.mass = f.at("mass").positive();
   b.centroid = f.vec3("centroid", Vec3::Zero());
@@ -99,6 +101,81 @@ RigidBodySpec readBody(const YamlField& f) {
   return b;
 }
 
+Section readSection(const YamlField& f, double poisson) {
+  if (f.has("radius")) {
+    f.allowKeys({"radius"});
+    return Section::circular(f.at("radius").positive(), 0.0, poisson);
+  }
+  if (f.has("outer_radius")) {
+    f.allowKeys({"outer_radius", "inner_radius"});
+    const double outer = f.at("outer_radius").positive();
+    const double inner = f.has("inner_radius") ? f.at("inner_radius").nonNegative() : 0.0;
+    if (inner >= outer) f.at("inner_radius").fail(fmt::format("inner radius {} must be below the outer radius {}", inner, outer));
+    return Section::circular(outer, inner, poisson);
+  }
+  f.allowKeys({"area", "Iy", "Iz", "J", "shear_factor"});
+  Section s;
+  s.area = f.at("area").positive();
+  s.Iy = f.at("Iy").positive();
+  s.Iz = f.at("Iz").positive();
+  s.J = f.at("J").positive();
+  s.shear_factor = f.has("shear_factor") ? f.at("shear_factor").positive() : 0.0;
+  return s;
+}
+
+Material readMaterial(const YamlField& f, double& poisson) {
+  f.allowKeys({"density", "youngs_modulus", "poisson_ratio", "shear_modulus"});
+  Material m;
+  m.density = f.at("density").positive();
+  m.youngs_modulus = f.at("youngs_modulus").positive();
+  if (f.has("poisson_ratio") && f.has("shear_modulus")) f.at("shear_modulus").fail("give either poisson_ratio or shear_modulus");
+  if (f.has("shear_modulus")) {
+    m.shear_modulus = f.at("shear_modulus").positive();
+    poisson = m.youngs_modulus / (2.0 * m.shear_modulus) - 1.0;
+  } else {
+    poisson = f.number("poisson_ratio", 0.3);
+    if (poisson <= -1.0 || poisson >= 0.5) f.at("poisson_ratio").fail(fmt::format("must lie in (−1, 0.5), found {}", poisson));
+    m.shear_modulus = m.youngs_modulus / (2.0 * (1.0 + poisson));
+  }
+  return m;
+}
+
+MemberSpec readMember(const YamlField& f) {
+  MemberSpec m;
+  m.where = f.where();
+  m.name = f.at("name").identifier();
+  if (m.name == "ground") f.at("name").fail("'ground' is reserved for the inertial frame");
+  const std::string type = f.at("type").choice({"strut_tie", "rope"});
+  m.type = type == "strut_tie" ? MemberType::StrutTie
+           : type == "timoshenko" ? MemberType::Timoshenko
+           : type == "spline_beam" ? MemberType::SplineBeam
+                                   : MemberType::Rope;
+  std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "section", "material"};
+  if (m.type == MemberType::Rope) keys.push_back("length");
+  if (m.type == MemberType::StrutTie) keys.insert(keys.end(), {"constant_volume", "smoothing"});
+  f.allowKeys(keys);
+  m.start = f.at("start").vec3();
+  m.end = f.at("end").vec3();
+  if ((m.end - m.start).norm() < 1e-9) f.at("end").fail("a member needs distinct start and end points");
+  m.z_axis = f.vec3("z_axis", Vec3::UnitZ());
+  if (f.has("segments")) {
+    m.segments = f.at("segments").integer();
+    if (m.segments < 1 || m.segments > 10000) f.at("segments").fail(fmt::format("must be 1…10000, found {}", m.segments));
+  }
+  if (f.has("quadrature")) {
+    m.quadrature = f.at("quadrature").integer();
+    if (m.quadrature < 1 || m.quadrature > kMaxGaussPoints)
+      f.at("quadrature").fail(fmt::format("Gauss points must be 1…{}, found {}", kMaxGaussPoints, m.quadrature));
+  }
+  double poisson = 0.3;
+  m.material = readMaterial(f.at("material"), poisson);
+  m.section = readSection(f.at("section"), poisson);
+  if (const auto l = f.find("length")) m.length = readProfile(*l);
+  if (const auto cv = f.find("constant_volume")) m.constant_volume = cv->boolean();
+  if (const auto h = f.find("smoothing")) m.smoothing = h->nonNegative();
+  return m;
+}
+
 int readAxis(const YamlField& f) {
   const std::string a = f.choice({"x", "y", "z"});
   return a[0] - 'x';
@@ -107,7 +184,7 @@ int readAxis(const YamlField& f) {
 ConstraintSpec readConstraint(const YamlField& f) {
   ConstraintSpec c;
   c.where = f.where();
-  c.name = f.at("name").text();
+  c.name = f.at("name").identifier();
   const std::string type = f.at("type").choice({"fixed", "revolute", "prismatic", "spherical", "distance"});
   const auto joints = f.at("joints");
   const auto items = joints.items();
@@ -123,6 +200,7 @@ ConstraintSpec readConstraint(const YamlField& f) {
     f.allowKeys({"name", "type", "joints", "length"});
     c.type = ConstraintType::Distance;
     c.drive = readProfile(f.at("length"));
+    if (!((*c.drive)(0.0) > 0.0)) f.at("length").fail("a distance must be positive");
   } else {
     f.allowKeys({"name", "type", "joints", "axis", "drive"});
     c.type = type == "revolute" ? ConstraintType::Revolute : ConstraintType::Prismatic;
@@ -136,7 +214,7 @@ LoadSpec readLoad(const YamlField& f) {
   f.allowKeys({"name", "joint", "force", "torque", "frame", "scale"});
   LoadSpec l;
   l.where = f.where();
-  l.name = f.at("name").text();
+  l.name = f.at("name").identifier();
   l.joint = f.at("joint").text();
   l.where_joint = f.at("joint").where();
   l.force = f.vec3("force", Vec3::Zero());
@@ -148,7 +226,7 @@ LoadSpec readLoad(const YamlField& f) {
 
 SolverSpec readSolver(const YamlField& f) {
   f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_order", "initial_step",
-               "baumgarte", "initial_tolerance"});
+               "baumgarte", "initial_tolerance", "initial_state"});
   SolverSpec s;
   if (const auto form = f.find("formulation"))
     s.formulation = form->choice({"ggl", "baumgarte"}) == "ggl" ? Formulation::GGL : Formulation::Baumgarte;
@@ -156,6 +234,7 @@ SolverSpec readSolver(const YamlField& f) {
   s.t_end = f.at("t_end").number();
   if (!(s.t_end > s.t_start)) f.at("t_end").fail(fmt::format("t_end ({}) must be after t_start ({})", s.t_end, s.t_start));
   s.rtol = f.positive("rtol", s.rtol);
+  if (s.rtol >= 0.1) f.at("rtol").fail(fmt::format("rtol {} is not a tolerance: use a value below 0.1", s.rtol));
   s.atol = f.positive("atol", s.atol);
   s.atol_multipliers = f.positive("atol_multipliers", s.atol_multipliers);
   s.newton_coefficient = f.positive("newton_coefficient", s.newton_coefficient);
@@ -173,6 +252,7 @@ SolverSpec readSolver(const YamlField& f) {
     s.baumgarte_beta = b->positive("beta", s.baumgarte_beta);
   }
   s.initial_tolerance = f.positive("initial_tolerance", s.initial_tolerance);
+  if (const auto start = f.find("initial_state")) s.start_from_equilibrium = start->choice({"given", "equilibrium"}) == "equilibrium";
   return s;
 }
 
@@ -187,7 +267,7 @@ Scene parseScene(const std::string& text, const std::string& path) {
   }
   const YamlField f(root, "");
   if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
-  f.allowKeys({"name", "gravity", "ground", "bodies", "constraints", "loads", "solver", "output"});
+  f.allowKeys({"name", "gravity", "ground", "bodies", "members", "constraints", "loads", "solver", "output"});
   Scene s;
   s.path = path;
   s.text = text;
@@ -198,12 +278,19 @@ Scene parseScene(const std::string& text, const std::string& path) {
     s.ground_joints = readJoints(g->at("joints"));
   }
   std::set<std::string> body_names;
-  for (const YamlField& b : f.at("bodies").items()) {
-    s.bodies.push_back(readBody(b));
-    if (!body_names.insert(s.bodies.back().name).second)
-      b.at("name").fail(fmt::format("duplicate body name '{}'", s.bodies.back().name));
-  }
-  if (s.bodies.empty()) f.at("bodies").fail("a scene needs at least one body");
+  if (const auto bodies = f.find("bodies"))
+    for (const YamlField& b : bodies->items()) {
+      s.bodies.push_back(readBody(b));
+      if (!body_names.insert(s.bodies.back().name).second)
+        b.at("name").fail(fmt::format("duplicate body or member name '{}'", s.bodies.back().name));
+    }
+  if (const auto members = f.find("members"))
+    for (const YamlField& m : members->items()) {
+      s.members.push_back(readMember(m));
+      if (!body_names.insert(s.members.back().name).second)
+        m.at("name").fail(fmt::format("duplicate body or member name '{}'", s.members.back().name));
+    }
+  if (s.bodies.empty() && s.members.empty()) f.fail("a scene needs at least one body or member");
   std::set<std::string> constraint_names;
   if (const auto cs = f.find("constraints"))
     for (const YamlField& c : cs->items()) {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 namespace cranesim {
@@ -56,10 +57,17 @@ std::optional<YamlField> YamlField::find(const std::string& key) const {
   return at(key);
 }
 
-void YamlField::allowKeys(std::initializer_list<const char*> allowed) const {
+void YamlField::allowKeys(const std::vector<const char*>& allowed) const {
   if (!node_.IsMap()) fail(fmt::format("expected a mapping, found {}", typeName(node_)));
+  std::vector<std::string> seen;
   for (const auto& kv : node_) {
     const std::string key = kv.first.as<std::string>();
+    if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
+      const YAML::Mark mark = kv.first.Mark();
+      throw SceneError({path_.empty() ? key : path_ + "." + key, mark.line + 1, mark.column + 1},
+                       fmt::format("duplicate key '{}'", key));
+    }
+    seen.push_back(key);
     if (std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) continue;
     std::string best;
     std::size_t best_distance = 3;
@@ -112,6 +120,15 @@ bool YamlField::boolean() const {
 std::string YamlField::text() const {
   if (!node_.IsScalar()) fail(fmt::format("expected a string, found {}", typeName(node_)));
   return node_.Scalar();
+}
+
+std::string YamlField::identifier() const {
+  const std::string name = text();
+  const bool valid = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
+  if (!valid) fail(fmt::format("'{}' is not a valid name: use letters, digits, '_' and '-'", name));
+  return name;
 }
 
 std::vector<double> YamlField::numbers() const {

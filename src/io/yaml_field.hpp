@@ -30,7 +30,7 @@ class YamlField {
   YamlField at(const std::string& key) const;
   std::optional<YamlField> find(const std::string& key) const;
   /// Fails on any key not in `allowed`, suggesting the closest allowed key.
-  void allowKeys(std::initializer_list<const char*> allowed) const;
+  void allowKeys(const std::vector<const char*>& allowed) const;
 
   double number() const;
   double positive() const;
@@ -38,6 +38,8 @@ class YamlField {
   int integer() const;
   bool boolean() const;
   std::string text() const;
+  /// A name usable in joint references and HDF5 paths: letters, digits, '_' and '-'.
+  std::string identifier() const;
   Vec3 vec3() const;
   std::vector<double> numbers() const;
   std::vector<YamlField> items() const;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include "cranesim/elements/rigid_body.hpp"
+#include "cranesim/elements/spline_rope.hpp"
+#include "cranesim/elements/strut_tie.hpp"
 #include "cranesim/math/rotation.hpp"
 
 namespace cranesim {
@@ -38,6 +40,91 @@ std::vector<std::string> rowLabels(const Constraint& c) {
   return out;
 }
 
+/// Section axes of a straight member: x along it, z as close to `z_hint` as possible.
+Mat3 memberFrame(const MemberSpec& m) {
+  const Vec3 x = (m.end - m.start).normalized();
+  Vec3 z = m.z_axis - m.z_axis.dot(x) * x;
+  if (z.norm() < 1e-6) {  // hint along the member: fall back to the global z, then y
+    z = Vec3::UnitZ() - x.z() * x;
+    if (z.norm() < 1e-6) z = Vec3::UnitY() - x.y() * x;
+  }
+  z.normalize();
+  Mat3 R;
+  R << x, z.cross(x), z;
+  return R;
+}
+
+template <class Kernel>
+void addElement(Model& model, Kernel kernel, const std::vector<int>& nodes) {
+  std::vector<int> q, v;
+  for (int n : nodes) {
+    const Node& node = model.nodes[n];
+    for (int k = 0; k < node.size(); ++k) q.push_back(node.q + k), v.push_back(node.v + k);
+  }
+  model.elements.push_back(std::make_unique<KernelElement<Kernel>>(std::move(kernel), nodes, q, v));
+}
+
+NodeKind memberNodeKind(MemberType type) {
+  switch (type) {
+    case MemberType::StrutTie: return NodeKind::Point;
+    case MemberType::Timoshenko: return NodeKind::Frame;
+    case MemberType::SplineBeam: return NodeKind::FrameStretch;
+    case MemberType::Rope: return NodeKind::PointSlope;
+  }
+  return NodeKind::Frame;
+}
+
+void compileMember(Model& model, const MemberSpec& m) {
+  const Mat3 R = memberFrame(m);
+  const Vec3 axis = m.end - m.start;
+  const double chord = axis.norm();
+  const double unstretched = m.length ? (*m.length)(model.solver.t_start) : chord;
+  if (!(unstretched > 0.0)) throw SceneError(m.where, "the rope's unstretched length must be positive");
+  const NodeKind kind = memberNodeKind(m.type);
+  std::vector<int> nodes;
+  for (int i = 0; i <= m.segments; ++i) {
+    const int n = model.addNode(fmt::format("{}.n{}", m.name, i), kind);
+    const Node& node = model.nodes[n];
+    model.q0.segment<3>(node.q) = m.start + (static_cast<double>(i) / m.segments) * axis;
+    if (node.hasRotation()) model.q0.segment<3>(node.q + 3) = rotationVector(R);
+    if (kind == NodeKind::FrameStretch) model.q0(node.q + 6) = 1.0;
+    if (kind == NodeKind::PointSlope) model.q0.segment<3>(node.q + 3) = axis / unstretched;  // r' = dr/ds
+    model.joints.push_back({node.name, n, Vec3::Zero(), Mat3::Identity()});
+    nodes.push_back(n);
+  }
+  model.joints.push_back({m.name + ".start", nodes.front(), Vec3::Zero(), Mat3::Identity()});
+  model.joints.push_back({m.name + ".end", nodes.back(), Vec3::Zero(), Mat3::Identity()});
+  const double segment = chord / m.segments;
+  for (int i = 0; i < m.segments; ++i) {
+    const std::vector<int> pair = {nodes[i], nodes[i + 1]};
+    switch (m.type) {
+      case MemberType::StrutTie: {
+        StrutTieKernel k;
+        k.length = segment;
+        k.section = m.section;
+        k.material = m.material;
+        k.constant_volume = m.constant_volume;
+        k.smoothing = m.smoothing;
+        addElement(model, k, pair);
+        break;
+      }
+      case MemberType::Rope: {
+        SplineRopeKernel k;
+        k.total_length = m.length ? *m.length : Profile(ConstantProfile{chord});
+        k.segments = m.segments;
+        k.section = m.section;
+        k.material = m.material;
+        if (m.quadrature > 0) k.rule = gaussLegendre(m.quadrature);
+        addElement(model, k, pair);
+        break;
+      }
+      case MemberType::Timoshenko:
+      case MemberType::SplineBeam:
+        throw std::logic_error("beam kernels are not registered");  // the reader admits no beams yet
+    }
+  }
+}
+
 }  // namespace
 
 Model compileModel(const Scene& scene) {
@@ -60,15 +147,15 @@ Model compileModel(const Scene& scene) {
     kernel.mass = b.mass;
     kernel.centroid = b.centroid;
     kernel.inertia_origin = RigidBodyKernel::inertiaAboutOrigin(b.mass, b.centroid, b.inertia);
-    model.elements.push_back(std::make_unique<KernelElement<RigidBodyKernel>>(
-        kernel, std::vector<int>{node}, std::vector<int>{n.q, n.q + 1, n.q + 2, n.q + 3, n.q + 4, n.q + 5},
-        std::vector<int>{n.v, n.v + 1, n.v + 2, n.v + 3, n.v + 4, n.v + 5}));
+    addElement(model, kernel, {node});
     model.joints.push_back({b.name + ".origin", node, Vec3::Zero(), Mat3::Identity()});
     for (const JointSpec& j : b.joints) {
       if (j.name == "origin") throw SceneError(j.where, "'origin' is reserved: every body has a joint <body>.origin at its origin");
       model.joints.push_back({b.name + "." + j.name, node, j.position, j.rotation});
     }
   }
+
+  for (const MemberSpec& m : scene.members) compileMember(model, m);
 
   const auto resolve = [&](const std::string& name, const SourceLocation& where) {
     const int j = model.findJoint(name);

@@ -21,8 +21,7 @@ const char* typeName(ConstraintType t) {
 std::string modelSummary(const Assembler& assembler) {
   const Model& model = assembler.model();
   std::string out = fmt::format("scene: {}\n", model.name);
-  out += fmt::format("bodies: {} (rigid)\n", model.nodes.size());
-  for (std::size_t k = 0; k < model.elements.size(); ++k) out += fmt::format("  {}\n", model.nodes[k].name);
+  out += fmt::format("nodes: {}   elements: {}\n", model.nodes.size(), model.elements.size());
   int rank = 0;
   if (model.m > 0) {
     const VecX v = VecX::Zero(model.nv);

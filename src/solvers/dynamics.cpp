@@ -148,6 +148,9 @@ class Integrator {
   void* mem_ = nullptr;
 };
 
+constexpr double kStallFraction = 1e-12;  // a step shorter than this (relative to t) makes no progress
+constexpr long kMaxStalledSteps = 1000;
+
 DynamicState stateOf(const Assembler& assembler, double t, const double* y) {
   const Model& model = assembler.model();
   DynamicState s;
@@ -201,6 +204,7 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
 
   double t = initial.t;
   N_Vector quadrature = N_VClone(ida.yq());
+  long stalled_steps = 0;
   long next_sample = 1;
   bool sampled_end = false;
   sink.sample(t, N_VGetArrayPointer(ida.y()), 0.0, 0.0);
@@ -243,6 +247,14 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
       ++next_sample;
       sampled_end = ts == t_end;
     }
+    // IDAS' step limit does not apply in one-step mode: stop a run whose step size collapsed.
+    stalled_steps = t_ret - t > kStallFraction * std::max(1.0, std::abs(t_ret)) ? 0 : stalled_steps + 1;
+    if (stalled_steps > kMaxStalledSteps) {
+      t = t_ret;
+      return finish(false, fmt::format("solver failure at t = {:.6g} s: the step size collapsed to {:.3g} s for {} "
+                                       "steps (a locked mechanism or a discontinuity the model cannot follow)",
+                                       t, t_ret - t, kMaxStalledSteps));
+    }
     t = t_ret;
     if (model.m > 0) {
       const double* yy = N_VGetArrayPointer(ida.y());
@@ -264,7 +276,14 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
       IDAGetQuad(ida.mem(), &t_quadrature, ida.yq());
       DynamicState s = stateOf(assembler, t, y);
       try {
-        solveAccelerations(assembler, s);
+        // A velocity drive may jump at a breakpoint: project dq onto the coming segment's
+        // velocity constraints, then solve its accelerations and multipliers.
+        if (segment_end && model.m > 0) {
+          const ConstraintState C = assembler.constraints(t, s.q.data(), s.v.data(), Limit::Right);
+          const MatX G = MatX(C.G);
+          s.v -= G.transpose() * (G * G.transpose()).ldlt().solve(C.phi_dot);
+        }
+        solveAccelerations(assembler, s, Limit::Right);
       } catch (const std::exception& e) {
         return finish(false, e.what());
       }

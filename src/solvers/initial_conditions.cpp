@@ -48,15 +48,15 @@ void requireIndependentConstraints(const Assembler& assembler, const VecX& q, do
                                             model.m, rank, redundant));
 }
 
-void solveAccelerations(const Assembler& assembler, DynamicState& s) {
-  solveAccelerations(assembler, s, assembler.constraints(s.t, s.q.data(), s.v.data()));
+void solveAccelerations(const Assembler& assembler, DynamicState& s, Limit limit) {
+  solveAccelerations(assembler, s, assembler.constraints(s.t, s.q.data(), s.v.data(), limit), limit);
 }
 
-void solveAccelerations(const Assembler& assembler, DynamicState& s, const ConstraintState& C) {
+void solveAccelerations(const Assembler& assembler, DynamicState& s, const ConstraintState& C, Limit limit) {
   const Model& model = assembler.model();
   const int nv = model.nv, m = model.m;
-  const Eigen::SparseMatrix<double> M = assembler.massMatrix(s.q.data());
-  const VecX F = assembler.appliedForces(s.t, s.q.data(), s.v.data());
+  const Eigen::SparseMatrix<double> M = assembler.massMatrix(s.t, s.q.data());
+  const VecX F = assembler.appliedForces(s.t, s.q.data(), s.v.data(), limit);
   std::vector<Eigen::Triplet<double>> t;
   for (int k = 0; k < M.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
@@ -86,7 +86,7 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
   s.t = t;
   if (model.m > 0) {
     requireIndependentConstraints(assembler, q, t);
-    ConstraintState C = assembler.constraints(t, q.data(), v.data());
+    ConstraintState C = assembler.constraints(t, q.data(), v.data(), Limit::Right);
     int worst = 0;
     const double violation = C.phi.cwiseAbs().maxCoeff(&worst);
     if (violation > tolerance) {
@@ -98,13 +98,13 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
     }
     for (int it = 0; it < kMaxProjectionIterations && C.phi.cwiseAbs().maxCoeff() > kProjectionTolerance; ++it) {
       q -= minimumNormSolution(C.Phi_q, C.phi);
-      C = assembler.constraints(t, q.data(), v.data());
+      C = assembler.constraints(t, q.data(), v.data(), Limit::Right);
     }
     v -= minimumNormSolution(C.G, C.phi_dot);
   }
   s.q = std::move(q);
   s.v = std::move(v);
-  solveAccelerations(assembler, s);
+  solveAccelerations(assembler, s, Limit::Right);
   return s;
 }
 

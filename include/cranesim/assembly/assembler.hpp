@@ -28,10 +28,15 @@ struct ConstraintState {
 
 class Assembler {
  public:
-  explicit Assembler(const Model& model);
+  explicit Assembler(const Model& model) : Assembler(model, model.solver.formulation) {}
+  /// With a formulation other than the scene's (statics always uses the GGL rows).
+  Assembler(const Model& model, Formulation formulation);
 
   const Model& model() const { return model_; }
-  bool ggl() const { return model_.solver.formulation == Formulation::GGL; }
+  bool ggl() const { return formulation_ == Formulation::GGL; }
+  /// Scales gravity and applied loads (statics ramps them from 0 to 1).
+  void setLoadFactor(double factor) { load_factor_ = factor; }
+  double loadFactor() const { return load_factor_; }
   /// Size of y and offsets of its parts.
   int size() const { return size_; }
   int vOffset() const { return model_.nq; }
@@ -45,14 +50,17 @@ class Assembler {
   void jacobian(double t, double cj, const double* y, const double* yp, double* values) const;
 
   // Pieces used by initial conditions, restarts and output.
-  Eigen::SparseMatrix<double> massMatrix(const double* q) const;
+  Eigen::SparseMatrix<double> massMatrix(double t, const double* q) const;
   /// F(q, dq, t) − Q(q, t): everything but inertia and constraint forces.
-  VecX appliedForces(double t, const double* q, const double* v) const;
-  ConstraintState constraints(double t, const double* q, const double* v) const;
+  /// `limit`: at a drive or load breakpoint, the one-sided values to use (Right when
+  /// (re)starting from it).
+  VecX appliedForces(double t, const double* q, const double* v, Limit limit = Limit::Left) const;
+  ConstraintState constraints(double t, const double* q, const double* v, Limit limit = Limit::Left) const;
   /// q̇ = H(q) dq.
   VecX coordinateRates(const double* q, const double* v) const;
-  double kineticEnergy(const double* q, const double* v) const;
-  double potentialEnergy(const double* q) const;
+  double kineticEnergy(double t, const double* q, const double* v) const;
+  /// Gravity potential plus strain energy.
+  double potentialEnergy(double t, const double* q) const;
   /// Power of the applied loads, Q·dq.
   double loadPower(double t, const double* q, const double* v) const;
   /// max |Φ(q, t)| over all constraint equations, for y = [q, …].
@@ -71,9 +79,13 @@ class Assembler {
 
   void buildPattern();
   template <class S> Eigen::Matrix<S, 6, 1> loadVector(const Load& load, const double* q, double t,
-                                                       bool seed) const;
+                                                       bool seed, Limit limit = Limit::Left) const;
+
+  Vec3 gravity() const { return load_factor_ * model_.gravity; }
 
   const Model& model_;
+  Formulation formulation_;
+  double load_factor_ = 1.0;
   int size_ = 0;
   SparsityPattern pattern_;
   std::vector<NodeBlocks> node_blocks_;

@@ -79,14 +79,14 @@ FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, i
 
 template <class Q>
 ConstraintDerivatives<Q> evaluateConstraint(const Model& model, const Constraint& c,
-                                            const double* q, double t) {
+                                            const double* q, double t, Limit limit = Limit::Left) {
   using D = Dual<Q, kConstraintDirections>;
   const FrameT<D> j1 = detail::perturbedJointFrame<Q>(model, c.joint1, q, 0);
   const FrameT<D> j2 = detail::perturbedJointFrame<Q>(model, c.joint2, q, 1);
   const D time = seeded<Q, kConstraintDirections>(detail::seedCoordinate<Q>(t, kTimeDirection),
                                                   kTimeDirection);
   D phi[kMaxConstraintRows];
-  constraintEquations<D>(c.law(), j1, j2, time, phi);
+  constraintEquations<D>(c.law(limit), j1, j2, time, phi);
   ConstraintDerivatives<Q> out;
   out.rows = c.rows;
   for (int i = 0; i < c.rows; ++i) {

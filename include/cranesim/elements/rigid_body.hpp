@@ -24,7 +24,7 @@ struct RigidBodyKernel {
   }
 
   /// Mass matrix (3-4): [[m I, −m R r̃ᶜ], [m r̃ᶜ Rᵀ, Θ⁰]].
-  template <class S> Eigen::Matrix<S, 6, 6> massMatrix(const Q<S>& q) const {
+  template <class S> Eigen::Matrix<S, 6, 6> massMatrix(const Q<S>& q, double = 0.0) const {
     const Mat3T<S> R = rotationMatrix<S>(q.template tail<3>());
     const Mat3T<S> c = skew<S>(centroid.cast<S>());
     Eigen::Matrix<S, 6, 6> M;
@@ -37,7 +37,7 @@ struct RigidBodyKernel {
 
   /// F = quadratic-velocity terms (3-4: D·dq) + gravity (3-5), on the left-hand side:
   /// [m R ω̃ ω̃ r⁰ᶜ − m g, ω̃ Θ⁰ ω − m r̃⁰ᶜ Rᵀ g].
-  template <class S> V<S> force(const Q<S>& q, const V<S>& v, const Vec3& gravity) const {
+  template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
     const Mat3T<S> R = rotationMatrix<S>(q.template tail<3>());
     const Vec3T<S> w = v.template tail<3>();
     const Vec3T<S> c = centroid.cast<S>();
@@ -48,12 +48,12 @@ struct RigidBodyKernel {
     return F;
   }
 
-  double kineticEnergy(const Q<double>& q, const V<double>& v) const {
+  double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
     return 0.5 * v.dot(massMatrix<double>(q) * v);
   }
 
   /// −m g·rᶜ: zero at the inertial origin.
-  double potentialEnergy(const Q<double>& q, const Vec3& gravity) const {
+  double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const {
     const Vec3 rc = q.head<3>() + rotationMatrix<double>(q.tail<3>()) * centroid;
     return -mass * gravity.dot(rc);
   }

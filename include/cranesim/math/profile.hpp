@@ -54,6 +54,10 @@ inline double tanhConfidenceCoefficient(double confidence) { return std::atanh(c
 std::vector<double> splineSlopes(const std::vector<double>& t, const std::vector<double>& y,
                                  bool zero_end_slopes);
 
+/// Which one-sided value a profile takes exactly at a breakpoint: the integrator approaches
+/// a breakpoint from the left and restarts from it to the right.
+enum class Limit { Left, Right };
+
 class Profile {
  public:
   using Kind = std::variant<ConstantProfile, RampProfile, TrapezoidProfile, CosineStepProfile,
@@ -62,8 +66,8 @@ class Profile {
   Profile() = default;
   explicit Profile(Kind kind, double scale = 1.0) : kind_(std::move(kind)), scale_(scale) {}
 
-  template <class S> S operator()(const S& t) const {
-    return std::visit([&](const auto& p) { return S(scale_ * evaluate(p, t)); }, kind_);
+  template <class S> S operator()(const S& t, Limit limit = Limit::Left) const {
+    return std::visit([&](const auto& p) { return S(scale_ * evaluate(p, t, limit)); }, kind_);
   }
 
   /// Times where a derivative up to the second jumps; the integrator restarts there.
@@ -72,59 +76,62 @@ class Profile {
   bool isConstant() const { return std::holds_alternative<ConstantProfile>(kind_); }
 
  private:
-  template <class S> static S evaluate(const ConstantProfile& p, const S&) { return S(p.value); }
+  /// Whether time tv lies before breakpoint b, seen from the given side.
+  static bool before(double tv, double b, Limit limit) { return limit == Limit::Left ? tv <= b : tv < b; }
 
-  template <class S> static S evaluate(const RampProfile& p, const S& t) {
-    if (valueOf(t) < p.t_start) return S(p.value);
+  template <class S> static S evaluate(const ConstantProfile& p, const S&, Limit) { return S(p.value); }
+
+  template <class S> static S evaluate(const RampProfile& p, const S& t, Limit limit) {
+    if (before(valueOf(t), p.t_start, limit)) return S(p.value);
     return p.value + p.rate * (t - p.t_start);
   }
 
-  template <class S> static S evaluate(const TrapezoidProfile& p, const S& t) {
+  template <class S> static S evaluate(const TrapezoidProfile& p, const S& t, Limit limit) {
     const double t1 = p.t_accel, t3 = p.t_decel, t0 = p.duration, t2 = t0 - t1 - t3;
     const double a1 = 2.0 * p.distance / (t1 * (2.0 * t0 - t1 - t3));   // (E-5)
     const double a3 = -2.0 * p.distance / (t3 * (2.0 * t0 - t1 - t3));  // (E-5)
     const double vmax = a1 * t1, s1 = 0.5 * a1 * t1 * t1, s2 = vmax * t2;
     const S tau = t - p.t_start;
     const double tv = valueOf(tau);
-    if (tv <= 0.0) return S(p.from);
-    if (tv <= t1) return p.from + 0.5 * a1 * tau * tau;
-    if (tv <= t1 + t2) return p.from + s1 + vmax * (tau - t1);
-    if (tv <= t0) {
+    if (before(tv, 0.0, limit)) return S(p.from);
+    if (before(tv, t1, limit)) return p.from + 0.5 * a1 * tau * tau;
+    if (before(tv, t1 + t2, limit)) return p.from + s1 + vmax * (tau - t1);
+    if (before(tv, t0, limit)) {
       const S d = tau - (t1 + t2);
       return p.from + s1 + s2 + vmax * d + 0.5 * a3 * d * d;
     }
     return S(p.from + p.distance);
   }
 
-  template <class S> static S evaluate(const CosineStepProfile& p, const S& t) {
+  template <class S> static S evaluate(const CosineStepProfile& p, const S& t, Limit limit) {
     using std::cos;
     const double tv = valueOf(t);
-    if (tv <= p.t_start) return S(p.from);
-    if (tv >= p.t_end) return S(p.to);
+    if (before(tv, p.t_start, limit)) return S(p.from);
+    if (!before(tv, p.t_end, limit)) return S(p.to);
     return 0.5 * (p.from + p.to) +
            0.5 * (p.from - p.to) * cos((t - p.t_start) * std::numbers::pi / (p.t_end - p.t_start));
   }
 
-  template <class S> static S evaluate(const CosineFullProfile& p, const S& t) {
+  template <class S> static S evaluate(const CosineFullProfile& p, const S& t, Limit limit) {
     using std::cos;
     const double tv = valueOf(t);
-    if (tv <= p.t_start || tv >= p.t_end) return S(p.base);
+    if (before(tv, p.t_start, limit) || !before(tv, p.t_end, limit)) return S(p.base);
     return 0.5 * (p.base + p.peak) +
            0.5 * (p.base - p.peak) *
                cos(2.0 * std::numbers::pi * (t - p.t_start) / (p.t_end - p.t_start));
   }
 
-  template <class S> static S evaluate(const TanhProfile& p, const S& t) {
+  template <class S> static S evaluate(const TanhProfile& p, const S& t, Limit) {
     using std::tanh;
     return 0.5 * (p.from + p.to) +
            0.5 * (p.to - p.from) *
                tanh(p.lambda * (2.0 * t - (p.t_start + p.t_end)) / (p.t_end - p.t_start));
   }
 
-  template <class S> static S evaluate(const TableProfile& p, const S& t) {
+  template <class S> static S evaluate(const TableProfile& p, const S& t, Limit limit) {
     const double tv = valueOf(t);
-    if (tv <= p.t.front()) return S(p.y.front());
-    if (tv >= p.t.back()) return S(p.y.back());
+    if (before(tv, p.t.front(), limit)) return S(p.y.front());
+    if (!before(tv, p.t.back(), limit)) return S(p.y.back());
     std::size_t i = 1;
     while (p.t[i] < tv) ++i;
     const double h = p.t[i] - p.t[i - 1];

@@ -26,6 +26,7 @@ struct ConstraintLaw {
   ConstraintType type = ConstraintType::Fixed;
   int axis = 2;                  // i: revolute/prismatic axis; p, q are the two others
   const Profile* drive = nullptr;  // angle, displacement or length; may be null
+  Limit limit = Limit::Left;       // side of a drive breakpoint
 };
 
 template <class S>
@@ -55,7 +56,7 @@ void constraintEquations(const ConstraintLaw& law, const FrameT<S>& j1, const Fr
         // Angle ψ of J2 about e_i relative to J1: cos ψ = e_p¹·e_p², sin ψ = e_q¹·e_p².
         // sin(ψ − ψ_d(t)) = 0, regular wherever the joint is near its prescribed angle.
         using std::cos, std::sin;
-        const S angle = (*law.drive)(t);
+        const S angle = (*law.drive)(t, law.limit);
         phi[5] = j1.R.col(q).dot(j2.R.col(p)) * cos(angle) - j1.R.col(p).dot(j2.R.col(p)) * sin(angle);
       }
       return;
@@ -65,12 +66,12 @@ void constraintEquations(const ConstraintLaw& law, const FrameT<S>& j1, const Fr
       phi[0] = s.dot(j1.R.col(p));
       phi[1] = s.dot(j1.R.col(q));
       lockRotation(phi + 2);
-      if (law.drive) phi[5] = s.dot(j1.R.col(i)) - (*law.drive)(t);
+      if (law.drive) phi[5] = s.dot(j1.R.col(i)) - (*law.drive)(t, law.limit);
       return;
     }
     case ConstraintType::Distance: {
       using std::sqrt;
-      phi[0] = sqrt(d.squaredNorm()) - (*law.drive)(t);
+      phi[0] = sqrt(d.squaredNorm()) - (*law.drive)(t, law.limit);
       return;
     }
   }

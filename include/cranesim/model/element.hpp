@@ -2,6 +2,18 @@
 // The assembler's view of an element: equations of motion M(q) d(dq)/dt + F(q, dq, t) on a
 // few nodes, with their Jacobians. KernelElement adapts any header-only kernel to it and
 // obtains the Jacobians from the kernel's templated code by forward automatic differentiation.
+//
+// Kernel contract (DESIGN §3). A kernel is a small struct with
+//   static constexpr int kNq, kNv;                       local sizes of q_e and dq_e
+//   template <class S> Matrix<S, kNv, kNv> massMatrix(const Matrix<S, kNq, 1>& q, double t) const;
+//   template <class S> Matrix<S, kNv, 1> force(const Matrix<S, kNq, 1>& q,
+//                                              const Matrix<S, kNv, 1>& dq, double t,
+//                                              const Vec3& gravity) const;
+//   double kineticEnergy(q, dq, t) const;      ½ dqᵀ M dq
+//   double potentialEnergy(q, t, gravity) const;  gravity + strain energy
+// so that its equations read M(q, t) d(dq)/dt + F(q, dq, t) = applied and constraint forces
+// (3-26, 3-51). q_e and dq_e are the concatenated coordinates of the element's nodes, in order.
+// The templated functions must not branch on derivative parts and must not allocate.
 
 #include <array>
 #include <vector>
@@ -60,7 +72,8 @@ template <class Kernel> class KernelElement final : public Element {
   void residual(const ElementInput& in, double* r) const override {
     const Qd q = gatherQ(in.q);
     Eigen::Map<Vd> out(r);
-    out = kernel_.template massMatrix<double>(q) * gatherV(in.a) + kernel_.template force<double>(q, gatherV(in.v), in.gravity);
+    out = kernel_.template massMatrix<double>(q, in.t) * gatherV(in.a) +
+          kernel_.template force<double>(q, gatherV(in.v), in.t, in.gravity);
   }
 
   void jacobian(const ElementInput& in, double cj, double* J) const override {
@@ -71,23 +84,23 @@ template <class Kernel> class KernelElement final : public Element {
     Eigen::Matrix<D, kNv, 1> v;
     for (int k = 0; k < kNq; ++k) q(k) = seeded<double, kNq + kNv>(qd(k), k);
     for (int k = 0; k < kNv; ++k) v(k) = seeded<double, kNq + kNv>(vd(k), kNq + k);
-    const Eigen::Matrix<D, kNv, 1> r =
-        kernel_.template massMatrix<D>(q) * ad.template cast<D>() + kernel_.template force<D>(q, v, in.gravity);
+    const Eigen::Matrix<D, kNv, 1> r = kernel_.template massMatrix<D>(q, in.t) * ad.template cast<D>() +
+                                       kernel_.template force<D>(q, v, in.t, in.gravity);
     Eigen::Map<Eigen::Matrix<double, kNv, kNq + kNv>> Jm(J);
     for (int i = 0; i < kNv; ++i) Jm.row(i) = r(i).derivatives().transpose();
-    Jm.template rightCols<kNv>() += cj * kernel_.template massMatrix<double>(qd);
+    Jm.template rightCols<kNv>() += cj * kernel_.template massMatrix<double>(qd, in.t);
   }
 
   void mass(const ElementInput& in, double* M) const override {
     Eigen::Map<Eigen::Matrix<double, kNv, kNv>> out(M);
-    out = kernel_.template massMatrix<double>(gatherQ(in.q));
+    out = kernel_.template massMatrix<double>(gatherQ(in.q), in.t);
   }
 
   double kineticEnergy(const ElementInput& in) const override {
-    return kernel_.kineticEnergy(gatherQ(in.q), gatherV(in.v));
+    return kernel_.kineticEnergy(gatherQ(in.q), gatherV(in.v), in.t);
   }
   double potentialEnergy(const ElementInput& in) const override {
-    return kernel_.potentialEnergy(gatherQ(in.q), in.gravity);
+    return kernel_.potentialEnergy(gatherQ(in.q), in.t, in.gravity);
   }
 
  private:

@@ -67,7 +67,7 @@ struct Constraint {
   std::vector<std::string> row_labels;
   SourceLocation where;
 
-  ConstraintLaw law() const { return {type, axis, drive ? &*drive : nullptr}; }
+  ConstraintLaw law(Limit limit = Limit::Left) const { return {type, axis, drive ? &*drive : nullptr, limit}; }
 };
 
 struct Load {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cranesim/elements/section.hpp"
 #include "cranesim/math/profile.hpp"
 #include "cranesim/math/types.hpp"
 #include "cranesim/model/source_location.hpp"
@@ -28,6 +29,26 @@ struct RigidBodySpec {
   Vec3 velocity = Vec3::Zero();        // initial origin velocity, inertial
   Vec3 angular_velocity = Vec3::Zero();  // initial, body frame
   std::vector<JointSpec> joints;
+  SourceLocation where;
+};
+
+enum class MemberType { StrutTie, Timoshenko, SplineBeam, Rope };
+
+/// A flexible member: a straight line of `segments` elements from `start` to `end`, with nodes
+/// `<name>.n0 … <name>.n<segments>` (joints of the same names; `<name>.start`, `<name>.end`
+/// name the end nodes). Section axes: x along the member, z towards `z_axis`.
+struct MemberSpec {
+  std::string name;
+  MemberType type = MemberType::Timoshenko;
+  Vec3 start = Vec3::Zero(), end = Vec3::UnitX();
+  Vec3 z_axis = Vec3::UnitZ();
+  int segments = 1;
+  int quadrature = 0;  // Gauss points per element; 0: the element's default
+  Section section;
+  Material material;
+  std::optional<Profile> length;  // rope: unstretched length (default: ‖end − start‖)
+  bool constant_volume = true;    // strut tie: section shrinks with stretch (3-27)
+  double smoothing = 0.0;         // strut tie: smoothing factor h (3-16)
   SourceLocation where;
 };
 
@@ -78,6 +99,9 @@ struct SolverSpec {
   double baumgarte_alpha = 10.0;
   double baumgarte_beta = 1.0;
   double initial_tolerance = 1e-6;  // largest initial constraint violation that is projected away
+  /// Start from the given state, or from the static equilibrium near it (thesis: every crane
+  /// motion starts from equilibrium).
+  bool start_from_equilibrium = false;
 };
 
 struct OutputSpec {
@@ -91,6 +115,7 @@ struct Scene {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
   std::vector<JointSpec> ground_joints;
   std::vector<RigidBodySpec> bodies;
+  std::vector<MemberSpec> members;
   std::vector<ConstraintSpec> constraints;
   std::vector<LoadSpec> loads;
   SolverSpec solver;

@@ -20,9 +20,11 @@ void requireIndependentConstraints(const Assembler& assembler, const VecX& q, do
 /// naming the constraint when the initial violation exceeds `tolerance`.
 DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance);
 
-/// Recomputes a, λ and q̇ for a state whose q and v are already consistent (restarts).
-void solveAccelerations(const Assembler& assembler, DynamicState& state);
+/// Recomputes a, λ and q̇ for a state whose q and v are already consistent. `limit`: Right
+/// when restarting from a breakpoint, so the accelerations are those of the coming segment.
+void solveAccelerations(const Assembler& assembler, DynamicState& state, Limit limit = Limit::Left);
 /// The same with the constraint quantities at (state.t, state.q, state.v) already evaluated.
-void solveAccelerations(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints);
+void solveAccelerations(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints,
+                        Limit limit = Limit::Left);
 
 }  // namespace cranesim

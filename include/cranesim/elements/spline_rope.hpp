@@ -1,0 +1,92 @@
+#pragma once
+// Cubic spline rope (thesis 7.2.1, C.5): a cable element in absolute nodal coordinates
+// q = [r¹, r'¹, r², r'²] (C-141), r' = dr/ds, with the centre line interpolated by cubic Hermite
+// functions (C-142). Tension only (7-1): N = EA max(ε, 0), ε = ‖r'‖ − 1 (C-150); no bending or
+// torsion stiffness; translational inertia only (C-154).
+//
+// The unstretched length may follow a drive, L(t) = length(t)/segments per element; the mass
+// ρA L(t) changes with it, as when a winch reels the rope in or out (6). The equations use
+// M(t) d(dq)/dt: the rope material enters and leaves with the velocity of the element.
+
+#include <algorithm>
+#include <cmath>
+
+#include "cranesim/elements/section.hpp"
+#include "cranesim/math/gauss_legendre.hpp"
+#include "cranesim/math/hermite.hpp"
+#include "cranesim/math/profile.hpp"
+
+namespace cranesim {
+
+struct SplineRopeKernel {
+  static constexpr int kNq = 12;
+  static constexpr int kNv = 12;
+  template <class S> using Q = Eigen::Matrix<S, 12, 1>;
+
+  Profile total_length = Profile(ConstantProfile{1.0});  // unstretched length of the whole rope
+  int segments = 1;                                        // elements the rope is divided into
+  Section section;
+  Material material;
+  GaussRule rule = gaussLegendre(4);
+
+  double segmentLength(double t) const { return total_length(t) / segments; }
+
+  template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const Q<S>&, double t) const {
+    const double L = segmentLength(t), rhoA = material.density * section.area;
+    Eigen::Matrix<double, 12, 12> M = Eigen::Matrix<double, 12, 12>::Zero();
+    for (int g = 0; g < rule.points; ++g) {
+      const auto N = shape(hermiteBasis(rule.xi[g], L).N);
+      M += (rule.weight[g] * L * rhoA) * N.transpose() * N;
+    }
+    return M.cast<S>();
+  }
+
+  template <class S> Q<S> force(const Q<S>& q, const Q<S>&, double t, const Vec3& gravity) const {
+    using std::sqrt;
+    const double L = segmentLength(t), rhoA = material.density * section.area;
+    const double EA = material.youngs_modulus * section.area;
+    Q<S> F = Q<S>::Zero();
+    for (int g = 0; g < rule.points; ++g) {
+      const HermiteBasis b = hermiteBasis(rule.xi[g], L);
+      const auto dN = shape(b.dN);
+      const Vec3T<S> rs = dN.template cast<S>() * q;
+      const S stretch = sqrt(rs.squaredNorm());
+      const S strain = stretch - 1.0;
+      if (strain > 0.0) F += (rule.weight[g] * L * EA) * (strain / stretch) * (dN.transpose().template cast<S>() * rs);
+      F -= (rule.weight[g] * L * rhoA) * (shape(b.N).transpose() * gravity).template cast<S>();
+    }
+    return F;
+  }
+
+  double kineticEnergy(const Q<double>& q, const Q<double>& v, double t) const {
+    return 0.5 * v.dot(massMatrix<double>(q, t) * v);
+  }
+
+  double potentialEnergy(const Q<double>& q, double t, const Vec3& gravity) const {
+    const double L = segmentLength(t), rhoA = material.density * section.area;
+    const double EA = material.youngs_modulus * section.area;
+    double U = 0.0;
+    for (int g = 0; g < rule.points; ++g) {
+      const HermiteBasis b = hermiteBasis(rule.xi[g], L);
+      const double strain = std::max((shape(b.dN) * q).norm() - 1.0, 0.0);
+      U += rule.weight[g] * L * (0.5 * EA * strain * strain - rhoA * gravity.dot(shape(b.N) * q));
+    }
+    return U;
+  }
+
+  /// Axial force at ξ ∈ [0, 1] of the element.
+  double tension(const Q<double>& q, double t, double xi) const {
+    const double strain = (shape(hermiteBasis(xi, segmentLength(t)).dN) * q).norm() - 1.0;
+    return material.youngs_modulus * section.area * std::max(strain, 0.0);
+  }
+
+ private:
+  /// The 3 × 12 interpolation matrix [N0¹ I, N1¹ I, N0² I, N1² I] (C-142).
+  static Eigen::Matrix<double, 3, 12> shape(const std::array<double, 4>& n) {
+    Eigen::Matrix<double, 3, 12> N;
+    for (int k = 0; k < 4; ++k) N.block<3, 3>(0, 3 * k) = n[k] * Mat3::Identity();
+    return N;
+  }
+};
+
+}  // namespace cranesim

@@ -1,0 +1,157 @@
+#include "cranesim/solvers/statics.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/SparseLU>
+
+#include "cranesim/math/rotation.hpp"
+
+namespace cranesim {
+namespace {
+
+/// Unknowns x = [q, λ]; equations: the dq rows and the Φ rows of the GGL residual at dq = 0.
+class EquilibriumSystem {
+ public:
+  EquilibriumSystem(const Model& model, double t) : model_(model), assembler_(model, Formulation::GGL), t_(t) {
+    y_ = VecX::Zero(assembler_.size());
+    yp_ = VecX::Zero(assembler_.size());
+    values_.resize(assembler_.pattern().nonZeros());
+  }
+
+  void setLoadFactor(double f) { assembler_.setLoadFactor(f); }
+  int size() const { return model_.nq + model_.m; }
+
+  VecX residual(const VecX& x) {
+    load(x);
+    VecX r(assembler_.size());
+    assembler_.residual(t_, y_.data(), yp_.data(), r.data());
+    VecX out(size());
+    out << r.segment(assembler_.vOffset(), model_.nv), r.segment(assembler_.muOffset(), model_.m);
+    return out;
+  }
+
+  Eigen::SparseMatrix<double> jacobian(const VecX& x) {
+    load(x);
+    assembler_.jacobian(t_, 0.0, y_.data(), yp_.data(), values_.data());
+    const auto& cp = assembler_.pattern().columnPointers();
+    const auto& ri = assembler_.pattern().rowIndices();
+    std::vector<Eigen::Triplet<double>> triplets;
+    const auto unknown = [&](int col) {  // column of y → column of x, or −1
+      if (col < model_.nq) return col;
+      if (col >= assembler_.lambdaOffset() && col < assembler_.muOffset()) return col - assembler_.lambdaOffset() + model_.nq;
+      return -1;
+    };
+    const auto equation = [&](int row) {  // row of the residual → row of the system, or −1
+      if (row >= assembler_.vOffset() && row < assembler_.lambdaOffset()) return row - assembler_.vOffset();
+      if (row >= assembler_.muOffset()) return row - assembler_.muOffset() + model_.nv;
+      return -1;
+    };
+    for (int c = 0; c < assembler_.size(); ++c) {
+      const int cx = unknown(c);
+      if (cx < 0) continue;
+      for (int k = cp[c]; k < cp[c + 1]; ++k) {
+        const int rx = equation(ri[k]);
+        if (rx >= 0) triplets.emplace_back(rx, cx, values_[k]);
+      }
+    }
+    Eigen::SparseMatrix<double> J(size(), size());
+    J.setFromTriplets(triplets.begin(), triplets.end());
+    return J;
+  }
+
+ private:
+  void load(const VecX& x) {
+    y_.head(model_.nq) = x.head(model_.nq);
+    y_.segment(assembler_.lambdaOffset(), model_.m) = x.tail(model_.m);
+  }
+
+  const Model& model_;
+  Assembler assembler_;
+  double t_;
+  VecX y_, yp_;
+  std::vector<double> values_;
+};
+
+void reparameteriseAll(const Model& model, VecX& x) {
+  for (const Node& n : model.nodes) {
+    if (!n.hasRotation()) continue;
+    Vec3 phi = x.segment<3>(n.q + 3);
+    if (reparameterise(phi)) x.segment<3>(n.q + 3) = phi;
+  }
+}
+
+/// Newton with backtracking on ½‖r‖²; returns iterations used or −1 on failure.
+int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why) {
+  VecX r = system.residual(x);
+  for (int it = 1; it <= options.max_iterations; ++it) {
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+    lu.compute(system.jacobian(x));
+    if (lu.info() != Eigen::Success) {
+      why = "singular equilibrium Jacobian (a mechanism without stiffness in some direction?)";
+      return -1;
+    }
+    const VecX dx = -lu.solve(r);
+    const double merit = r.squaredNorm();
+    double step = 1.0;
+    VecX trial;
+    VecX r_trial;
+    for (int k = 0; k < 30; ++k, step *= 0.5) {
+      trial = x + step * dx;
+      r_trial = system.residual(trial);
+      if (r_trial.allFinite() && r_trial.squaredNorm() <= (1.0 - 1e-4 * step) * merit) break;
+    }
+    x = trial;
+    reparameteriseAll(model, x);
+    r = r_trial;
+    const double scale = 1.0 + x.head(model.nq).cwiseAbs().maxCoeff();
+    if ((step * dx.head(model.nq)).cwiseAbs().maxCoeff() < options.tolerance * scale) return it;
+  }
+  why = fmt::format("no convergence in {} Newton iterations (residual {:.3g})", options.max_iterations,
+                    r.cwiseAbs().maxCoeff());
+  return -1;
+}
+
+}  // namespace
+
+StaticResult solveStatics(const Model& model, const VecX& q_start, double t, const StaticOptions& options) {
+  StaticResult result;
+  result.t = t;
+  EquilibriumSystem system(model, t);
+  VecX x = VecX::Zero(system.size());
+  x.head(model.nq) = q_start;
+  double reached = 0.0;
+  double increment = 1.0 / options.initial_load_steps;
+  int halvings = 0;
+  while (reached < 1.0) {
+    const double target = std::min(1.0, reached + increment);
+    system.setLoadFactor(target);
+    VecX trial = x;
+    std::string why;
+    const int used = newton(model, system, trial, options, why);
+    if (used < 0) {
+      result.iterations += options.max_iterations;
+      if (++halvings > options.max_load_halvings) {
+        result.message = fmt::format("static equilibrium not found at load factor {:.4g}: {}", target, why);
+        result.q = x.head(model.nq);
+        result.lambda = x.tail(model.m);
+        return result;
+      }
+      increment *= 0.5;
+      continue;
+    }
+    result.iterations += used;
+    ++result.load_steps;
+    x = trial;
+    reached = target;
+  }
+  system.setLoadFactor(1.0);
+  const VecX r = system.residual(x);
+  result.converged = true;
+  result.q = x.head(model.nq);
+  result.lambda = x.tail(model.m);
+  result.force_residual = r.head(model.nv).cwiseAbs().maxCoeff();
+  result.constraint_residual = model.m > 0 ? r.tail(model.m).cwiseAbs().maxCoeff() : 0.0;
+  return result;
+}
+
+}  // namespace cranesim

@@ -1,0 +1,236 @@
+"""Command-line behaviour of crane-sim: input validation, exit codes and the results file.
+
+Exit codes: 0 success, 1 solver failure (results kept, marked incomplete), 2 bad input.
+
+Every tests/bad_scenes/*.yaml is a near-copy of a valid scene with one defect. Its first two
+lines say what the error must contain and which YAML path it must name:
+
+    # expect: <substring of the error message>
+    # path: <YAML path the error is reported at, e.g. bodies[0].mass or <document>>
+
+Environment: CRANESIM_BIN (default <repo>/build/crane-sim) and CRANESIM_SOURCE_DIR
+(default: two levels up from this file).
+"""
+
+import os
+import re
+import subprocess
+from pathlib import Path
+
+import h5py
+import pytest
+
+SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
+BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
+BAD_SCENES = sorted((SOURCE_DIR / "tests" / "bad_scenes").glob("*.yaml"))
+PENDULUM = SOURCE_DIR / "configs" / "pendulum.yaml"
+
+EXIT_SOLVER_FAILURE = 1
+EXIT_BAD_INPUT = 2
+
+# A slider on a rail along x, held by a rope from an anchor 1 m above the rail whose length is
+# wound in at 1 m/s from 1.1 m. At t = 0.1 s the rope is vertical; after that no position of the
+# slider satisfies both constraints, so the integration must stop there: a solver failure that
+# no solver improvement can remove.
+LOCKUP_SCENE = """\
+name: slider pulled off its rail
+gravity: [0, 0, -9.81]
+ground:
+  joints:
+    - {name: rail, position: [0, 0, 0]}
+    - {name: anchor, position: [0, 0, 1]}
+bodies:
+  - name: slider
+    mass: 1.0
+    inertia: [0.01, 0.01, 0.01]
+    position: [0.45825756949558405, 0, 0]   # sqrt(1.1² - 1)
+constraints:
+  - name: rail
+    type: prismatic
+    joints: [ground.rail, slider.origin]
+    axis: x
+  - name: rope
+    type: distance
+    joints: [ground.anchor, slider.origin]
+    length: {type: ramp, value: 1.1, rate: -1}
+solver:
+  formulation: ggl
+  t_end: 1
+  rtol: 1.0e-6
+  atol: 1.0e-8
+  newton_coefficient: 0.05
+output:
+  interval: 0.01
+"""
+LOCKUP_TIME = 0.1
+
+
+@pytest.fixture(scope="session", autouse=True)
+def binary() -> Path:
+    if not BINARY.is_file():
+        pytest.fail(f"crane-sim not found at {BINARY}: build it first or set CRANESIM_BIN")
+    return BINARY
+
+
+def crane_sim(*arguments, cwd: Path, timeout: float = 30) -> subprocess.CompletedProcess:
+    return subprocess.run([str(BINARY), *map(str, arguments)], capture_output=True, text=True,
+                          cwd=cwd, timeout=timeout)
+
+
+def expectations(scene: Path) -> tuple[str, str]:
+    lines = scene.read_text(encoding="utf-8").splitlines()
+    expect = re.fullmatch(r"# expect: (.+)", lines[0])
+    path = re.fullmatch(r"# path: (.+)", lines[1])
+    assert expect and path, f"{scene.name} must start with '# expect: ...' and '# path: ...' lines"
+    return expect[1].strip(), path[1].strip()
+
+
+def assert_reported(result: subprocess.CompletedProcess, scene: Path, expect: str, path: str) -> None:
+    """The error names the scene, the YAML path with its line and column, and the problem."""
+    assert result.returncode == EXIT_BAD_INPUT, result.stderr
+    assert expect in result.stderr
+    location = re.escape(f"error: {scene}: {path} (line ") + r"\d+, column \d+\): "
+    assert re.search(location, result.stderr), f"path '{path}' not reported in:\n{result.stderr}"
+    assert "Traceback" not in result.stderr and "terminate called" not in result.stderr
+
+
+def results_attributes(path: Path) -> dict:
+    with h5py.File(path, "r") as f:
+        return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
+
+
+def test_bad_scene_collection_is_complete():
+    assert len(BAD_SCENES) >= 14
+    for scene in BAD_SCENES:
+        expectations(scene)
+
+
+@pytest.mark.parametrize("scene", BAD_SCENES, ids=[s.stem for s in BAD_SCENES])
+def test_bad_scene_is_rejected(scene: Path, tmp_path: Path):
+    expect, path = expectations(scene)
+    out = tmp_path / "out.h5"
+
+    result = crane_sim("run", scene, "-o", out, "--quiet", cwd=tmp_path)
+    assert_reported(result, scene, expect, path)
+    assert not out.exists()
+    assert not Path(f"{out}.partial").exists()
+    assert list(tmp_path.iterdir()) == []
+
+    result = crane_sim("check", scene, cwd=tmp_path)
+    assert_reported(result, scene, expect, path)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_bad_scene_writes_no_default_output(tmp_path: Path):
+    scene = SOURCE_DIR / "tests" / "bad_scenes" / "negative_mass.yaml"
+    result = crane_sim("run", scene, cwd=tmp_path)
+    assert result.returncode == EXIT_BAD_INPUT
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_check_valid_scene(tmp_path: Path):
+    result = crane_sim("check", PENDULUM, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "degrees of freedom: 1" in result.stdout
+    assert "initial state: consistent" in result.stdout
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.fixture(scope="module")
+def short_pendulum(tmp_path_factory) -> Path:
+    """configs/pendulum.yaml cut to 0.5 s."""
+    text, count = re.subn(r"^(\s+t_end:).*$", r"\1 0.5", PENDULUM.read_text(encoding="utf-8"),
+                          flags=re.MULTILINE)
+    assert count == 1
+    scene = tmp_path_factory.mktemp("pendulum") / "pendulum.yaml"
+    scene.write_text(text, encoding="utf-8")
+    return scene
+
+
+def test_run_writes_complete_results(short_pendulum: Path, tmp_path: Path):
+    out = tmp_path / "pendulum.h5"
+    result = crane_sim("run", short_pendulum, "-o", out, "--quiet", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert out.is_file()
+    assert not Path(f"{out}.partial").exists()
+    attributes = results_attributes(out)
+    assert attributes["status"] == "complete"
+    assert attributes["message"] == ""
+    assert attributes["t_reached"] == pytest.approx(0.5)
+    with h5py.File(out, "r") as f:
+        assert f["time"][0] == 0.0 and f["time"][-1] == pytest.approx(0.5)
+
+    info = crane_sim("info", out, cwd=tmp_path)
+    assert info.returncode == 0, info.stderr
+    assert re.search(r"^\s+/time\s", info.stdout, re.MULTILINE), info.stdout
+
+
+def test_info_shows_string_attributes(short_pendulum: Path, tmp_path: Path):
+    out = tmp_path / "pendulum.h5"
+    assert crane_sim("run", short_pendulum, "-o", out, "--quiet", cwd=tmp_path).returncode == 0
+    info = crane_sim("info", out, cwd=tmp_path)
+    assert info.returncode == 0, info.stderr
+    assert re.search(r"^\s+status\s+complete$", info.stdout, re.MULTILINE), info.stdout
+
+
+def test_run_default_output_is_named_after_the_scene(short_pendulum: Path, tmp_path: Path):
+    result = crane_sim("run", short_pendulum, "--quiet", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["pendulum.h5"]
+
+
+def test_info_missing_file(tmp_path: Path):
+    result = crane_sim("info", tmp_path / "missing.h5", cwd=tmp_path)
+    assert result.returncode == EXIT_BAD_INPUT
+    assert "does not exist" in result.stderr
+
+
+def test_info_not_hdf5(tmp_path: Path):
+    text = tmp_path / "notes.h5"
+    text.write_text("this is not an HDF5 file\n", encoding="utf-8")
+    result = crane_sim("info", text, cwd=tmp_path)
+    assert result.returncode == EXIT_BAD_INPUT
+    assert "not an HDF5 file" in result.stderr
+
+
+@pytest.mark.parametrize("command", ["run", "check"])
+def test_missing_scene(command: str, tmp_path: Path):
+    scene = tmp_path / "no_such_scene.yaml"
+    result = crane_sim(command, scene, cwd=tmp_path)
+    assert result.returncode == EXIT_BAD_INPUT
+    assert str(scene) in result.stderr and "cannot open the scene file" in result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_solver_failure_keeps_incomplete_results(tmp_path: Path):
+    scene = tmp_path / "lockup.yaml"
+    scene.write_text(LOCKUP_SCENE, encoding="utf-8")
+    out = tmp_path / "lockup.h5"
+
+    check = crane_sim("check", scene, cwd=tmp_path)
+    assert check.returncode == 0, check.stderr
+
+    try:
+        result = crane_sim("run", scene, "-o", out, "--quiet", cwd=tmp_path, timeout=60)
+    except subprocess.TimeoutExpired:
+        pytest.fail("the solver did not stop at the lock-up within 60 s (stalled at t = 0.1 s?)")
+    assert result.returncode == EXIT_SOLVER_FAILURE, result.stderr
+    assert "error: solver failure at t = " in result.stderr
+    assert out.is_file()
+    assert not Path(f"{out}.partial").exists()
+
+    attributes = results_attributes(out)
+    assert attributes["status"] == "incomplete"
+    message = attributes["message"]
+    assert message and message in result.stderr
+    failed_at = re.search(r"\bt = ([-+0-9.eE]+) s", message)
+    assert failed_at, message
+    assert float(failed_at[1]) == pytest.approx(LOCKUP_TIME, abs=1e-3)
+    assert attributes["t_reached"] == pytest.approx(LOCKUP_TIME, abs=1e-3)
+    with h5py.File(out, "r") as f:
+        time = f["time"][:]
+    assert 0 < len(time) and time[-1] <= LOCKUP_TIME + 1e-9
+
+    info = crane_sim("info", out, cwd=tmp_path)
+    assert info.returncode == 0, info.stderr
+    assert re.search(r"^\s+/time\s", info.stdout, re.MULTILINE), info.stdout
