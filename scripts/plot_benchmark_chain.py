@@ -92,7 +92,7 @@ def plot(rows, out):
     # Line width and shade encode N within a formulation's colour.
     shade = {n: 0.35 + 0.65 * (i / max(1, len(sizes) - 1)) for i, n in enumerate(sizes)}
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(14, 6), gridspec_kw={"width_ratios": [1.6, 1]})
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(14, 7.5), gridspec_kw={"width_ratios": [1.6, 1]})
     for form in formulations:
         color, dash = STYLE.get(form, ("tab:gray", ":"))
         for n in sizes:
@@ -111,12 +111,16 @@ def plot(rows, out):
     ax1.set_ylabel("max tip error of the last link vs reference (m)")
     ax1.set_title("Work-precision: planar pendulum chains")
     ax1.grid(True, which="both", alpha=0.3)
-    leg1 = ax1.legend(fontsize=7, ncol=2, loc="lower left", title="formulation, links")
+    # Legends below the panel, clear of the data.
+    line_handles, line_labels = ax1.get_legend_handles_labels()
+    leg1 = ax1.legend(line_handles, line_labels, fontsize=7, ncol=max(1, len(sizes)), loc="upper center",
+                      bbox_to_anchor=(0.5, -0.12), title="formulation, links", title_fontsize=8)
     ax1.add_artist(leg1)
     handles = [plt.Line2D([], [], ls="", marker=m, color="gray", mec="k", label=f"rtol {r:g}")
                for r, m in RTOL_MARKERS.items() if any(math.isclose(x["rtol"], r, rel_tol=1e-6) for x in rows)]
     if handles:
-        ax1.legend(handles=handles, fontsize=7, loc="upper right", title="markers")
+        ax1.legend(handles=handles, fontsize=7, ncol=len(handles), loc="upper center", bbox_to_anchor=(0.5, -0.29),
+                   title="markers", title_fontsize=8)
 
     any_panel = False
     for form in formulations:

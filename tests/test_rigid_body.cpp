@@ -80,7 +80,7 @@ TEST_CASE("Quadratic-velocity terms conserve kinetic energy in free motion", "[e
     Q6 q, v;
     for (int i = 0; i < 6; ++i) q(i) = 2.0 * u(rng), v(i) = u(rng);
     const auto M = k.massMatrix<double>(q);
-    const Q6 a = -M.ldlt().solve(k.force<double>(q, v, Vec3::Zero()));
+    const Q6 a = -M.ldlt().solve(k.force<double>(q, v, 0.0, Vec3::Zero()));
     Q6 qdot;
     qdot.head<3>() = v.head<3>();
     qdot.tail<3>() = angularVelocityMapInverse<double>(Vec3(q.tail<3>())) * v.tail<3>();
@@ -95,7 +95,7 @@ TEST_CASE("Gravity terms are the gradient of the potential energy", "[elements][
   const Vec3 g(0.1, -0.3, -9.81);
   Q6 q;
   q << 0.3, -0.2, 1.0, 0.4, -0.7, 0.9;
-  const Q6 F = k.force<double>(q, Q6::Zero(), g);
+  const Q6 F = k.force<double>(q, Q6::Zero(), 0.0, g);
   // Generalized force along dq = [ṙ, ω]: perturb r directly and R by R exp(ε ω̃).
   for (int i = 0; i < 6; ++i) {
     const double h = 1e-6;
@@ -107,7 +107,7 @@ TEST_CASE("Gravity terms are the gradient of the potential energy", "[elements][
         const Mat3 R = rotationMatrix<double>(Vec3(q.tail<3>())) * axisAngle(Vec3::Unit(i - 3), e);
         p.tail<3>() = rotationVector(R);
       }
-      return k.potentialEnergy(p, g);
+      return k.potentialEnergy(p, 0.0, g);
     };
     CHECK(F(i) == Approx((potentialAt(h) - potentialAt(-h)) / (2 * h)).margin(1e-6));
   }

@@ -84,8 +84,18 @@ void reparameteriseAll(const Model& model, VecX& x) {
 int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why) {
   VecX r = system.residual(x);
   for (int it = 1; it <= options.max_iterations; ++it) {
+    // Directions without stiffness (a slack rope, a body free to turn about its joint) make
+    // the Jacobian singular: shift the coordinate block's diagonal as in Levenberg–Marquardt
+    // until it factorises. The shift changes the step, not the equations being solved.
+    const Eigen::SparseMatrix<double> J = system.jacobian(x);
     Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-    lu.compute(system.jacobian(x));
+    lu.compute(J);
+    const double magnitude = J.coeffs().cwiseAbs().maxCoeff();
+    for (double shift = 1e-10 * magnitude; lu.info() != Eigen::Success && shift < 1e-2 * magnitude; shift *= 100.0) {
+      Eigen::SparseMatrix<double> shifted = J;
+      for (int k = 0; k < model.nv; ++k) shifted.coeffRef(k, k) += shift;
+      lu.compute(shifted);
+    }
     if (lu.info() != Eigen::Success) {
       why = "singular equilibrium Jacobian (a mechanism without stiffness in some direction?)";
       return -1;

@@ -1,0 +1,212 @@
+// Strut tie (3.2) and cubic spline rope (7.2.1, C.5) kernels: mass, elastic forces against
+// the strain energy, Jacobians against finite differences, energy consistency, tension-only
+// behaviour, and the rope against the elastic catenary.
+
+#include <catch2/catch.hpp>
+
+#include <fmt/format.h>
+
+#include <numbers>
+#include <random>
+
+#include "cranesim/elements/spline_rope.hpp"
+#include "cranesim/elements/strut_tie.hpp"
+#include "cranesim/model/element.hpp"
+#include "cranesim/solvers/statics.hpp"
+#include "scene_fixtures.hpp"
+
+using namespace cranesim;
+
+namespace {
+
+constexpr double kSteelE = 2.06e11;
+
+Material steel() { return {7800.0, kSteelE, kSteelE / 2.5}; }
+
+StrutTieKernel strut(bool constant_volume, double smoothing) {
+  StrutTieKernel k;
+  k.length = 2.0;
+  k.section = Section::circular(0.05, 0.04, 0.25);
+  k.material = steel();
+  k.constant_volume = constant_volume;
+  k.smoothing = smoothing;
+  return k;
+}
+
+SplineRopeKernel rope(double length) {
+  SplineRopeKernel k;
+  k.total_length = Profile(ConstantProfile{length});
+  k.section = Section::circular(0.01, 0.0, 0.3);
+  k.material = {7800.0, 1.0e11, 4.0e10};
+  return k;
+}
+
+template <class Kernel> using Vq = Eigen::Matrix<double, Kernel::kNq, 1>;
+
+/// Central differences of the element residual against KernelElement's AD Jacobian.
+template <class Kernel> double jacobianDeviation(const Kernel& kernel, const Vq<Kernel>& q, const Vq<Kernel>& v,
+                                                 const Vq<Kernel>& a) {
+  constexpr int n = Kernel::kNq;
+  std::vector<int> idx(n);
+  for (int k = 0; k < n; ++k) idx[k] = k;
+  const KernelElement<Kernel> element(kernel, {}, idx, idx);
+  const Vec3 g(0, 0, -9.81);
+  const double cj = 7.0, t = 0.3;
+  Eigen::Matrix<double, n, 2 * n> J;
+  element.jacobian({q.data(), v.data(), a.data(), t, g}, cj, J.data());
+  double worst = 0.0, scale = J.cwiseAbs().maxCoeff();
+  for (int c = 0; c < 2 * n; ++c) {
+    const double h = 1e-7 * (1.0 + (c < n ? std::abs(q(c)) : std::abs(v(c - n))));
+    Vq<Kernel> qp = q, qm = q, vp = v, vm = v;
+    if (c < n) qp(c) += h, qm(c) -= h;
+    else vp(c - n) += h, vm(c - n) -= h;
+    Vq<Kernel> rp, rm;
+    element.residual({qp.data(), vp.data(), a.data(), t, g}, rp.data());
+    element.residual({qm.data(), vm.data(), a.data(), t, g}, rm.data());
+    Vq<Kernel> fd = (rp - rm) / (2 * h);
+    if (c >= n) {  // ∂/∂v + cj ∂/∂a: a enters through M
+      Eigen::Matrix<double, n, n> M;
+      element.mass({q.data(), v.data(), a.data(), t, g}, M.data());
+      fd += cj * M.col(c - n);
+    }
+    worst = std::max(worst, (J.col(c) - fd).cwiseAbs().maxCoeff());
+  }
+  return worst / scale;
+}
+
+}  // namespace
+
+TEST_CASE("Strut tie: mass, rigid motion, energy gradient and Jacobians", "[elements][strut]") {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const bool constant_volume : {true, false}) {
+    const StrutTieKernel k = strut(constant_volume, 0.0);
+    Vq<StrutTieKernel> q;
+    q << 0.1, 0.2, -0.3, 1.3, 1.2, 0.9;  // length ≈ 2.0: slightly strained
+    const double l = (q.tail<3>() - q.head<3>()).norm();
+    const auto M = k.massMatrix<double>(q);
+    CHECK(Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(M).eigenvalues().minCoeff() > 0.0);
+    CHECK(M.sum() == Approx(3.0 * k.material.density * k.section.area * k.length).epsilon(1e-12));  // translation: m
+    // Elastic force = gradient of the strain energy (no gravity, at rest).
+    const Vec3 zero = Vec3::Zero();
+    const auto F = k.force<double>(q, Vq<StrutTieKernel>::Zero(), 0.0, zero);
+    for (int i = 0; i < 6; ++i) {
+      const double h = 1e-7;
+      Vq<StrutTieKernel> qp = q, qm = q;
+      qp(i) += h, qm(i) -= h;
+      CHECK(F(i) == Approx((k.potentialEnergy(qp, 0.0, zero) - k.potentialEnergy(qm, 0.0, zero)) / (2 * h)).epsilon(1e-6));
+    }
+    // The axial force of the constant-volume rod: E A L/ℓ · ε.
+    const double eps = l / k.length - 1.0, EA = kSteelE * k.section.area;
+    const Vec3 e = (q.tail<3>() - q.head<3>()) / l;
+    CHECK(F.tail<3>().dot(e) == Approx(constant_volume ? EA * eps * k.length / l : EA * eps).epsilon(1e-9));
+    // Unstrained and moving rigidly (translation + rotation about the centre): no elastic force;
+    // the remaining force is the centripetal inertia of the rotary mass, energy-consistent.
+    Vq<StrutTieKernel> q0;
+    q0 << 0, 0, 0, 2, 0, 0;
+    Vq<StrutTieKernel> v0;
+    v0 << 0.3, -1.0, 0.2, 0.3, 1.0, 0.2;
+    const auto F0 = k.force<double>(q0, v0, 0.0, zero);
+    CHECK(F0.head<3>().dot(Vec3::UnitX()) == Approx(-F0.tail<3>().dot(Vec3::UnitX())));
+    CHECK(std::abs(F0.dot(v0)) < 1e-12);  // rigid rotation: no power
+    Vq<StrutTieKernel> v, a;
+    for (int i = 0; i < 6; ++i) v(i) = u(rng), a(i) = u(rng);
+    CHECK(jacobianDeviation(k, q, v, a) < 1e-6);
+  }
+  const StrutTieKernel smoothed = strut(true, 1e-3);
+  Vq<StrutTieKernel> q, v, a;
+  q << 0.1, 0.2, -0.3, 1.3, 1.2, 0.9;
+  for (int i = 0; i < 6; ++i) v(i) = u(rng), a(i) = u(rng);
+  CHECK(jacobianDeviation(smoothed, q, v, a) < 1e-6);
+}
+
+TEST_CASE("Spline rope: constant mass, tension only, energy gradient and Jacobians", "[elements][rope]") {
+  const SplineRopeKernel k = rope(3.0);
+  // Straight and stretched 1 %: tension EA·0.01 along the rope, equal and opposite at the ends.
+  Vq<SplineRopeKernel> q;
+  q << 0, 0, 0, 1.01, 0, 0, 3.03, 0, 0, 1.01, 0, 0;
+  const Vec3 zero = Vec3::Zero();
+  const auto F = k.force<double>(q, Vq<SplineRopeKernel>::Zero(), 0.0, zero);
+  const double EA = k.material.youngs_modulus * k.section.area;
+  CHECK(F(0) == Approx(-0.01 * EA).epsilon(1e-9));
+  CHECK(F(6) == Approx(0.01 * EA).epsilon(1e-9));
+  CHECK(k.tension(q, 0.0, 0.5) == Approx(0.01 * EA).epsilon(1e-9));
+  // Compressed: no force at all (7-1).
+  Vq<SplineRopeKernel> qc;
+  qc << 0, 0, 0, 0.9, 0, 0, 2.7, 0, 0, 0.9, 0, 0;
+  CHECK(k.force<double>(qc, Vq<SplineRopeKernel>::Zero(), 0.0, zero).norm() == 0.0);
+  CHECK(k.potentialEnergy(qc, 0.0, zero) == 0.0);
+  // Mass: total ρ A L for a rigid translation.
+  const auto M = k.massMatrix<double>(q, 0.0);
+  Vq<SplineRopeKernel> translate = Vq<SplineRopeKernel>::Zero();
+  translate(0) = translate(6) = 1.0;
+  CHECK(translate.dot(M * translate) == Approx(k.material.density * k.section.area * 3.0).epsilon(1e-12));
+  // A general bent, stretched state.
+  Vq<SplineRopeKernel> qb;
+  qb << 0, 0, 0, 0.8, 0.3, -0.7, 2.9, 0.4, -0.2, 1.0, -0.2, 0.5;
+  const auto Fb = k.force<double>(qb, Vq<SplineRopeKernel>::Zero(), 0.0, zero);
+  for (int i = 0; i < 12; ++i) {
+    const double h = 1e-7;
+    Vq<SplineRopeKernel> qp = qb, qm = qb;
+    qp(i) += h, qm(i) -= h;
+    CHECK(Fb(i) == Approx((k.potentialEnergy(qp, 0.0, zero) - k.potentialEnergy(qm, 0.0, zero)) / (2 * h)).epsilon(1e-5).margin(1e-3));
+  }
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Vq<SplineRopeKernel> v, a;
+  for (int i = 0; i < 12; ++i) v(i) = u(rng), a(i) = u(rng);
+  CHECK(jacobianDeviation(k, qb, v, a) < 1e-6);
+  // Reeling: the mass follows the unstretched length.
+  SplineRopeKernel reeled = k;
+  reeled.total_length = Profile(RampProfile{3.0, -0.5, 0.0});
+  CHECK(translate.dot(reeled.massMatrix<double>(q, 2.0) * translate) ==
+        Approx(k.material.density * k.section.area * 2.0).epsilon(1e-12));
+}
+
+TEST_CASE("A rope hanging between two points takes the elastic catenary", "[elements][rope][statics]") {
+  // Supports 20 m apart at equal height, unstretched length 22 m, steel wire r = 1 cm, soft
+  // E = 1e9 so that stretch matters. Irvine's elastic catenary gives H and the sag.
+  const double span = 20.0, L0 = 22.0, radius = 0.01, E = 1e9, rho = 7800.0, g = 9.81;
+  const int segments = 16;
+  const std::string yaml = fmt::format(R"(
+name: catenary
+gravity: [0, 0, {}]
+ground:
+  joints: [{{name: left, position: [0, 0, 0]}}, {{name: right, position: [{}, 0, 0]}}]
+members:
+  - {{name: rope, type: rope, start: [0, 0, 0], end: [{}, 0, 0], segments: {}, length: {},
+     section: {{radius: {}}}, material: {{density: {}, youngs_modulus: {}}}}}
+constraints:
+  - {{name: a, type: spherical, joints: [ground.left, rope.start]}}
+  - {{name: b, type: spherical, joints: [ground.right, rope.end]}}
+solver: {{t_end: 1}}
+)", -g, span, span, segments, L0, radius, rho, E);
+  const Model model = test::loadYaml(yaml);
+  // Start from a parabola of the right length: a straight slack rope has no stiffness.
+  VecX q = model.q0;
+  const double sag_guess = std::sqrt(3.0 * span * (L0 - span) / 8.0);
+  for (const Node& n : model.nodes) {
+    const double x = q(n.q);
+    q(n.q + 2) = -4.0 * sag_guess * x * (span - x) / (span * span);
+    const Vec3 slope(1.0, 0.0, -4.0 * sag_guess * (span - 2.0 * x) / (span * span));
+    q.segment<3>(n.q + 3) = slope.normalized();
+  }
+  const StaticResult eq = solveStatics(model, q, 0.0);
+  INFO(eq.message);
+  REQUIRE(eq.converged);
+  // Irvine: span = H L0/EA + (H/w)[asinh(V/H) − asinh((V − W)/H)], V = W/2, W = w L0.
+  const double A = std::numbers::pi * radius * radius, w = rho * A * g, W = w * L0, EA = E * A, V = W / 2.0;
+  const auto spanOf = [&](double H) { return H * L0 / EA + H / w * (std::asinh(V / H) - std::asinh((V - W) / H)); };
+  double H = 100.0;
+  for (int it = 0; it < 100; ++it) {
+    const double dH = 1e-6 * H;
+    H -= (spanOf(H) - span) / ((spanOf(H + dH) - spanOf(H - dH)) / (2 * dH));
+  }
+  const double sag = W * L0 / (8.0 * EA) + H / w * (std::sqrt(1.0 + (V / H) * (V / H)) - 1.0);
+  const Node& mid = model.nodes[segments / 2];
+  const double computed = -eq.q(mid.q + 2);
+  INFO("sag: computed " << computed << " m, elastic catenary " << sag << " m; H = " << H << " N");
+  CHECK(computed == Approx(sag).epsilon(1e-4));
+  // Horizontal tension: the support reaction along x.
+  CHECK(std::abs(eq.lambda(0)) == Approx(H).epsilon(1e-3));
+}
