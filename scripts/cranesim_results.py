@@ -144,6 +144,9 @@ class Results:
     def time(self) -> np.ndarray:
         return self.dataset("time")[()]
 
+    def has(self, path: str) -> bool:
+        return path.strip("/") in self.file
+
     def names(self, path: str) -> np.ndarray:
         """A string dataset of /model as an array of str (keeps its shape)."""
         dataset = self.dataset(path)

@@ -29,6 +29,7 @@ class MechanismGeometry:
     body_origins: np.ndarray  # (N, bodies, 3)
     joint_positions: np.ndarray  # (N, joints, 3)
     segment_ends: np.ndarray  # (segments, 2): body index, joint index
+    member_segments: np.ndarray  # (segments, 2): joint indices of the element ends of members
     ground_joints: np.ndarray  # joint indices
     body_joints: np.ndarray  # joint indices of the other joints
     constraint_joints: np.ndarray  # (constraints, 2) joint indices
@@ -51,11 +52,19 @@ class MechanismGeometry:
         segment_ends = [
             (bodies.index(body), joint) for joint, body in enumerate(joint_bodies) if body in bodies
         ]
+        member_ends = (
+            results.names("model/member_segments").reshape(-1, 2)
+            if results.has("model/member_segments")
+            else np.empty((0, 2), dtype=str)
+        )
         return cls(
             time=time,
             body_origins=read_positions(results, "bodies/{}/position", bodies, time.size),
             joint_positions=read_positions(results, "joints/{}/position", joints, time.size),
             segment_ends=index_array(segment_ends, columns=2),
+            member_segments=index_array(
+                [[joints.index(a), joints.index(b)] for a, b in member_ends], columns=2
+            ),
             ground_joints=index_array([j for j, body in enumerate(joint_bodies) if body == GROUND]),
             body_joints=index_array([j for j, body in enumerate(joint_bodies) if body != GROUND]),
             constraint_joints=index_array(
@@ -69,9 +78,14 @@ class MechanismGeometry:
     def segments(self, sample: int) -> np.ndarray:
         """(segments, 2, 3) start and end points of the body segments."""
         bodies, joints = self.segment_ends.T
-        return np.stack(
+        rigid = np.stack(
             [self.body_origins[sample, bodies], self.joint_positions[sample, joints]], axis=1
         )
+        first, second = self.member_segments.T
+        flexible = np.stack(
+            [self.joint_positions[sample, first], self.joint_positions[sample, second]], axis=1
+        )
+        return np.concatenate([rigid, flexible], axis=0)
 
     def constraint_points(self, sample: int) -> np.ndarray:
         return self.joint_positions[sample, self.constraint_joints].mean(axis=1)

@@ -113,10 +113,18 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     file.writeDoubles("/v", {N, hsize_t(model.nv)}, v.data());
     file.writeDoubles("/lambda", {N, hsize_t(model.m)}, lambda.data());
 
-    std::vector<std::string> bodies, joints, rows, constraints, constraint_joints;
+    std::vector<std::string> bodies, joints, rows, constraints, constraint_joints, member_segments;
     for (std::size_t n = 0; n < model.nodes.size(); ++n) {
-      const std::string g = "/bodies/" + model.nodes[n].name;
-      bodies.push_back(model.nodes[n].name);
+      const Node& node = model.nodes[n];
+      if (!node.member.empty()) {  // drawn as a polyline through the member's node joints
+        if (n + 1 < model.nodes.size() && model.nodes[n + 1].member == node.member) {
+          member_segments.push_back(node.name);
+          member_segments.push_back(model.nodes[n + 1].name);
+        }
+        continue;
+      }
+      const std::string g = "/bodies/" + node.name;
+      bodies.push_back(node.name);
       file.writeDoubles(g + "/position", {N, 3}, body_position_[n].data());
       file.writeDoubles(g + "/rotation", {N, 3, 3}, body_rotation_[n].data());
       file.writeDoubles(g + "/velocity", {N, 3}, body_velocity_[n].data());
@@ -139,6 +147,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     file.writeStrings("/model/constraints", {constraints.size()}, constraints);
     file.writeStrings("/model/constraint_joints", {constraints.size(), 2}, constraint_joints);
     file.writeStrings("/model/constraint_rows", {rows.size()}, rows);
+    file.writeStrings("/model/member_segments", {member_segments.size() / 2, 2}, member_segments);
 
     file.writeDoubles("/energy/kinetic", {N}, kinetic_.data());
     file.writeDoubles("/energy/potential", {N}, potential_.data());

@@ -83,7 +83,7 @@ void compileMember(Model& model, const MemberSpec& m) {
   const NodeKind kind = memberNodeKind(m.type);
   std::vector<int> nodes;
   for (int i = 0; i <= m.segments; ++i) {
-    const int n = model.addNode(fmt::format("{}.n{}", m.name, i), kind);
+    const int n = model.addNode(fmt::format("{}.n{}", m.name, i), kind, m.name);
     const Node& node = model.nodes[n];
     model.q0.segment<3>(node.q) = m.start + (static_cast<double>(i) / m.segments) * axis;
     if (node.hasRotation()) model.q0.segment<3>(node.q + 3) = rotationVector(R);

@@ -6,8 +6,8 @@
 
 namespace cranesim {
 
-int Model::addNode(std::string name, NodeKind kind) {
-  Node n{std::move(name), kind, nq, nv};
+int Model::addNode(std::string name, NodeKind kind, std::string member) {
+  Node n{std::move(name), kind, nq, nv, std::move(member)};
   nq += n.size();
   nv += n.size();
   nodes.push_back(std::move(n));

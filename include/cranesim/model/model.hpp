@@ -41,6 +41,7 @@ struct Node {
   NodeKind kind = NodeKind::Frame;
   int q = 0;
   int v = 0;
+  std::string member;  // the flexible member the node belongs to; empty for a rigid body
 
   int size() const { return nodeSize(kind); }
   /// Whether coordinates 3…5 are a rotation vector (and velocities 3…5 a body angular velocity).
@@ -95,7 +96,7 @@ struct Model {
   OutputSpec output;
 
   /// Appends a node of the given kind, placing its coordinates after the existing ones.
-  int addNode(std::string name, NodeKind kind);
+  int addNode(std::string name, NodeKind kind, std::string member = "");
   /// Frame of a node at coordinates q (identity rotation for nodes without one).
   Frame nodeFrame(const double* q, int node) const;
   /// Frame of a joint at coordinates q.
