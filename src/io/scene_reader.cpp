@@ -145,7 +145,7 @@ MemberSpec readMember(const YamlField& f) {
   m.where = f.where();
   m.name = f.at("name").identifier();
   if (m.name == "ground") f.at("name").fail("'ground' is reserved for the inertial frame");
-  const std::string type = f.at("type").choice({"strut_tie", "rope"});
+  const std::string type = f.at("type").choice({"strut_tie", "timoshenko", "rope"});
   m.type = type == "strut_tie" ? MemberType::StrutTie
            : type == "timoshenko" ? MemberType::Timoshenko
            : type == "spline_beam" ? MemberType::SplineBeam
@@ -153,6 +153,7 @@ MemberSpec readMember(const YamlField& f) {
   std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "section", "material"};
   if (m.type == MemberType::Rope) keys.push_back("length");
   if (m.type == MemberType::StrutTie) keys.insert(keys.end(), {"constant_volume", "smoothing"});
+  if (m.type == MemberType::Timoshenko) keys.push_back("damping");
   f.allowKeys(keys);
   m.start = f.at("start").vec3();
   m.end = f.at("end").vec3();
@@ -173,6 +174,7 @@ MemberSpec readMember(const YamlField& f) {
   if (const auto l = f.find("length")) m.length = readProfile(*l);
   if (const auto cv = f.find("constant_volume")) m.constant_volume = cv->boolean();
   if (const auto h = f.find("smoothing")) m.smoothing = h->nonNegative();
+  if (const auto d = f.find("damping")) m.damping = d->nonNegative();
   return m;
 }
 

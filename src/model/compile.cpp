@@ -5,6 +5,7 @@
 #include "cranesim/elements/rigid_body.hpp"
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/elements/strut_tie.hpp"
+#include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/rotation.hpp"
 
 namespace cranesim {
@@ -118,7 +119,16 @@ void compileMember(Model& model, const MemberSpec& m) {
         addElement(model, k, pair);
         break;
       }
-      case MemberType::Timoshenko:
+      case MemberType::Timoshenko: {
+        TimoshenkoBeamKernel k;
+        k.length = segment;
+        k.section = m.section;
+        k.material = m.material;
+        if (m.quadrature > 0) k.mass_points = m.quadrature;
+        k.damping = m.damping;
+        addElement(model, k, pair);
+        break;
+      }
       case MemberType::SplineBeam:
         throw std::logic_error("beam kernels are not registered");  // the reader admits no beams yet
     }

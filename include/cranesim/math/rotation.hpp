@@ -9,7 +9,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "cranesim/math/types.hpp"
+#include "cranesim/math/autodiff.hpp"
 
 namespace cranesim {
 
@@ -71,10 +71,38 @@ template <class S> Mat3T<S> angularVelocityMap(const Vec3T<S>& phi) {
 template <class S> Mat3T<S> angularVelocityMapInverse(const Vec3T<S>& phi) {
   const S t2 = phi.squaredNorm();
   const Mat3T<S> P = skew(phi);
-  return Mat3T<S>::Identity() + 0.5 * P + detail::cotc(t2) * (P * P);
+  return Mat3T<S>::Identity() + S(0.5) * P + detail::cotc(t2) * (P * P);
 }
 
-/// Rotation vector of a rotation matrix, with angle in [0, π].
+/// Rotation vector of a rotation matrix (inverse of Rodrigues (2-4)), angle in [0, π),
+/// templated and series-safe at the identity. It is a smooth function of all 3×3 matrices near
+/// SO(3): v = vee of the skew part (sin θ n), c = (tr R − 1)/2 (cos θ), φ = θ/sin θ · v.
+template <class S> Vec3T<S> rotationLog(const Mat3T<S>& R) {
+  using std::acos, std::asin, std::sqrt;
+  const Vec3T<S> v(0.5 * (R(2, 1) - R(1, 2)), 0.5 * (R(0, 2) - R(2, 0)), 0.5 * (R(1, 0) - R(0, 1)));
+  const S c = 0.5 * (R.trace() - 1.0);
+  const S s2 = v.squaredNorm();
+  const double c0 = valueOf(c);
+  S factor;
+  if (valueOf(s2) < 1e-4 && c0 > 0.0) {
+    // asin(s)/s = 1 + s²/6 + 3s⁴/40 + 5s⁶/112 + 35s⁸/1152 + O(s¹⁰)
+    factor = 1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0 + s2 * (5.0 / 112.0 + s2 * (35.0 / 1152.0))));
+  } else {
+    const S s = sqrt(s2);
+    S theta;
+    if (c0 >= 0.7) {
+      theta = asin(s);
+    } else if (c0 > -0.7) {
+      theta = acos(c);
+    } else {
+      theta = std::numbers::pi - asin(s);
+    }
+    factor = theta / s;
+  }
+  return factor * v;
+}
+
+/// Rotation vector of a rotation matrix, with angle in [0, π] (Eigen, doubles only).
 inline Vec3 rotationVector(const Mat3& R) {
   const Eigen::AngleAxisd aa(R);
   return aa.angle() * aa.axis();

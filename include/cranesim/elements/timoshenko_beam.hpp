@@ -1,0 +1,428 @@
+#pragma once
+// Spatial co-rotational Timoshenko beam (thesis 3.3, C.2): one segment between two frame nodes.
+//
+// Coordinates (3-28, C-7): q_e = [r¹, φ¹, r², φ²] (positions inertial, rotation vectors of the
+// end-section frames; section x axis along the beam, y and z its principal axes) and velocities
+// dq_e = [ṙ¹, ω¹, ṙ², ω²] with ω in each end section's body frame. Equations of motion
+// M(q) d(dq)/dt + F(q, dq) = applied and constraint forces (3-51); F = inertial quadratic-velocity
+// terms + elastic (and optional material damping) forces + gravity. All forces are generalized
+// forces along dq: derivatives with respect to the twist r + δr, R (I + δθ̃), not to φ.
+//
+// Elasticity (co-rotational, 3-29..3-34):
+// - Co-rotated frame R_B: the mid-frame R_m = R¹ exp(½ log(R¹ᵀR²)) turned by the smallest
+//   rotation that takes its x axis onto the chord r² − r¹. B.3/C.2.2 take the frame of node 1
+//   instead; the mid-frame treats both ends alike and keeps the twist symmetric. Origin r_B = r¹.
+// - Local deformations (3-34): u¹ = 0, u² = R_Bᵀ(r² − r¹) − L e_x = (ℓ − L, 0, 0),
+//   ψᵉ = log(R_Bᵀ Rᵉ). Rigid placements leave them exactly zero, so the element is objective.
+// - Strain energy U = ½ dᵀ K d with d = [u¹, ψ¹, u², ψ²] and K = ∫ Bᵀ D B ds built from the
+//   interdependent ("consistent") Timoshenko shape functions of C.2.6 (3-48, C-21..C-25), with
+//   strains ε = u', κ = (ψ_x', ψ_y', ψ_z'), γ_y = v' − ψ_z, γ_z = w' + ψ_y (C-16) and
+//   D = diag(EA, GJ, EI_y, EI_z, κGA, κGA). These shape functions solve the homogeneous beam
+//   equations (C-18), so the shear strain is constant and the curvature linear along the
+//   element: 2 Gauss points integrate U exactly, K is the exact Timoshenko stiffness and there
+//   is no shear locking. Φ = 12 EI/(κGA L²): the thesis' α = 48EI/(AGL²) in (C-20) comes from
+//   its shear stiffness GA/4 in (3-43), where the tensor strain ε_xy = γ/2 meets σ_xy = G ε_xy
+//   (3-41, should be 2G ε_xy) counted once instead of for xy and yx (C-28): a factor 4 too soft,
+//   and without κ. Likewise its torsion stiffness G(I_y + I_z)/4 is GJ here. Section axes as in
+//   section.hpp: I_y = ∫z² dA (bending about y, with ψ_y), I_z = ∫y² dA; the thesis pairs ψ with
+//   EI_z and writes the rotary inertia diag(I_y + I_z, I_z, I_y) (C-56), i.e. names them the
+//   other way round.
+// - Elastic forces F_int = J_dᵀ K d with J_d = ∂d/∂(twist) by forward AD inside the kernel; the
+//   Kelvin–Voigt damping (σ = E(ε + η ε̇), τ = G(γ + η γ̇)) adds η J_dᵀ K ḋ with ḋ = J_d dq.
+//
+// Inertia and gravity: the section motion is interpolated between the end frames independently
+// of the elastic model (the thesis uses the same shape functions for both, C.2.7, and then drops
+// terms by small-deformation assumptions C.2.12; here kinetic energy is exact for the chosen
+// interpolation, so the equations conserve energy exactly):
+// - centre line: cubic Hermite through r¹, r² with end slopes Rᵉ e_x (unit tangents);
+// - section rotation: geodesic R_c(ξ) = R¹ exp(ξ φ̃), φ = log(R¹ᵀR²).
+// Both reproduce rigid motions exactly. With the section velocity [ẋ; Ω] = H(q, ξ) dq,
+// kinetic energy T = ½ ∫ (ρA |ẋ|² + Ωᵀ ρJ Ω) ds with J = diag(I_y + I_z, I_y, I_z), so
+// M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds and, by d'Alembert (3-45, C-36),
+// F_ine = ∫ (ρA H_xᵀ Ḣ_x dq + H_Ωᵀ (ρJ Ḣ_Ω dq + Ω × ρJ Ω)) ds. Since Ṁ = ∫ (ḢᵀWH + HᵀWḢ) ds,
+// M d(dq)/dt = −F_ine gives dT/dt = dqᵀ M d(dq)/dt + ½ dqᵀ Ṁ dq = 0 exactly: the inertial terms
+// do no work. H is written explicitly; Ḣ dq is its derivative along the motion (one forward-AD
+// direction). Gravity (3-47): F_g = −∫ ρA H_xᵀ g ds, the exact gradient of −∫ ρA g·x ds.
+// At the undeformed state M is the Euler–Bernoulli consistent mass plus rotary inertia with
+// linear rotations. Quadrature: `mass_points` = 4 (exact for the cubic centre line at rest),
+// `stiffness_points` = 2 (exact strain energy; no reduced integration is needed).
+//
+// Every templated function uses one AD level on top of S, so KernelElement's Jacobian (S itself
+// a dual number) stays at two levels of nesting, the most Eigen's AutoDiffScalar supports with
+// the double literals of rotation.hpp.
+
+#include <cmath>
+#include <numbers>
+
+#include "cranesim/elements/section.hpp"
+#include "cranesim/math/autodiff.hpp"
+#include "cranesim/math/gauss_legendre.hpp"
+#include "cranesim/math/hermite.hpp"
+#include "cranesim/math/rotation.hpp"
+
+namespace cranesim {
+
+namespace beam_detail {
+
+/// A scalar of type Dual<S, N> with the given value and derivative vector.
+template <class S, int N> Dual<S, N> withDerivatives(const S& value, const Eigen::Matrix<S, N, 1>& d) {
+  return Dual<S, N>(value, d);
+}
+
+/// R (I + δθ̃) for a matrix R and a perturbation δθ, in a wider scalar type D.
+template <class D, class S> Mat3T<D> perturbed(const Mat3T<S>& R, const Vec3T<D>& dtheta) {
+  return R.template cast<D>() * (Mat3T<D>::Identity() + skew<D>(dtheta));
+}
+
+/// Vee of the skew-symmetric part of a 3×3 matrix.
+template <class S> Vec3T<S> skewVee(const Mat3T<S>& A) {
+  return Vec3T<S>(0.5 * (A(2, 1) - A(1, 2)), 0.5 * (A(0, 2) - A(2, 0)), 0.5 * (A(1, 0) - A(0, 1)));
+}
+
+}  // namespace beam_detail
+
+struct TimoshenkoBeamKernel {
+  static constexpr int kNodes = 2;
+  static constexpr int kNq = 12;
+  static constexpr int kNv = 12;
+  template <class S> using Q = Eigen::Matrix<S, kNq, 1>;
+  template <class S> using V = Eigen::Matrix<S, kNv, 1>;
+  using Mat12 = Eigen::Matrix<double, 12, 12>;
+  using Mat6x12 = Eigen::Matrix<double, 6, 12>;
+
+  double length = 1.0;  // L, unstretched length of the segment, m
+  Section section;
+  Material material;
+  int mass_points = 4;       // Gauss points for mass, inertial forces, gravity (4: exact for the cubic centre line)
+  int stiffness_points = 2;  // Gauss points for K (2: exact with the consistent shape functions)
+  double damping = 0.0;      // Kelvin–Voigt retardation time η, s (σ = E(ε + η ε̇)); 0: off
+
+  // ---------------------------------------------------------------------------------------------
+  // Consistent Timoshenko shape functions (C.2.6)
+
+  /// Φ = 12 EI/(κ G A L²) of the bending plane with second moment I; 0 (Euler–Bernoulli) when
+  /// the section has no shear factor.
+  double shearParameter(double I) const {
+    const double kGA = section.shear_factor * material.shear_modulus * section.area;
+    return kGA > 0.0 ? 12.0 * material.youngs_modulus * I / (kGA * length * length) : 0.0;
+  }
+
+  /// Interpolation of the local deformation q_d,c = [u, v, w, ψ_x, ψ_y, ψ_z] at ξ = s/L from the
+  /// end deformations d = [u¹, ψ¹, u², ψ²] (3-48): q_d,c = N d, q_d,c' = dN d (d/ds).
+  struct ShapeFunctions {
+    Mat6x12 N = Mat6x12::Zero(), dN = Mat6x12::Zero();
+  };
+
+  ShapeFunctions shapeFunctions(double xi) const {
+    const double L = length, x = xi, x2 = x * x, x3 = x2 * x;
+    ShapeFunctions f;
+    // Axial and torsion: linear (C-21, C-22).
+    f.N(0, 0) = 1.0 - x, f.N(0, 6) = x, f.dN(0, 0) = -1.0 / L, f.dN(0, 6) = 1.0 / L;
+    f.N(3, 3) = 1.0 - x, f.N(3, 9) = x, f.dN(3, 3) = -1.0 / L, f.dN(3, 9) = 1.0 / L;
+    // Bending in one plane, dofs (v¹, θ¹, v², θ²) with v' = θ when shear-rigid (C-23; the thesis
+    // prints the functions of end 2 only, with α = 4Φ). Each row: value, d/dξ.
+    const auto plane = [&](double Phi, double Nv[4], double dNv[4], double Nt[4], double dNt[4]) {
+      const double m = 1.0 / (1.0 + Phi);
+      Nv[0] = m * (1.0 - 3.0 * x2 + 2.0 * x3 + Phi * (1.0 - x));
+      Nv[1] = m * L * (x - 2.0 * x2 + x3 + 0.5 * Phi * (x - x2));
+      Nv[2] = m * (3.0 * x2 - 2.0 * x3 + Phi * x);
+      Nv[3] = m * L * (-x2 + x3 + 0.5 * Phi * (x2 - x));
+      dNv[0] = m * (-6.0 * x + 6.0 * x2 - Phi);
+      dNv[1] = m * L * (1.0 - 4.0 * x + 3.0 * x2 + 0.5 * Phi * (1.0 - 2.0 * x));
+      dNv[2] = m * (6.0 * x - 6.0 * x2 + Phi);
+      dNv[3] = m * L * (-2.0 * x + 3.0 * x2 + 0.5 * Phi * (2.0 * x - 1.0));
+      Nt[0] = m * 6.0 * (x2 - x) / L;
+      Nt[1] = m * (1.0 - 4.0 * x + 3.0 * x2 + Phi * (1.0 - x));
+      Nt[2] = -m * 6.0 * (x2 - x) / L;
+      Nt[3] = m * (3.0 * x2 - 2.0 * x + Phi * x);
+      dNt[0] = m * 6.0 * (2.0 * x - 1.0) / L;
+      dNt[1] = m * (-4.0 + 6.0 * x - Phi);
+      dNt[2] = -m * 6.0 * (2.0 * x - 1.0) / L;
+      dNt[3] = m * (6.0 * x - 2.0 + Phi);
+    };
+    double Nv[4], dNv[4], Nt[4], dNt[4];
+    // x–y plane: v and ψ_z (bending about z, EI_z): v' = ψ_z.
+    plane(shearParameter(section.Iz), Nv, dNv, Nt, dNt);
+    const int vz[4] = {1, 5, 7, 11};
+    for (int k = 0; k < 4; ++k) {
+      f.N(1, vz[k]) = Nv[k], f.dN(1, vz[k]) = dNv[k] / L;
+      f.N(5, vz[k]) = Nt[k], f.dN(5, vz[k]) = dNt[k] / L;
+    }
+    // x–z plane: w and ψ_y (bending about y, EI_y): w' = −ψ_y, i.e. (w, −ψ_y) plays (v, ψ_z) (C-24).
+    plane(shearParameter(section.Iy), Nv, dNv, Nt, dNt);
+    const int wy[4] = {2, 4, 8, 10};
+    const double sign[4] = {1.0, -1.0, 1.0, -1.0};
+    for (int k = 0; k < 4; ++k) {
+      f.N(2, wy[k]) = sign[k] * Nv[k], f.dN(2, wy[k]) = sign[k] * dNv[k] / L;
+      f.N(4, wy[k]) = -sign[k] * Nt[k], f.dN(4, wy[k]) = -sign[k] * dNt[k] / L;
+    }
+    return f;
+  }
+
+  /// Section strains [ε, κ_x, κ_y, κ_z, γ_y, γ_z] = B(ξ) d (C-16).
+  Mat6x12 strainMatrix(double xi) const {
+    const ShapeFunctions f = shapeFunctions(xi);
+    Mat6x12 B;
+    B.row(0) = f.dN.row(0);
+    B.row(1) = f.dN.row(3);
+    B.row(2) = f.dN.row(4);
+    B.row(3) = f.dN.row(5);
+    B.row(4) = f.dN.row(1) - f.N.row(5);
+    B.row(5) = f.dN.row(2) + f.N.row(4);
+    return B;
+  }
+
+  /// Local stiffness K = ∫ Bᵀ D B ds of the end deformations d (the thesis' K_d,end, C-33).
+  Mat12 localStiffness() const {
+    const double E = material.youngs_modulus, G = material.shear_modulus, A = section.area;
+    Eigen::Matrix<double, 6, 1> D;
+    D << E * A, G * section.J, E * section.Iy, E * section.Iz, section.shear_factor * G * A,
+        section.shear_factor * G * A;
+    const GaussRule rule = gaussLegendre(stiffness_points);
+    Mat12 K = Mat12::Zero();
+    for (int g = 0; g < rule.points; ++g) {
+      const Mat6x12 B = strainMatrix(rule.xi[g]);
+      K.noalias() += (rule.weight[g] * length) * (B.transpose() * D.asDiagonal() * B);
+    }
+    return K;
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Co-rotated frame and local deformations (3-29, 3-34)
+
+  template <class S> struct CoRotated {
+    Mat3T<S> R;               // R_B, body → inertial; x axis along the chord
+    Eigen::Matrix<S, 12, 1> d;  // [u¹, ψ¹, u², ψ²] in R_B axes
+  };
+
+  template <class S>
+  CoRotated<S> coRotate(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2, const Mat3T<S>& R2) const {
+    using std::sqrt;
+    const Vec3T<S> phi = rotationLog<S>(Mat3T<S>(R1.transpose() * R2));
+    const Mat3T<S> Rm = R1 * rotationMatrix<S>(Vec3T<S>(S(0.5) * phi));
+    const Vec3T<S> chord = r2 - r1;
+    const Vec3T<S> b = chord / sqrt(chord.squaredNorm());
+    const Vec3T<S> a = Rm.col(0);
+    const Mat3T<S> K = skew<S>(Vec3T<S>(a.cross(b)));
+    // Smallest rotation taking a onto b: I + k̃ + k̃²/(1 + a·b), k = a × b.
+    const Mat3T<S> align = Mat3T<S>::Identity() + K + (K * K) / S(1.0 + a.dot(b));
+    CoRotated<S> c;
+    c.R = align * Rm;
+    c.d.setZero();
+    c.d.template segment<3>(3) = rotationLog<S>(Mat3T<S>(c.R.transpose() * R1));
+    c.d.template segment<3>(6) = c.R.transpose() * chord;
+    c.d(6) -= length;
+    c.d.template segment<3>(9) = rotationLog<S>(Mat3T<S>(c.R.transpose() * R2));
+    return c;
+  }
+
+  /// Local deformations d(q).
+  template <class S> Eigen::Matrix<S, 12, 1> localDeformation(const Q<S>& q) const {
+    return coRotate<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                       q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))))
+        .d;
+  }
+
+  double strainEnergy(const Q<double>& q) const {
+    const auto d = localDeformation<double>(q);
+    return 0.5 * d.dot(localStiffness() * d);
+  }
+
+  /// Elastic and damping forces along dq: J_dᵀ K (d + η J_d dq), J_d = ∂d/∂(twist) by AD.
+  template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
+    using D = Dual<S, 12>;
+    Eigen::Matrix<D, 12, 1> delta;
+    for (int k = 0; k < 12; ++k) delta(k) = seeded<S, 12>(S(0.0), k);
+    const Mat3T<S> R1 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3)));
+    const Mat3T<S> R2 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)));
+    const Vec3T<D> r1 = q.template segment<3>(0).template cast<D>() + delta.template segment<3>(0);
+    const Vec3T<D> r2 = q.template segment<3>(6).template cast<D>() + delta.template segment<3>(6);
+    const CoRotated<D> c = coRotate<D>(r1, beam_detail::perturbed<D, S>(R1, Vec3T<D>(delta.template segment<3>(3))), r2,
+                                       beam_detail::perturbed<D, S>(R2, Vec3T<D>(delta.template segment<3>(9))));
+    Eigen::Matrix<S, 12, 1> d;
+    Eigen::Matrix<S, 12, 12> Jd;
+    for (int i = 0; i < 12; ++i) {
+      d(i) = c.d(i).value();
+      Jd.row(i) = c.d(i).derivatives().transpose();
+    }
+    Eigen::Matrix<S, 12, 1> strain = d;
+    if (damping > 0.0) strain += S(damping) * (Jd * v);
+    return Jd.transpose() * (localStiffness().template cast<S>() * strain);
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Interpolated section motion (inertia, gravity, output)
+
+  /// The end frames and their relative rotation φ = log(R¹ᵀR²), computed once per call.
+  template <class T> struct EndFrames {
+    Vec3T<T> r1, r2;
+    Mat3T<T> R1, R2, Rrel, TinvRrelT, Tinv;  // Rrel = R¹ᵀR², Tinv = T(φ)⁻¹, TinvRrelT = T(φ)⁻¹ Rrelᵀ
+    Vec3T<T> phi;
+  };
+
+  template <class T>
+  EndFrames<T> endFrames(const Vec3T<T>& r1, const Mat3T<T>& R1, const Vec3T<T>& r2, const Mat3T<T>& R2) const {
+    EndFrames<T> f{r1, r2, R1, R2, R1.transpose() * R2, Mat3T<T>(), Mat3T<T>(), Vec3T<T>()};
+    f.phi = rotationLog<T>(f.Rrel);
+    f.Tinv = angularVelocityMapInverse<T>(f.phi);
+    f.TinvRrelT = f.Tinv * f.Rrel.transpose();
+    return f;
+  }
+
+  template <class S> EndFrames<S> endFrames(const Q<S>& q) const {
+    return endFrames<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                        q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))));
+  }
+
+  /// Section motion at ξ: centre line x and its velocity ẋ = a¹ ṙ¹ + X¹ ω¹ + a² ṙ² + X² ω²,
+  /// section rotation R_c and its body angular velocity Ω = W¹ ω¹ + W² ω², i.e. the blocks of
+  /// H_x = [a¹I, X¹, a²I, X²] and H_Ω = [0, W¹, 0, W²].
+  template <class T> struct SectionMap {
+    double a[2];
+    Mat3T<T> X[2], W[2];
+    Vec3T<T> x;
+    Mat3T<T> Rc;
+
+    Vec3T<T> velocity(const Eigen::Matrix<T, 12, 1>& v) const {
+      return T(a[0]) * v.template segment<3>(0) + X[0] * v.template segment<3>(3) + T(a[1]) * v.template segment<3>(6) +
+             X[1] * v.template segment<3>(9);
+    }
+    Vec3T<T> angularVelocity(const Eigen::Matrix<T, 12, 1>& v) const {
+      return W[0] * v.template segment<3>(3) + W[1] * v.template segment<3>(9);
+    }
+    /// H_xᵀ f + H_Ωᵀ m.
+    Eigen::Matrix<T, 12, 1> project(const Vec3T<T>& f, const Vec3T<T>& m) const {
+      Eigen::Matrix<T, 12, 1> out;
+      out << T(a[0]) * f, X[0].transpose() * f + W[0].transpose() * m, T(a[1]) * f,
+          X[1].transpose() * f + W[1].transpose() * m;
+      return out;
+    }
+  };
+
+  template <class T> SectionMap<T> sectionMap(const EndFrames<T>& e, double xi) const {
+    const HermiteBasis h = hermiteBasis(xi, length);
+    const Mat3T<T> ex = skew<T>(Vec3T<T>(Vec3T<T>::UnitX()));
+    SectionMap<T> m;
+    // x = N0¹ r¹ + N1¹ R¹e_x + N0² r² + N1² R²e_x (A-9 with unit end slopes); d(Re_x)/dt = −R ẽ_x ω.
+    m.x = T(h.N[0]) * e.r1 + T(h.N[1]) * e.R1.col(0) + T(h.N[2]) * e.r2 + T(h.N[3]) * e.R2.col(0);
+    m.a[0] = h.N[0], m.a[1] = h.N[2];
+    m.X[0] = T(-h.N[1]) * (e.R1 * ex);
+    m.X[1] = T(-h.N[3]) * (e.R2 * ex);
+    // R_c = R¹ exp(ξφ̃): Ω = exp(ξφ̃)ᵀ ω¹ + ξ T(ξφ) φ̇, φ̇ = T(φ)⁻¹ (ω² − Rrelᵀ ω¹) (2-10, B-8).
+    const Vec3T<T> xphi = T(xi) * e.phi;
+    const Mat3T<T> E = rotationMatrix<T>(xphi);
+    const Mat3T<T> xT = T(xi) * angularVelocityMap<T>(xphi);
+    m.Rc = e.R1 * E;
+    m.W[0] = E.transpose() - xT * e.TinvRrelT;
+    m.W[1] = xT * e.Tinv;
+    return m;
+  }
+
+  /// Position and rotation of the section at ξ ∈ [0, 1] (the interpolation used for inertia).
+  template <class S> FrameT<S> sectionFrame(const Q<S>& q, double xi) const {
+    const SectionMap<S> m = sectionMap<S>(endFrames<S>(q), xi);
+    return FrameT<S>{m.x, m.Rc};
+  }
+
+  Vec3 rotaryInertia() const {
+    const double rho = material.density;
+    return {rho * (section.Iy + section.Iz), rho * section.Iy, rho * section.Iz};
+  }
+
+  /// M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds, accumulated block by block (H_x has identity blocks,
+  /// H_Ω zero blocks).
+  template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const Q<S>& q, double = 0.0) const {
+    const EndFrames<S> e = endFrames<S>(q);
+    const double rhoA = material.density * section.area;
+    const Vec3T<S> J = rotaryInertia().template cast<S>();
+    const GaussRule rule = gaussLegendre(mass_points);
+    Eigen::Matrix<S, 12, 12> M = Eigen::Matrix<S, 12, 12>::Zero();
+    for (int g = 0; g < rule.points; ++g) {
+      const SectionMap<S> m = sectionMap<S>(e, rule.xi[g]);
+      const double w = rule.weight[g] * length, wm = w * rhoA;
+      Mat3T<S> JW[2];
+      for (int i = 0; i < 2; ++i) JW[i] = S(w) * (J.asDiagonal() * m.W[i]);
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+          for (int k = 0; k < 3; ++k) M(6 * i + k, 6 * j + k) += S(wm * m.a[i] * m.a[j]);
+          M.template block<3, 3>(6 * i, 6 * j + 3) += S(wm * m.a[i]) * m.X[j];
+          M.template block<3, 3>(6 * i + 3, 6 * j) += S(wm * m.a[j]) * m.X[i].transpose();
+          M.template block<3, 3>(6 * i + 3, 6 * j + 3) +=
+              S(wm) * (m.X[i].transpose() * m.X[j]) + m.W[i].transpose() * JW[j];
+        }
+    }
+    return M;
+  }
+
+  /// Quadratic-velocity inertial forces and gravity: ∫ H_xᵀ ρA (Ḣ_x dq − g)
+  /// + H_Ωᵀ (ρJ Ḣ_Ω dq + Ω × ρJ Ω) ds. Ḣ dq is the derivative of H(q(t)) dq along the motion
+  /// r(t) = r + t ṙ, R(t) = R (I + t ω̃) with dq held constant (one forward-AD direction).
+  template <class S> V<S> inertialAndGravityForce(const Q<S>& q, const V<S>& v, const Vec3& gravity) const {
+    using P = Dual<S, 1>;
+    using beam_detail::withDerivatives;
+    const Mat3T<S> R1 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3)));
+    const Mat3T<S> R2 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)));
+    const Mat3T<S> dR1 = R1 * skew<S>(Vec3T<S>(v.template segment<3>(3)));
+    const Mat3T<S> dR2 = R2 * skew<S>(Vec3T<S>(v.template segment<3>(9)));
+    Vec3T<P> r1, r2;
+    Mat3T<P> R1p, R2p;
+    for (int i = 0; i < 3; ++i) {
+      r1(i) = withDerivatives<S, 1>(q(i), Eigen::Matrix<S, 1, 1>(v(i)));
+      r2(i) = withDerivatives<S, 1>(q(6 + i), Eigen::Matrix<S, 1, 1>(v(6 + i)));
+      for (int j = 0; j < 3; ++j) {
+        R1p(i, j) = withDerivatives<S, 1>(R1(i, j), Eigen::Matrix<S, 1, 1>(dR1(i, j)));
+        R2p(i, j) = withDerivatives<S, 1>(R2(i, j), Eigen::Matrix<S, 1, 1>(dR2(i, j)));
+      }
+    }
+    const EndFrames<P> e = endFrames<P>(r1, R1p, r2, R2p);
+    const Eigen::Matrix<P, 12, 1> vp = v.template cast<P>();
+    const double rhoA = material.density * section.area;
+    const Vec3T<S> J = rotaryInertia().template cast<S>();
+    const Vec3T<S> g = gravity.cast<S>();
+    const GaussRule rule = gaussLegendre(mass_points);
+    V<S> F = V<S>::Zero();
+    for (int gp = 0; gp < rule.points; ++gp) {
+      const SectionMap<P> m = sectionMap<P>(e, rule.xi[gp]);
+      const Vec3T<P> xdot = m.velocity(vp), omega = m.angularVelocity(vp);
+      SectionMap<S> h;  // H at the current state: the value parts
+      h.a[0] = m.a[0], h.a[1] = m.a[1];
+      for (int n = 0; n < 2; ++n)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) h.X[n](i, j) = m.X[n](i, j).value(), h.W[n](i, j) = m.W[n](i, j).value();
+      Vec3T<S> ax, aw, w;  // Ḣ_x dq, Ḣ_Ω dq, Ω
+      for (int i = 0; i < 3; ++i) {
+        ax(i) = xdot(i).derivatives()(0);
+        aw(i) = omega(i).derivatives()(0);
+        w(i) = omega(i).value();
+      }
+      const double wl = rule.weight[gp] * length;
+      const Vec3T<S> Jw = J.cwiseProduct(w);
+      F += h.project(Vec3T<S>(S(wl * rhoA) * (ax - g)), Vec3T<S>(S(wl) * (J.cwiseProduct(aw) + w.cross(Jw))));
+    }
+    return F;
+  }
+
+  template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
+    return inertialAndGravityForce<S>(q, v, gravity) + elasticForce<S>(q, v);
+  }
+
+  double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
+    return 0.5 * v.dot(massMatrix<double>(q) * v);
+  }
+
+  /// −∫ ρA g·x ds (same quadrature as the gravity forces) + strain energy.
+  double gravityPotential(const Q<double>& q, const Vec3& gravity) const {
+    const EndFrames<double> e = endFrames<double>(q);
+    const GaussRule rule = gaussLegendre(mass_points);
+    double V = 0.0;
+    for (int g = 0; g < rule.points; ++g)
+      V -= rule.weight[g] * length * material.density * section.area * gravity.dot(sectionMap<double>(e, rule.xi[g]).x);
+    return V;
+  }
+
+  double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const {
+    return gravityPotential(q, gravity) + strainEnergy(q);
+  }
+};
+
+}  // namespace cranesim
