@@ -145,15 +145,14 @@ MemberSpec readMember(const YamlField& f) {
   m.where = f.where();
   m.name = f.at("name").identifier();
   if (m.name == "ground") f.at("name").fail("'ground' is reserved for the inertial frame");
-  const std::string type = f.at("type").choice({"strut_tie", "timoshenko", "rope"});
+  const std::string type = f.at("type").choice({"strut_tie", "timoshenko", "spline_beam", "rope"});
   m.type = type == "strut_tie" ? MemberType::StrutTie
            : type == "timoshenko" ? MemberType::Timoshenko
            : type == "spline_beam" ? MemberType::SplineBeam
                                    : MemberType::Rope;
-  std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "section", "material"};
+  std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "section", "material", "damping"};
   if (m.type == MemberType::Rope) keys.push_back("length");
   if (m.type == MemberType::StrutTie) keys.insert(keys.end(), {"constant_volume", "smoothing"});
-  if (m.type == MemberType::Timoshenko) keys.push_back("damping");
   f.allowKeys(keys);
   m.start = f.at("start").vec3();
   m.end = f.at("end").vec3();

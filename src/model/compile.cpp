@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "cranesim/elements/rigid_body.hpp"
+#include "cranesim/elements/spline_beam.hpp"
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/elements/strut_tie.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
@@ -106,6 +107,7 @@ void compileMember(Model& model, const MemberSpec& m) {
         k.material = m.material;
         k.constant_volume = m.constant_volume;
         k.smoothing = m.smoothing;
+        k.damping = m.damping;
         addElement(model, k, pair);
         break;
       }
@@ -116,6 +118,7 @@ void compileMember(Model& model, const MemberSpec& m) {
         k.section = m.section;
         k.material = m.material;
         if (m.quadrature > 0) k.rule = gaussLegendre(m.quadrature);
+        k.damping = m.damping;
         addElement(model, k, pair);
         break;
       }
@@ -129,8 +132,16 @@ void compileMember(Model& model, const MemberSpec& m) {
         addElement(model, k, pair);
         break;
       }
-      case MemberType::SplineBeam:
-        throw std::logic_error("beam kernels are not registered");  // the reader admits no beams yet
+      case MemberType::SplineBeam: {
+        SplineBeamKernel k;
+        k.length = segment;
+        k.section = m.section;
+        k.material = m.material;
+        if (m.quadrature > 0) k.rule = gaussLegendre(m.quadrature);
+        k.damping = m.damping;
+        addElement(model, k, pair);
+        break;
+      }
     }
   }
 }

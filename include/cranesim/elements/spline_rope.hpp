@@ -3,6 +3,8 @@
 // q = [r¹, r'¹, r², r'²] (C-141), r' = dr/ds, with the centre line interpolated by cubic Hermite
 // functions (C-142). Tension only (7-1): N = EA max(ε, 0), ε = ‖r'‖ − 1 (C-150); no bending or
 // torsion stiffness; translational inertia only (C-154).
+// Optional Kelvin–Voigt damping with retardation time η while taut: N = EA max(ε + η ε̇, 0),
+// ε̇ = r'·ṙ'/‖r'‖ (the rate at fixed unstretched length; reeling itself is not damped).
 //
 // The unstretched length may follow a drive, L(t) = length(t)/segments per element; the mass
 // ρA L(t) changes with it, as when a winch reels the rope in or out (6). The equations use
@@ -28,6 +30,7 @@ struct SplineRopeKernel {
   Section section;
   Material material;
   GaussRule rule = gaussLegendre(4);
+  double damping = 0.0;  // Kelvin–Voigt retardation time η, s
 
   double segmentLength(double t) const { return total_length(t) / segments; }
 
@@ -41,7 +44,7 @@ struct SplineRopeKernel {
     return M.cast<S>();
   }
 
-  template <class S> Q<S> force(const Q<S>& q, const Q<S>&, double t, const Vec3& gravity) const {
+  template <class S> Q<S> force(const Q<S>& q, const Q<S>& v, double t, const Vec3& gravity) const {
     using std::sqrt;
     const double L = segmentLength(t), rhoA = material.density * section.area;
     const double EA = material.youngs_modulus * section.area;
@@ -51,8 +54,9 @@ struct SplineRopeKernel {
       const auto dN = shape(b.dN);
       const Vec3T<S> rs = dN.template cast<S>() * q;
       const S stretch = sqrt(rs.squaredNorm());
-      const S strain = stretch - 1.0;
-      if (strain > 0.0) F += (rule.weight[g] * L * EA) * (strain / stretch) * (dN.transpose().template cast<S>() * rs);
+      S stress = stretch - 1.0;  // σ/E
+      if (stress > 0.0 && damping > 0.0) stress += damping * rs.dot(dN.template cast<S>() * v) / stretch;
+      if (stress > 0.0) F += (rule.weight[g] * L * EA) * (stress / stretch) * (dN.transpose().template cast<S>() * rs);
       F -= (rule.weight[g] * L * rhoA) * (shape(b.N).transpose() * gravity).template cast<S>();
     }
     return F;

@@ -10,6 +10,7 @@
 //   energy is then E A (ℓ − L − L ln(ℓ/L)), otherwise ½ E A L ε².
 // - Smoothing factor h (3-16): σ̄ = E (ε + h/2 ε̇ + h²/6 ε̈), i.e. a viscous term and an axial
 //   mass E A L h²/6 T_ε T_εᵀ (3-24); h = 0 by default.
+// - Optional Kelvin–Voigt material damping with retardation time η: N += E A η ε̇, off by default.
 
 #include <cmath>
 
@@ -29,6 +30,7 @@ struct StrutTieKernel {
   Material material;
   bool constant_volume = true;
   double smoothing = 0.0;  // h, s
+  double damping = 0.0;    // Kelvin–Voigt retardation time η, s
 
   template <class S> Eigen::Matrix<S, 6, 6> massMatrix(const Q<S>& q, double = 0.0) const {
     Eigen::Matrix<S, 6, 6> M = translationalMass<S>() + rotaryMass<S>(q);
@@ -45,12 +47,12 @@ struct StrutTieKernel {
     const S l = sqrt(d.squaredNorm());
     const Vec3T<S> e = d / l;
     S N = axialForce<S>(l);
-    if (smoothing > 0.0) {
+    if (smoothing > 0.0 || damping > 0.0) {
       const Vec3T<S> dd = v.template tail<3>() - v.template head<3>();
       const S ldot = e.dot(dd);
       const S ldd_quadratic = (dd.squaredNorm() - ldot * ldot) / l;  // ℓ̈ without the d̈ term
       const double EA = material.youngs_modulus * section.area;
-      N += EA * (0.5 * smoothing * ldot + smoothing * smoothing / 6.0 * ldd_quadratic) / length;
+      N += EA * ((0.5 * smoothing + damping) * ldot + smoothing * smoothing / 6.0 * ldd_quadratic) / length;
     }
     Q<S> F = quadraticVelocityForces<6, S>([this](const auto& x) { return rotaryMass(x); }, q, v);
     F.template head<3>() -= N * e;

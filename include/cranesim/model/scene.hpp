@@ -49,7 +49,7 @@ struct MemberSpec {
   std::optional<Profile> length;  // rope: unstretched length (default: ‖end − start‖)
   bool constant_volume = true;    // strut tie: section shrinks with stretch (3-27)
   double smoothing = 0.0;         // strut tie: smoothing factor h (3-16)
-  double damping = 0.0;           // Timoshenko beam: Kelvin–Voigt retardation time η, s
+  double damping = 0.0;           // Kelvin–Voigt retardation time η of the material, s (0: undamped)
   SourceLocation where;
 };
 
