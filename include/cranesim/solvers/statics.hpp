@@ -2,8 +2,9 @@
 // Static equilibrium (DESIGN §5): Newton's method on the equilibrium KKT system
 //   F(q, 0, t) + Gᵀ(q) λ = 0,   Φ(q, t) = 0
 // (internal, gravity and applied forces F; the GGL rows of the assembler at dq = 0), with a
-// backtracking line search on ‖residual‖ and load stepping: gravity and loads are ramped
-// from 0 to 1, and a step that fails to converge is halved.
+// damped Newton step (Armijo on ‖residual‖, or Deuflhard's natural monotonicity test) and
+// adaptive load stepping: gravity and loads are ramped from 0 to 1; an increment whose
+// Newton iteration stalls is halved, one that converges quickly lets the next one double.
 
 #include <string>
 
@@ -15,7 +16,13 @@ struct StaticOptions {
   int max_iterations = 50;       // per load step
   double tolerance = 1e-10;      // on the Newton step, relative to 1 + max|q|
   int initial_load_steps = 1;    // first try: the full load at once
-  int max_load_halvings = 12;
+  int max_load_halvings = 16;
+  /// A load step is abandoned (and halved) when the line search cuts the Newton step below
+  /// this fraction `stall_iterations` times in a row: far from the solution, Newton crawls
+  /// (a rope that starts slack needs several short steps: 10 keeps the catenary test at 21).
+  double stall_step = 1.0 / 64.0;
+  int stall_iterations = 10;
+  int fast_iterations = 6;       // a step converged within this many doubles the next increment
 };
 
 struct StaticResult {
