@@ -1,6 +1,7 @@
 // crane-sim: simulate a multibody scene written in YAML and write HDF5 results.
 //   crane-sim run SCENE [-o results.h5] [--quiet]
 //   crane-sim check SCENE
+//   crane-sim modes SCENE [--count N] [-o modes.h5]
 //   crane-sim info RESULTS
 // Exit codes: 0 success, 1 solver failure (results kept, marked incomplete), 2 bad input.
 
@@ -14,11 +15,14 @@
 #include <filesystem>
 #include <iostream>
 
+#include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_info.hpp"
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/model/summary.hpp"
+#include "cranesim/solvers/modes.hpp"
+#include "cranesim/solvers/relaxation.hpp"
 #include "cranesim/solvers/statics.hpp"
 #include "cranesim/version.hpp"
 
@@ -63,8 +67,20 @@ std::string outputPath(const std::string& scene_path, std::string out, const cha
   return out;
 }
 
-/// Static equilibrium near the scene's initial state; throws when it is not found.
-StaticResult equilibrium(const Model& model, const DynamicState& given) {
+/// Static equilibrium near the scene's initial state by the scene's method (solver.statics);
+/// throws when it is not found.
+StaticResult equilibrium(const Scene& scene, const Model& model, const DynamicState& given, bool quiet) {
+  if (model.solver.static_method == StaticMethod::Relaxation) {
+    RelaxationOptions options;
+    options.damping = model.solver.relaxation_damping;
+    options.duration = model.solver.relaxation_duration;
+    const RelaxationResult r = relaxToEquilibrium(scene, given.q, options);
+    if (!quiet)
+      fmt::print(stderr, "relaxation: {:.4g} s of damped motion (α = {:g}/s) in {} steps, kinetic energy down to {:.2g} of its peak\n",
+                 r.relaxation_time, options.damping, r.steps, r.final_kinetic_ratio);
+    if (!r.equilibrium.converged) throw std::runtime_error(r.equilibrium.message);
+    return r.equilibrium;
+  }
   StaticResult eq = solveStatics(model, given.q, model.solver.t_start);
   if (!eq.converged) throw std::runtime_error(eq.message);
   return eq;
@@ -83,7 +99,7 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
       consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
   out = outputPath(scene_path, out, ".h5");
   if (model.solver.start_from_equilibrium) {
-    const StaticResult eq = equilibrium(model, initial);
+    const StaticResult eq = equilibrium(scene, model, initial, quiet);
     if (!quiet) printEquilibrium(eq);
     initial = consistentInitialState(assembler, model.solver.t_start, eq.q, VecX::Zero(model.nv), model.solver.initial_tolerance);
   }
@@ -133,7 +149,7 @@ int statics(const std::string& scene_path, std::string out) {
   const DynamicState given =
       consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
   out = outputPath(scene_path, out, "_static.h5");
-  const StaticResult eq = equilibrium(model, given);
+  const StaticResult eq = equilibrium(scene, model, given, false);
   printEquilibrium(eq);
   ResultsRecorder recorder(assembler);
   VecX y = VecX::Zero(assembler.size());
@@ -144,6 +160,32 @@ int statics(const std::string& scene_path, std::string out) {
   outcome.complete = true;
   outcome.t_reached = eq.t;
   recorder.write(out, {scene_path, scene.text, "static", eq.t}, outcome);
+  fmt::print(stderr, "  results: {}\n", out);
+  return 0;
+}
+
+/// Small-vibration modes about the static equilibrium: a table on stdout, frequencies and
+/// shapes in the HDF5 file.
+int modes(const std::string& scene_path, std::string out, int count) {
+  const Scene scene = readScene(scene_path);
+  const Model model = compileModel(scene);
+  const Assembler assembler(model);
+  const DynamicState given =
+      consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+  out = outputPath(scene_path, out, "_modes.h5");
+  const StaticResult eq = equilibrium(scene, model, given, false);
+  printEquilibrium(eq);
+  const ModalResult modal = computeModes(model, eq.q, eq.t, count);
+  fmt::print("degrees of freedom: {}, rigid-body modes: {}, stiffness asymmetry: {:.2g}\n", modal.free_dofs,
+             modal.rigid_modes, modal.stiffness_asymmetry);
+  fmt::print("{:>5}  {:>14}  {:>12}  {:>14}\n", "mode", "frequency (Hz)", "period (s)", "ω² (rad²/s²)");
+  for (int k = 0; k < modal.frequencies.size(); ++k) {
+    const double f = modal.frequencies(k), w2 = modal.omega_squared(k);
+    if (modal.rigid[k]) fmt::print("{:>5}  {:>14}  {:>12}  {:>14.6g}\n", k + 1, "rigid", "-", w2);
+    else if (w2 < 0.0) fmt::print("{:>5}  {:>14}  {:>12}  {:>14.6g}\n", k + 1, "unstable", "-", w2);
+    else fmt::print("{:>5}  {:>14.6f}  {:>12.6g}  {:>14.6g}\n", k + 1, f, 1.0 / f, w2);
+  }
+  writeModes(out, model, eq.q, modal, {scene_path, scene.text, eq.t});
   fmt::print(stderr, "  results: {}\n", out);
   return 0;
 }
@@ -176,6 +218,12 @@ int main(int argc, char** argv) {
   static_cmd->add_option("-o,--output", out_path, "results file (default: <scene name>_static.h5 in the current directory)");
   auto* check_cmd = app.add_subcommand("check", "validate a scene and print the model summary");
   check_cmd->add_option("scene", scene_path, "scene file (YAML)")->required();
+  int mode_count = 10;
+  auto* modes_cmd = app.add_subcommand("modes", "small-vibration modes about the static equilibrium");
+  modes_cmd->add_option("scene", scene_path, "scene file (YAML)")->required();
+  modes_cmd->add_option("-n,--count", mode_count, "number of lowest modes (0: all)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  modes_cmd->add_option("-o,--output", out_path, "modes file (default: <scene name>_modes.h5 in the current directory)");
   auto* info_cmd = app.add_subcommand("info", "describe what a results file holds");
   info_cmd->add_option("results", results_path, "results file (HDF5)")->required();
 
@@ -189,6 +237,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return run(scene_path, out_path, quiet);
     if (*check_cmd) return check(scene_path);
     if (*static_cmd) return statics(scene_path, out_path);
+    if (*modes_cmd) return modes(scene_path, out_path, mode_count);
     if (*info_cmd) {
       fmt::print("{}", describeResults(results_path));
       return 0;

@@ -13,6 +13,7 @@
 #include "cranesim/elements/strut_tie.hpp"
 #include "cranesim/model/element.hpp"
 #include "cranesim/solvers/statics.hpp"
+#include "elastic_catenary.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -194,15 +195,8 @@ solver: {{t_end: 1}}
   const StaticResult eq = solveStatics(model, q, 0.0);
   INFO(eq.message);
   REQUIRE(eq.converged);
-  // Irvine: span = H L0/EA + (H/w)[asinh(V/H) − asinh((V − W)/H)], V = W/2, W = w L0.
-  const double A = std::numbers::pi * radius * radius, w = rho * A * g, W = w * L0, EA = E * A, V = W / 2.0;
-  const auto spanOf = [&](double H) { return H * L0 / EA + H / w * (std::asinh(V / H) - std::asinh((V - W) / H)); };
-  double H = 100.0;
-  for (int it = 0; it < 100; ++it) {
-    const double dH = 1e-6 * H;
-    H -= (spanOf(H) - span) / ((spanOf(H + dH) - spanOf(H - dH)) / (2 * dH));
-  }
-  const double sag = W * L0 / (8.0 * EA) + H / w * (std::sqrt(1.0 + (V / H) * (V / H)) - 1.0);
+  const double A = std::numbers::pi * radius * radius;
+  const auto [H, sag] = test::elasticCatenary(span, L0, rho * A * g, E * A);
   const Node& mid = model.nodes[segments / 2];
   const double computed = -eq.q(mid.q + 2);
   INFO("sag: computed " << computed << " m, elastic catenary " << sag << " m; H = " << H << " N");

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <numbers>
 #include <set>
@@ -140,17 +142,105 @@ Material readMaterial(const YamlField& f, double& poisson) {
   return m;
 }
 
-MemberSpec readMember(const YamlField& f) {
+/// `[a, b]`: two node numbers counted from 1 as in the thesis' tables, stored from 0.
+TrussNodePair readNodePair(const YamlField& f) {
+  const auto items = f.items();
+  if (items.size() != 2) f.fail(fmt::format("expected two node numbers [from, to], found {} entries", items.size()));
+  return {{items[0].integer() - 1, items[1].integer() - 1}, f.where()};
+}
+
+std::vector<TrussNodePair> readNodePairs(const YamlField& f) {
+  std::vector<TrussNodePair> pairs;
+  for (const YamlField& item : f.items()) pairs.push_back(readNodePair(item));
+  return pairs;
+}
+
+TrussTube readTube(const YamlField& f) {
+  f.allowKeys({"outer_radius", "inner_radius"});
+  return {f.at("outer_radius").number(), f.number("inner_radius", 0.0), f.where()};
+}
+
+/// One entry of `trusses:` (a truss type, Table D-3). Indices and radii are checked by
+/// buildTrussGeometry, which reports them at the locations recorded here.
+TrussDescription readTruss(const YamlField& f) {
+  f.allowKeys({"name", "length", "order", "sections", "main_beams", "lacing", "tubes", "material"});
+  TrussDescription d;
+  d.where = f.where();
+  d.name = f.at("name").identifier();
+  d.length = f.at("length").positive();
+  d.where_length = f.at("length").where();
+  d.order = f.at("order").integer();
+  d.where_order = f.at("order").where();
+  const YamlField sections = f.at("sections");
+  const auto section_items = sections.items();
+  if (section_items.size() != 2) sections.fail(fmt::format("a truss has exactly 2 end sections, found {}", section_items.size()));
+  for (int s = 0; s < 2; ++s) {
+    const YamlField& sf = section_items[s];
+    sf.allowKeys({"nodes", "cross_beams"});
+    TrussEndSection& sec = d.sections[s];
+    sec.where = sf.where();
+    sec.where_nodes = sf.at("nodes").where();
+    for (const YamlField& n : sf.at("nodes").items()) {
+      const std::vector<double> yz = n.numbers();
+      if (yz.size() != 2) n.fail(fmt::format("expected a node's [y, z] in the end-section frame, found {} numbers", yz.size()));
+      sec.nodes.emplace_back(yz[0], yz[1]);
+    }
+    if (const auto cb = sf.find("cross_beams")) sec.cross_beams = readNodePairs(*cb);
+  }
+  d.main_beams = readNodePairs(f.at("main_beams"));
+  d.where_main_beams = f.at("main_beams").where();
+  const std::string lacing = f.at("lacing").choice({"type1", "anti_type1", "tp_type1", "tp_anti_type1"});
+  d.lacing = lacing == "type1"        ? LacingForm::Type1
+             : lacing == "anti_type1" ? LacingForm::AntiType1
+             : lacing == "tp_type1"   ? LacingForm::TPType1
+                                      : LacingForm::TPAntiType1;
+  d.where_lacing = f.at("lacing").where();
+  const YamlField tubes = f.at("tubes");
+  tubes.allowKeys({"main", "cross", "sub"});
+  d.main_tube = readTube(tubes.at("main"));
+  d.cross_tube = readTube(tubes.at("cross"));
+  d.sub_tube = readTube(tubes.at("sub"));
+  d.material = readMaterial(f.at("material"), d.poisson_ratio);
+  return d;
+}
+
+/// `type: truss`: a placed truss type; its length must match the distance of start and end.
+void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussDescription>& trusses) {
+  const YamlField tf = f.at("truss");
+  m.truss = tf.text();
+  const auto type = std::find_if(trusses.begin(), trusses.end(), [&](const TrussDescription& d) { return d.name == m.truss; });
+  if (type == trusses.end()) {
+    std::string known;
+    for (const TrussDescription& d : trusses) known += (known.empty() ? "" : ", ") + d.name;
+    tf.fail(fmt::format("unknown truss type '{}' (types under trusses: {})", m.truss, known.empty() ? "none" : known));
+  }
+  const double distance = (m.end - m.start).norm();
+  if (std::abs(distance - type->length) > 1e-6 * type->length)
+    f.at("end").fail(fmt::format("|end − start| = {} differs from the length {} of truss type '{}'", distance, type->length, m.truss));
+  const YamlField fidelity = f.at("fidelity");
+  m.fidelity = fidelity.choice({"super_truss", "members"}) == "members" ? TrussFidelity::Members : TrussFidelity::SuperTruss;
+  if (const auto e = f.find("element")) {
+    if (m.fidelity != TrussFidelity::Members) e->fail("'element' chooses the tubes' beam element of fidelity 'members' only");
+    e->choice({"timoshenko"});
+  }
+  if (m.fidelity != TrussFidelity::Members && f.has("segments"))
+    f.at("segments").fail("'segments' splits the tubes of fidelity 'members' only");
+}
+
+MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& trusses) {
   MemberSpec m;
   m.where = f.where();
   m.name = f.at("name").identifier();
   if (m.name == "ground") f.at("name").fail("'ground' is reserved for the inertial frame");
-  const std::string type = f.at("type").choice({"strut_tie", "timoshenko", "spline_beam", "rope"});
+  const std::string type = f.at("type").choice({"strut_tie", "timoshenko", "spline_beam", "rope", "truss"});
   m.type = type == "strut_tie" ? MemberType::StrutTie
            : type == "timoshenko" ? MemberType::Timoshenko
            : type == "spline_beam" ? MemberType::SplineBeam
-                                   : MemberType::Rope;
-  std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "section", "material", "damping"};
+           : type == "rope"        ? MemberType::Rope
+                                   : MemberType::Truss;
+  std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "damping"};
+  if (m.type == MemberType::Truss) keys.insert(keys.end(), {"truss", "fidelity", "element"});
+  else keys.insert(keys.end(), {"section", "material"});
   if (m.type == MemberType::Rope) keys.push_back("length");
   if (m.type == MemberType::StrutTie) keys.insert(keys.end(), {"constant_volume", "smoothing"});
   f.allowKeys(keys);
@@ -167,13 +257,17 @@ MemberSpec readMember(const YamlField& f) {
     if (m.quadrature < 1 || m.quadrature > kMaxGaussPoints)
       f.at("quadrature").fail(fmt::format("Gauss points must be 1…{}, found {}", kMaxGaussPoints, m.quadrature));
   }
+  if (const auto d = f.find("damping")) m.damping = d->nonNegative();
+  if (m.type == MemberType::Truss) {
+    readTrussMember(f, m, trusses);
+    return m;
+  }
   double poisson = 0.3;
   m.material = readMaterial(f.at("material"), poisson);
   m.section = readSection(f.at("section"), poisson);
   if (const auto l = f.find("length")) m.length = readProfile(*l);
   if (const auto cv = f.find("constant_volume")) m.constant_volume = cv->boolean();
   if (const auto h = f.find("smoothing")) m.smoothing = h->nonNegative();
-  if (const auto d = f.find("damping")) m.damping = d->nonNegative();
   return m;
 }
 
@@ -227,7 +321,7 @@ LoadSpec readLoad(const YamlField& f) {
 
 SolverSpec readSolver(const YamlField& f) {
   f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_order", "initial_step",
-               "baumgarte", "initial_tolerance", "initial_state"});
+               "baumgarte", "initial_tolerance", "initial_state", "statics"});
   SolverSpec s;
   if (const auto form = f.find("formulation"))
     s.formulation = form->choice({"ggl", "baumgarte"}) == "ggl" ? Formulation::GGL : Formulation::Baumgarte;
@@ -254,6 +348,13 @@ SolverSpec readSolver(const YamlField& f) {
   }
   s.initial_tolerance = f.positive("initial_tolerance", s.initial_tolerance);
   if (const auto start = f.find("initial_state")) s.start_from_equilibrium = start->choice({"given", "equilibrium"}) == "equilibrium";
+  if (const auto st = f.find("statics")) {
+    st->allowKeys({"method", "damping", "duration"});
+    if (const auto m = st->find("method"))
+      s.static_method = m->choice({"newton", "relaxation"}) == "newton" ? StaticMethod::Newton : StaticMethod::Relaxation;
+    s.relaxation_damping = st->positive("damping", s.relaxation_damping);
+    s.relaxation_duration = st->positive("duration", s.relaxation_duration);
+  }
   return s;
 }
 
@@ -268,7 +369,7 @@ Scene parseScene(const std::string& text, const std::string& path) {
   }
   const YamlField f(root, "");
   if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
-  f.allowKeys({"name", "gravity", "ground", "bodies", "members", "constraints", "loads", "solver", "output"});
+  f.allowKeys({"name", "gravity", "ground", "bodies", "trusses", "members", "constraints", "loads", "solver", "output"});
   Scene s;
   s.path = path;
   s.text = text;
@@ -285,9 +386,16 @@ Scene parseScene(const std::string& text, const std::string& path) {
       if (!body_names.insert(s.bodies.back().name).second)
         b.at("name").fail(fmt::format("duplicate body or member name '{}'", s.bodies.back().name));
     }
+  if (const auto trusses = f.find("trusses"))
+    for (const YamlField& t : trusses->items()) {
+      s.trusses.push_back(readTruss(t));
+      buildTrussGeometry(s.trusses.back());  // validates the type even when no member uses it
+      for (std::size_t i = 0; i + 1 < s.trusses.size(); ++i)
+        if (s.trusses[i].name == s.trusses.back().name) t.at("name").fail(fmt::format("duplicate truss type name '{}'", s.trusses.back().name));
+    }
   if (const auto members = f.find("members"))
     for (const YamlField& m : members->items()) {
-      s.members.push_back(readMember(m));
+      s.members.push_back(readMember(m, s.trusses));
       if (!body_names.insert(s.members.back().name).second)
         m.at("name").fail(fmt::format("duplicate body or member name '{}'", s.members.back().name));
     }

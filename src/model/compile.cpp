@@ -2,69 +2,19 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "cranesim/elements/rigid_body.hpp"
 #include "cranesim/elements/spline_beam.hpp"
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/elements/strut_tie.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/rotation.hpp"
+#include "compile_truss.hpp"
+#include "model_building.hpp"
 
 namespace cranesim {
 namespace {
-
-const char* kAxisNames[] = {"x", "y", "z"};
-
-std::vector<std::string> rowLabels(const Constraint& c) {
-  const std::vector<std::string> position = {"x", "y", "z"};
-  const std::vector<std::string> lock = {"rot_yz", "rot_zx", "rot_xy"};
-  const std::string i = kAxisNames[c.axis], p = kAxisNames[(c.axis + 1) % 3], q = kAxisNames[(c.axis + 2) % 3];
-  std::vector<std::string> out;
-  switch (c.type) {
-    case ConstraintType::Spherical: out = position; break;
-    case ConstraintType::Fixed:
-      out = position;
-      out.insert(out.end(), lock.begin(), lock.end());
-      break;
-    case ConstraintType::Revolute:
-      out = position;
-      out.push_back("rot_" + i + p);
-      out.push_back("rot_" + i + q);
-      if (c.drive) out.push_back("angle");
-      break;
-    case ConstraintType::Prismatic:
-      out = {"slide_" + p, "slide_" + q};
-      out.insert(out.end(), lock.begin(), lock.end());
-      if (c.drive) out.push_back("displacement");
-      break;
-    case ConstraintType::Distance: out = {"length"}; break;
-  }
-  for (auto& label : out) label = c.name + "/" + label;
-  return out;
-}
-
-/// Section axes of a straight member: x along it, z as close to `z_hint` as possible.
-Mat3 memberFrame(const MemberSpec& m) {
-  const Vec3 x = (m.end - m.start).normalized();
-  Vec3 z = m.z_axis - m.z_axis.dot(x) * x;
-  if (z.norm() < 1e-6) {  // hint along the member: fall back to the global z, then y
-    z = Vec3::UnitZ() - x.z() * x;
-    if (z.norm() < 1e-6) z = Vec3::UnitY() - x.y() * x;
-  }
-  z.normalize();
-  Mat3 R;
-  R << x, z.cross(x), z;
-  return R;
-}
-
-template <class Kernel>
-void addElement(Model& model, Kernel kernel, const std::vector<int>& nodes) {
-  std::vector<int> q, v;
-  for (int n : nodes) {
-    const Node& node = model.nodes[n];
-    for (int k = 0; k < node.size(); ++k) q.push_back(node.q + k), v.push_back(node.v + k);
-  }
-  model.elements.push_back(std::make_unique<KernelElement<Kernel>>(std::move(kernel), nodes, q, v));
-}
 
 NodeKind memberNodeKind(MemberType type) {
   switch (type) {
@@ -72,16 +22,18 @@ NodeKind memberNodeKind(MemberType type) {
     case MemberType::Timoshenko: return NodeKind::Frame;
     case MemberType::SplineBeam: return NodeKind::FrameStretch;
     case MemberType::Rope: return NodeKind::PointSlope;
+    case MemberType::Truss: break;
   }
   return NodeKind::Frame;
 }
 
 void compileMember(Model& model, const MemberSpec& m) {
-  const Mat3 R = memberFrame(m);
+  const Mat3 R = memberFrame(m.start, m.end, m.z_axis);
   const Vec3 axis = m.end - m.start;
   const double chord = axis.norm();
   const double unstretched = m.length ? (*m.length)(model.solver.t_start) : chord;
   if (!(unstretched > 0.0)) throw SceneError(m.where, "the rope's unstretched length must be positive");
+  if (m.length) model.parameter_profiles.push_back(*m.length);
   const NodeKind kind = memberNodeKind(m.type);
   std::vector<int> nodes;
   for (int i = 0; i <= m.segments; ++i) {
@@ -142,6 +94,7 @@ void compileMember(Model& model, const MemberSpec& m) {
         addElement(model, k, pair);
         break;
       }
+      case MemberType::Truss: break;
     }
   }
 }
@@ -176,7 +129,15 @@ Model compileModel(const Scene& scene) {
     }
   }
 
-  for (const MemberSpec& m : scene.members) compileMember(model, m);
+  for (const MemberSpec& m : scene.members) {
+    if (m.type != MemberType::Truss) {
+      compileMember(model, m);
+      continue;
+    }
+    const auto type = std::find_if(scene.trusses.begin(), scene.trusses.end(), [&](const TrussDescription& d) { return d.name == m.truss; });
+    if (type == scene.trusses.end()) throw SceneError(m.where, fmt::format("unknown truss type '{}'", m.truss));
+    compileTrussMember(model, m, *type);
+  }
 
   const auto resolve = [&](const std::string& name, const SourceLocation& where) {
     const int j = model.findJoint(name);
@@ -199,12 +160,8 @@ Model compileModel(const Scene& scene) {
                                                       model.nodes[n1].name));
     c.axis = cs.axis;
     c.drive = cs.drive;
-    c.rows = constraintRows(c.type, c.drive.has_value());
-    c.row = model.m;
     c.where = cs.where;
-    c.row_labels = rowLabels(c);
-    model.m += c.rows;
-    model.constraints.push_back(std::move(c));
+    addConstraint(model, std::move(c));
   }
 
   for (const LoadSpec& ls : scene.loads) {

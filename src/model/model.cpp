@@ -45,6 +45,7 @@ std::vector<double> Model::breakpoints() const {
   for (const Constraint& c : constraints)
     if (c.drive) add(*c.drive);
   for (const Load& l : loads) add(l.scale);
+  for (const Profile& p : parameter_profiles) add(p);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;

@@ -4,6 +4,9 @@
 
 #include <Eigen/SparseLU>
 
+#include <algorithm>
+#include <numbers>
+
 #include "cranesim/math/rotation.hpp"
 
 namespace cranesim {
@@ -80,6 +83,16 @@ void reparameteriseAll(const Model& model, VecX& x) {
   }
 }
 
+/// The largest step fraction (≤ 1) that turns no node by more than π/2: a rotation vector is
+/// meaningful within a turn, and a mechanism far from its rest position would otherwise spin
+/// its rotation vectors by millions of radians.
+double rotationStepLimit(const Model& model, const VecX& dx) {
+  double limit = 1.0;
+  for (const Node& n : model.nodes)
+    if (n.hasRotation()) limit = std::min(limit, 0.5 * std::numbers::pi / std::max(dx.segment<3>(n.q + 3).norm(), 1e-300));
+  return limit;
+}
+
 /// Damped Newton; returns the iterations used, or −(iterations + 1) on
 /// failure.
 int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why) {
@@ -92,30 +105,38 @@ int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticO
     const Eigen::SparseMatrix<double> J = system.jacobian(x);
     Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
     lu.compute(J);
+    VecX dx;
+    if (lu.info() == Eigen::Success) dx = -lu.solve(r);
+    // A Jacobian that factorises but would turn a node by thousands of turns is singular to
+    // rounding (a body hanging on its joint before the joint carries load). A shift barely
+    // above rounding leaves the stiffness-free directions to rounding too: the shift grows
+    // until the step turns no node by more than the cap of rotationStepLimit.
     const double magnitude = J.coeffs().cwiseAbs().maxCoeff();
     bool shifted_step = false;
-    for (double shift = 1e-10 * magnitude; lu.info() != Eigen::Success && shift < 1e-2 * magnitude; shift *= 100.0) {
+    const auto wild = [&](double limit) { return lu.info() != Eigen::Success || rotationStepLimit(model, dx) < limit; };
+    for (double shift = 1e-10 * magnitude; wild(shifted_step ? 1.0 : 1e-3) && shift < magnitude; shift *= 100.0) {
       Eigen::SparseMatrix<double> shifted = J;
       for (int k = 0; k < model.nv; ++k) shifted.coeffRef(k, k) += shift;
       lu.compute(shifted);
       shifted_step = true;
+      if (lu.info() == Eigen::Success) dx = -lu.solve(r);
     }
     if (lu.info() != Eigen::Success) {
       why = "singular equilibrium Jacobian (a mechanism without stiffness in some direction?)";
       return -it;
     }
-    const VecX dx = -lu.solve(r);
     // Damped Newton: a step s is accepted when the residual decreases (Armijo) or, for an
     // unshifted Jacobian, when it passes the natural monotonicity test (Deuflhard): the
-    // simplified Newton correction from
-    // the trial point, with the same factorisation, is shorter than the step's own,
-    // ‖Δx̄(s)‖ ≤ (1 − s/4)‖Δx‖ (coordinates only: λ follows q). The second test is blind to the
-    // scaling of the equations: the linearised step of a stiff beam stretches it to second
-    // order, which multiplies the force residual by 10³ although the step is excellent (the
-    // cantilever of 8.1.2: 8 iterations with it, 333 without). The first one keeps the
-    // progress on a slack rope, whose Levenberg–Marquardt-shifted steps are not Newton steps.
+    // simplified Newton correction from the trial point, with the same factorisation, is
+    // shorter than the step's own, ‖Δx̄(s)‖ ≤ (1 − s/4)‖Δx‖ (coordinates only: λ follows q).
+    // The second test is blind to the scaling of the equations: the linearised step of a stiff
+    // beam stretches it to second order, which multiplies the force residual by 10³ although
+    // the step is excellent (the cantilever of 8.1.2: 8 iterations with it, 333 without). The
+    // first one keeps the progress on a slack rope, whose Levenberg–Marquardt-shifted steps
+    // are not Newton steps.
     const double merit = r.squaredNorm(), correction = dx.head(model.nq).norm();
-    double step = 1.0;
+    double step = rotationStepLimit(model, dx);
+    const bool full_step_allowed = step == 1.0;
     VecX trial;
     VecX r_trial;
     for (int k = 0; k < 30; ++k, step *= 0.5) {
@@ -136,8 +157,11 @@ int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticO
                         r.cwiseAbs().maxCoeff());
       return -(it + 1);
     }
+    // Converged only on a full step: a short damped step proves nothing.
     const double scale = 1.0 + x.head(model.nq).cwiseAbs().maxCoeff();
-    if ((step * dx.head(model.nq)).cwiseAbs().maxCoeff() < options.tolerance * scale) return it;
+    if (full_step_allowed && step == 1.0 &&
+        (step * dx.head(model.nq)).cwiseAbs().maxCoeff() < options.tolerance * scale)
+      return it;
   }
   why = fmt::format("no convergence in {} Newton iterations (residual {:.3g})", options.max_iterations,
                     r.cwiseAbs().maxCoeff());

@@ -12,6 +12,7 @@ Environment: CRANESIM_BIN (default <repo>/build/crane-sim) and CRANESIM_SOURCE_D
 (default: two levels up from this file).
 """
 
+import math
 import os
 import re
 import subprocess
@@ -234,3 +235,63 @@ def test_solver_failure_keeps_incomplete_results(tmp_path: Path):
     info = crane_sim("info", out, cwd=tmp_path)
     assert info.returncode == 0, info.stderr
     assert re.search(r"^\s+/time\s", info.stdout, re.MULTILINE), info.stdout
+
+
+def test_modes_of_the_pendulum(tmp_path: Path):
+    """configs/pendulum.yaml hanging (from its 90° start Newton may reach the upright equilibrium):
+    a 1 m, 1 kg rod hinged at one end, f = √(g d / (I_c/m + d²)) / 2π."""
+    text = PENDULUM.read_text(encoding="utf-8")
+    text, n_position = re.subn(r"^(\s+position:) \[-0.5, 0, 0\]", r"\1 [0, 0, -0.5]", text, flags=re.MULTILINE)
+    text, n_rotation = re.subn(r"angle_deg: 90\}", "angle_deg: 0}", text)
+    assert n_position == 1 and n_rotation == 1
+    scene = tmp_path / "hanging.yaml"
+    scene.write_text(text, encoding="utf-8")
+    out = tmp_path / "modes.h5"
+    result = crane_sim("modes", scene, "--count", 3, "-o", out, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert out.is_file() and not Path(f"{out}.partial").exists()
+    expected = math.sqrt(9.81 * 0.5 / (1 / 12 + 0.25)) / (2 * math.pi)
+    assert "degrees of freedom: 1, rigid-body modes: 0," in result.stdout
+    assert re.search(rf"^\s+1\s+{expected:.6f}\s+{1 / expected:.6g}\s", result.stdout, re.MULTILINE), result.stdout
+
+    assert results_attributes(out)["analysis"] == "modes"
+    with h5py.File(out, "r") as f:
+        frequency = f["modes/frequency"][:]
+        shapes = f["modes/shapes"][:]
+        labels = [s.decode() for s in f["model/velocity_labels"][:]]
+        assert f["equilibrium/q"].shape == (6,) and f["equilibrium/lambda"].shape == (5,)
+        tip = [s.decode() for s in f["model/joints"][:]].index("rod.tip")
+        tip_displacement = f["modes/joint_displacements"][0, tip]
+    assert frequency == pytest.approx([expected], rel=1e-9)
+    assert shapes.shape == (1, 6)
+    assert labels == [f"rod.{c}" for c in ("r_x", "r_y", "r_z", "theta_x", "theta_y", "theta_z")]
+    # Mass-normalised: a turn δθ about the hinge with I_pivot δθ² = 1, the tip moving along x.
+    turn = 1 / math.sqrt(1 / 12 + 0.25)
+    assert abs(shapes[0, labels.index("rod.theta_y")]) == pytest.approx(turn, rel=1e-9)
+    assert abs(tip_displacement[0]) == pytest.approx(turn, rel=1e-9)
+    assert tip_displacement[1:] == pytest.approx([0, 0], abs=1e-9)
+
+    info = crane_sim("info", out, cwd=tmp_path)
+    assert info.returncode == 0, info.stderr
+    assert re.search(r"^\s+/modes/frequency\s", info.stdout, re.MULTILINE), info.stdout
+
+
+@pytest.mark.parametrize("arguments", [["--count", "-1"], ["--count", "many"]])
+def test_modes_rejects_bad_arguments(arguments: list, tmp_path: Path):
+    result = crane_sim("modes", PENDULUM, *arguments, cwd=tmp_path)
+    assert result.returncode == EXIT_BAD_INPUT
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_modes_bad_scene_and_missing_equilibrium(tmp_path: Path):
+    bad = SOURCE_DIR / "tests" / "bad_scenes" / "negative_mass.yaml"
+    assert_reported(crane_sim("modes", bad, cwd=tmp_path), bad, *expectations(bad))
+    # A body without supports falls: there is no equilibrium to vibrate about.
+    falling = tmp_path / "falling.yaml"
+    falling.write_text("name: falling body\ngravity: [0, 0, -9.81]\n"
+                       "bodies:\n  - {name: box, mass: 1.0, inertia: [0.1, 0.1, 0.1]}\n"
+                       "solver: {t_end: 1}\n", encoding="utf-8")
+    result = crane_sim("modes", falling, cwd=tmp_path)
+    assert result.returncode == EXIT_SOLVER_FAILURE, result.stderr
+    assert "static equilibrium not found" in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["falling.yaml"]

@@ -37,6 +37,8 @@ class Assembler {
   /// Scales gravity and applied loads (statics ramps them from 0 to 1).
   void setLoadFactor(double factor) { load_factor_ = factor; }
   double loadFactor() const { return load_factor_; }
+  /// Adds α M(q) dq to the equations of motion: the artificial damping of static relaxation.
+  void setMassDamping(double alpha) { mass_damping_ = alpha; }
   /// Size of y and offsets of its parts.
   int size() const { return size_; }
   int vOffset() const { return model_.nq; }
@@ -86,6 +88,7 @@ class Assembler {
   const Model& model_;
   Formulation formulation_;
   double load_factor_ = 1.0;
+  double mass_damping_ = 0.0;
   int size_ = 0;
   SparsityPattern pattern_;
   std::vector<NodeBlocks> node_blocks_;

@@ -345,7 +345,7 @@ struct SplineBeamKernel {
 
     SectionDerivatives<S> out;
     out.alpha << phi12 * xi, atan2s(S(-a(2)), rho), atan2s(a(1), a(0));
-    out.dalpha.row(0) = dphi12 * xi;
+    out.dalpha.row(0) = dphi12 * S(xi);
     out.dalpha.row(1) = gpsi.transpose().lazyProduct(da);
     out.dalpha.row(2) = gtheta.transpose().lazyProduct(da);
 
@@ -354,7 +354,7 @@ struct SplineBeamKernel {
     const S dphi = phi12 / length;
     const S kx = dphi - sp * dtheta, ky = cf * dpsi + sf * cp * dtheta, kz = -(sf * dpsi) + cf * cp * dtheta;
     out.strain << norm - 1.0, kx, ky, kz;
-    const Eigen::Matrix<S, 1, kLocal> ddphi = dphi12 / length;
+    const Eigen::Matrix<S, 1, kLocal> ddphi = dphi12 / S(length);
     const Eigen::Matrix<S, 1, kLocal> ddpsi = hpsi.transpose().lazyProduct(da) + gpsi.transpose().lazyProduct(dc);
     const Eigen::Matrix<S, 1, kLocal> ddtheta = htheta.transpose().lazyProduct(da) + gtheta.transpose().lazyProduct(dc);
     out.dstrain.row(0) = (a / norm).transpose().lazyProduct(da);

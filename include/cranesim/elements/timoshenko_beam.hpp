@@ -230,13 +230,21 @@ struct TimoshenkoBeamKernel {
 
   /// Elastic and damping forces along dq: J_dᵀ K (d + η J_d dq), J_d = ∂d/∂(twist) by AD.
   template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
+    return elasticForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                           q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
+                           localStiffness());
+  }
+
+  /// The same from the end frames and a precomputed K = localStiffness() (for callers that
+  /// know the frames as matrices, e.g. the super truss element).
+  template <class S>
+  V<S> elasticForce(const Vec3T<S>& r1s, const Mat3T<S>& R1, const Vec3T<S>& r2s, const Mat3T<S>& R2, const V<S>& v,
+                    const Mat12& K) const {
     using D = Dual<S, 12>;
     Eigen::Matrix<D, 12, 1> delta;
     for (int k = 0; k < 12; ++k) delta(k) = seeded<S, 12>(S(0.0), k);
-    const Mat3T<S> R1 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3)));
-    const Mat3T<S> R2 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)));
-    const Vec3T<D> r1 = q.template segment<3>(0).template cast<D>() + delta.template segment<3>(0);
-    const Vec3T<D> r2 = q.template segment<3>(6).template cast<D>() + delta.template segment<3>(6);
+    const Vec3T<D> r1 = r1s.template cast<D>() + delta.template segment<3>(0);
+    const Vec3T<D> r2 = r2s.template cast<D>() + delta.template segment<3>(6);
     const CoRotated<D> c = coRotate<D>(r1, beam_detail::perturbed<D, S>(R1, Vec3T<D>(delta.template segment<3>(3))), r2,
                                        beam_detail::perturbed<D, S>(R2, Vec3T<D>(delta.template segment<3>(9))));
     Eigen::Matrix<S, 12, 1> d;
@@ -247,7 +255,7 @@ struct TimoshenkoBeamKernel {
     }
     Eigen::Matrix<S, 12, 1> strain = d;
     if (damping > 0.0) strain += S(damping) * (Jd * v);
-    return Jd.transpose() * (localStiffness().template cast<S>() * strain);
+    return Jd.transpose() * (K.template cast<S>() * strain);
   }
 
   // ---------------------------------------------------------------------------------------------
@@ -332,7 +340,10 @@ struct TimoshenkoBeamKernel {
   /// M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds, accumulated block by block (H_x has identity blocks,
   /// H_Ω zero blocks).
   template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const Q<S>& q, double = 0.0) const {
-    const EndFrames<S> e = endFrames<S>(q);
+    return massMatrix<S>(endFrames<S>(q));
+  }
+
+  template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const EndFrames<S>& e) const {
     const double rhoA = material.density * section.area;
     const Vec3T<S> J = rotaryInertia().template cast<S>();
     const GaussRule rule = gaussLegendre(mass_points);
@@ -358,17 +369,24 @@ struct TimoshenkoBeamKernel {
   /// + H_Ωᵀ (ρJ Ḣ_Ω dq + Ω × ρJ Ω) ds. Ḣ dq is the derivative of H(q(t)) dq along the motion
   /// r(t) = r + t ṙ, R(t) = R (I + t ω̃) with dq held constant (one forward-AD direction).
   template <class S> V<S> inertialAndGravityForce(const Q<S>& q, const V<S>& v, const Vec3& gravity) const {
+    return inertialAndGravityForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                                      q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
+                                      gravity);
+  }
+
+  /// The same from the end frames.
+  template <class S>
+  V<S> inertialAndGravityForce(const Vec3T<S>& r1s, const Mat3T<S>& R1, const Vec3T<S>& r2s, const Mat3T<S>& R2,
+                               const V<S>& v, const Vec3& gravity) const {
     using P = Dual<S, 1>;
     using beam_detail::withDerivatives;
-    const Mat3T<S> R1 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3)));
-    const Mat3T<S> R2 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)));
     const Mat3T<S> dR1 = R1 * skew<S>(Vec3T<S>(v.template segment<3>(3)));
     const Mat3T<S> dR2 = R2 * skew<S>(Vec3T<S>(v.template segment<3>(9)));
     Vec3T<P> r1, r2;
     Mat3T<P> R1p, R2p;
     for (int i = 0; i < 3; ++i) {
-      r1(i) = withDerivatives<S, 1>(q(i), Eigen::Matrix<S, 1, 1>(v(i)));
-      r2(i) = withDerivatives<S, 1>(q(6 + i), Eigen::Matrix<S, 1, 1>(v(6 + i)));
+      r1(i) = withDerivatives<S, 1>(r1s(i), Eigen::Matrix<S, 1, 1>(v(i)));
+      r2(i) = withDerivatives<S, 1>(r2s(i), Eigen::Matrix<S, 1, 1>(v(6 + i)));
       for (int j = 0; j < 3; ++j) {
         R1p(i, j) = withDerivatives<S, 1>(R1(i, j), Eigen::Matrix<S, 1, 1>(dR1(i, j)));
         R2p(i, j) = withDerivatives<S, 1>(R2(i, j), Eigen::Matrix<S, 1, 1>(dR2(i, j)));
@@ -412,7 +430,10 @@ struct TimoshenkoBeamKernel {
 
   /// −∫ ρA g·x ds (same quadrature as the gravity forces) + strain energy.
   double gravityPotential(const Q<double>& q, const Vec3& gravity) const {
-    const EndFrames<double> e = endFrames<double>(q);
+    return gravityPotential(endFrames<double>(q), gravity);
+  }
+
+  double gravityPotential(const EndFrames<double>& e, const Vec3& gravity) const {
     const GaussRule rule = gaussLegendre(mass_points);
     double V = 0.0;
     for (int g = 0; g < rule.points; ++g)

@@ -29,6 +29,8 @@ struct ElementInput {
   const double* a;   // generalized accelerations d(dq)/dt
   double t;
   Vec3 gravity;
+  /// α of a mass-proportional damping force α M(q) dq, added to F (static relaxation only).
+  double mass_damping = 0.0;
 };
 
 class Element {
@@ -42,7 +44,7 @@ class Element {
   virtual const std::vector<int>& velocityIndices() const = 0;
   /// Global q indices of the local coordinates, in order.
   virtual const std::vector<int>& coordinateIndices() const = 0;
-  /// r = M(q) a + F(q, v, t).
+  /// r = M(q) (a + α v) + F(q, v, t), α = in.mass_damping.
   virtual void residual(const ElementInput& in, double* r) const = 0;
   /// J = [∂r/∂q | ∂r/∂v + cj M], column-major, size() × (nq_local + size()).
   virtual void jacobian(const ElementInput& in, double cj, double* J) const = 0;
@@ -72,8 +74,9 @@ template <class Kernel> class KernelElement final : public Element {
   void residual(const ElementInput& in, double* r) const override {
     const Qd q = gatherQ(in.q);
     Eigen::Map<Vd> out(r);
-    out = kernel_.template massMatrix<double>(q, in.t) * gatherV(in.a) +
-          kernel_.template force<double>(q, gatherV(in.v), in.t, in.gravity);
+    const Vd v = gatherV(in.v);
+    out = kernel_.template massMatrix<double>(q, in.t) * (gatherV(in.a) + in.mass_damping * v) +
+          kernel_.template force<double>(q, v, in.t, in.gravity);
   }
 
   void jacobian(const ElementInput& in, double cj, double* J) const override {
@@ -84,7 +87,9 @@ template <class Kernel> class KernelElement final : public Element {
     Eigen::Matrix<D, kNv, 1> v;
     for (int k = 0; k < kNq; ++k) q(k) = seeded<double, kNq + kNv>(qd(k), k);
     for (int k = 0; k < kNv; ++k) v(k) = seeded<double, kNq + kNv>(vd(k), kNq + k);
-    const Eigen::Matrix<D, kNv, 1> r = kernel_.template massMatrix<D>(q, in.t) * ad.template cast<D>() +
+    Eigen::Matrix<D, kNv, 1> a = ad.template cast<D>();
+    if (in.mass_damping != 0.0) a += in.mass_damping * v;
+    const Eigen::Matrix<D, kNv, 1> r = kernel_.template massMatrix<D>(q, in.t) * a +
                                        kernel_.template force<D>(q, v, in.t, in.gravity);
     Eigen::Map<Eigen::Matrix<double, kNv, kNq + kNv>> Jm(J);
     for (int i = 0; i < kNv; ++i) Jm.row(i) = r(i).derivatives().transpose();

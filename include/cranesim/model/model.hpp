@@ -87,6 +87,8 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Constraint> constraints;
   std::vector<Load> loads;
+  /// Time-dependent element parameters (rope lengths): their breakpoints restart the integrator.
+  std::vector<Profile> parameter_profiles;
   Vec3 gravity = Vec3::Zero();
   int nq = 0;  // size of q
   int nv = 0;  // size of dq
@@ -102,7 +104,8 @@ struct Model {
   /// Frame of a joint at coordinates q.
   Frame jointFrame(const double* q, int joint) const;
   int findJoint(const std::string& name) const;  // −1 if absent
-  /// All times where a drive or load profile has a kink or jump in its second derivative.
+  /// All times where a drive, load or element-parameter profile has a kink or jump in its
+  /// second derivative.
   std::vector<double> breakpoints() const;
 };
 

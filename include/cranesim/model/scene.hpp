@@ -9,6 +9,7 @@
 #include "cranesim/math/profile.hpp"
 #include "cranesim/math/types.hpp"
 #include "cranesim/model/source_location.hpp"
+#include "cranesim/model/truss_geometry.hpp"
 
 namespace cranesim {
 
@@ -32,11 +33,17 @@ struct RigidBodySpec {
   SourceLocation where;
 };
 
-enum class MemberType { StrutTie, Timoshenko, SplineBeam, Rope };
+enum class MemberType { StrutTie, Timoshenko, SplineBeam, Rope, Truss };
+
+/// How a truss member is modelled: one super truss element (3.5) or every tube its own beam.
+enum class TrussFidelity { SuperTruss, Members };
 
 /// A flexible member: a straight line of `segments` elements from `start` to `end`, with nodes
 /// `<name>.n0 … <name>.n<segments>` (joints of the same names; `<name>.start`, `<name>.end`
 /// name the end nodes). Section axes: x along the member, z towards `z_axis`.
+/// A truss member (type Truss) places the truss type `truss` (Scene::trusses) with its axis from
+/// `start` to `end` and its z axis towards `z_axis`; its end sections are the joints
+/// `<name>.start` and `<name>.end`. `segments`, `quadrature` and `damping` apply to every tube.
 struct MemberSpec {
   std::string name;
   MemberType type = MemberType::Timoshenko;
@@ -50,6 +57,9 @@ struct MemberSpec {
   bool constant_volume = true;    // strut tie: section shrinks with stretch (3-27)
   double smoothing = 0.0;         // strut tie: smoothing factor h (3-16)
   double damping = 0.0;           // Kelvin–Voigt retardation time η of the material, s (0: undamped)
+  std::string truss;              // truss: the truss type's name
+  TrussFidelity fidelity = TrussFidelity::Members;
+  MemberType tube_element = MemberType::Timoshenko;  // truss with fidelity Members: the tubes' beam element
   SourceLocation where;
 };
 
@@ -78,6 +88,8 @@ struct LoadSpec {
 
 enum class Formulation { GGL, Baumgarte };
 
+enum class StaticMethod { Newton, Relaxation };
+
 struct SolverSpec {
   Formulation formulation = Formulation::GGL;
   double t_start = 0.0;
@@ -103,6 +115,11 @@ struct SolverSpec {
   /// Start from the given state, or from the static equilibrium near it (thesis: every crane
   /// motion starts from equilibrium).
   bool start_from_equilibrium = false;
+  /// How `crane-sim static` and `initial_state: equilibrium` find the equilibrium: Newton on
+  /// the KKT system, or the thesis' damped dynamics (relaxation) followed by Newton.
+  StaticMethod static_method = StaticMethod::Newton;
+  double relaxation_damping = 1.0;     // α of the damping force α M dq, 1/s (≈ 2ω of the slowest mode)
+  double relaxation_duration = 100.0;  // pseudo-time limit of the relaxation, s
 };
 
 struct OutputSpec {
@@ -116,6 +133,7 @@ struct Scene {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
   std::vector<JointSpec> ground_joints;
   std::vector<RigidBodySpec> bodies;
+  std::vector<TrussDescription> trusses;  // truss types, referenced by truss members
   std::vector<MemberSpec> members;
   std::vector<ConstraintSpec> constraints;
   std::vector<LoadSpec> loads;

@@ -1,0 +1,86 @@
+#pragma once
+// A Timoshenko beam (timoshenko_beam.hpp) on two frame nodes whose axes differ from the beam's
+// section axes by constant rotations (the rigid connection of assumption 3, 3.5.1): the section
+// frame of end e is R_e = R(φ_e) O_e with O_e fixed. Beams of different directions can then
+// share one frame node, as every joint of a truss does in the full-member model.
+//
+// With T = diag(I, O₁ᵀ, I, O₂ᵀ) the beam's velocities are dq_b = T dq (the body angular velocity
+// of the section frame is O_eᵀ ω_e), so by virtual power M = Tᵀ M_b T and F = Tᵀ F_b. The beam is
+// evaluated from its end frames as matrices, so no rotation vector of the section frames is
+// ever formed.
+
+#include <array>
+
+#include "cranesim/elements/timoshenko_beam.hpp"
+
+namespace cranesim {
+
+struct RotatedEndsBeamKernel {
+  static constexpr int kNodes = 2;
+  static constexpr int kNq = 12;
+  static constexpr int kNv = 12;
+  template <class S> using Q = Eigen::Matrix<S, kNq, 1>;
+  template <class S> using V = Eigen::Matrix<S, kNv, 1>;
+  using Mat12 = TimoshenkoBeamKernel::Mat12;
+
+  RotatedEndsBeamKernel(TimoshenkoBeamKernel beam, const Mat3& offset1, const Mat3& offset2)
+      : beam_(std::move(beam)), offset_{offset1, offset2}, stiffness_(beam_.localStiffness()) {}
+
+  const TimoshenkoBeamKernel& beam() const { return beam_; }
+
+  template <class S> Mat3T<S> sectionRotation(const Q<S>& q, int end) const {
+    return rotationMatrix<S>(Vec3T<S>(q.template segment<3>(6 * end + 3))) * offset_[end].template cast<S>();
+  }
+
+  /// T v: the angular velocities turned into the section axes.
+  template <class S> V<S> beamVelocities(const V<S>& v) const {
+    V<S> b = v;
+    for (int e = 0; e < 2; ++e) b.template segment<3>(6 * e + 3) = offset_[e].transpose().template cast<S>() * v.template segment<3>(6 * e + 3);
+    return b;
+  }
+
+  /// Tᵀ f for a generalized force f of the beam.
+  template <class S> V<S> nodeForce(const V<S>& f) const {
+    V<S> n = f;
+    for (int e = 0; e < 2; ++e) n.template segment<3>(6 * e + 3) = offset_[e].template cast<S>() * f.template segment<3>(6 * e + 3);
+    return n;
+  }
+
+  template <class S> typename TimoshenkoBeamKernel::EndFrames<S> endFrames(const Q<S>& q) const {
+    return beam_.endFrames<S>(Vec3T<S>(q.template segment<3>(0)), sectionRotation<S>(q, 0), Vec3T<S>(q.template segment<3>(6)),
+                              sectionRotation<S>(q, 1));
+  }
+
+  template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const Q<S>& q, double = 0.0) const {
+    Mat12 T = Mat12::Identity();
+    for (int e = 0; e < 2; ++e) T.block<3, 3>(6 * e + 3, 6 * e + 3) = offset_[e].transpose();
+    const Eigen::Matrix<S, 12, 12> Tc = T.cast<S>();
+    return Tc.transpose() * beam_.massMatrix<S>(endFrames<S>(q)) * Tc;
+  }
+
+  template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
+    const Vec3T<S> r1 = q.template segment<3>(0), r2 = q.template segment<3>(6);
+    const Mat3T<S> R1 = sectionRotation<S>(q, 0), R2 = sectionRotation<S>(q, 1);
+    const V<S> vb = beamVelocities<S>(v);
+    return nodeForce<S>(V<S>(beam_.inertialAndGravityForce<S>(r1, R1, r2, R2, vb, gravity) +
+                             beam_.elasticForce<S>(r1, R1, r2, R2, vb, stiffness_)));
+  }
+
+  double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
+    return 0.5 * v.dot(massMatrix<double>(q) * v);
+  }
+
+  /// Gravity potential + strain energy ½ dᵀ K d.
+  double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const {
+    const Vec3 r1 = q.segment<3>(0), r2 = q.segment<3>(6);
+    const auto d = beam_.coRotate<double>(r1, sectionRotation<double>(q, 0), r2, sectionRotation<double>(q, 1)).d;
+    return beam_.gravityPotential(endFrames<double>(q), gravity) + 0.5 * d.dot(stiffness_ * d);
+  }
+
+ private:
+  TimoshenkoBeamKernel beam_;
+  std::array<Mat3, 2> offset_;
+  Mat12 stiffness_;
+};
+
+}  // namespace cranesim

@@ -1,0 +1,442 @@
+#pragma once
+// Super truss element (thesis 3.5): a whole lattice section (chords, lacing, end-section cross
+// beams; include/cranesim/model/truss_geometry.hpp) described by its two end sections only.
+//
+// Coordinates (3-86): q_e = [r¹, φ¹, r², φ²] of the end-section frames (truss frame translated
+// to x = 0 and x = length in the reference configuration), dq_e = [ṙ¹, ω¹, ṙ², ω²] with ω in
+// the section's body frame. Twelve DOF, whatever the number of tubes.
+//
+// Kinematics of the truss nodes (all driven by the two section frames, R_i = R(φⁱ)):
+// - End-section nodes are rigid with their section (assumption 1, 3-87..3-89):
+//     r = rⁱ + R_i p,  node frame R_i,  ṙ = ṙⁱ − R_i p̃ ωⁱ,  ω_node = ωⁱ.
+// - Main beams (chords) are cubic Hermite splines (assumption 2, 3-92) between their end nodes k
+//   (section 1) and l (section 2), with unit end tangents R_1 t and R_2 t, t the chord's reference
+//   direction in the section frames, and the reference chord length L_c as arc length: no axial
+//   stretch degree of freedom (s = 1 in the spline beam's terms). The thesis says the tangents
+//   stay "parallel to the normal direction of the cross-section"; for chords parallel to the
+//   truss axis (type 2) that is R_i e_x, and for inclined chords (transition pieces) the rigid
+//   connection (assumption 3, 3-83) turns the chord's own reference direction with the section,
+//   which is what R_i t does in both cases.
+//     r(ξ) = N₀¹ rᵏ + N₁¹ R_1 t + N₀² rˡ + N₁² R_2 t   (A-9, hermite.hpp)
+//   The internal node at ξ takes the spline's section frame R(ξ) = Rᵏ C(α(ξ)) of the spline beam
+//   (3-64..3-67, spline_beam.hpp: Cardan angles of the tangent relative to the chord frame
+//   Rᵏ = R_1 R_c at node k, torsion interpolated linearly), R_c the chord's reference frame (the
+//   smallest rotation taking e_x onto t). Its velocity map follows from the spline beam's
+//   ∂α/∂δ_local and Λ (spline_beam.hpp: sectionDerivatives, localRates), with the chord end
+//   velocities ṙᵏ = ṙ¹ − R_1 p̃_k ω¹, ωᵏ = R_cᵀ ω¹ (and likewise for l):
+//     ω(ξ) = Cᵀ ωᵏ + T_C (∂α/∂δd) (Rᵏᵀ(ṙˡ − ṙᵏ) + d × ωᵏ) + T_C (∂α/∂δχ) (ωˡ − R₁₂ᵀ ωᵏ).
+// So every node n has a position, a frame and a velocity map [ṙₙ; ωₙ] = Tₙ(q_e) dq_e (6 × 12).
+//
+// Members. Every tube is one Timoshenko beam element (timoshenko_beam.hpp) between two truss
+// nodes, with node frames R_node R_rel, R_rel = R_node,refᵀ R_member,ref constant (rigid
+// connection, 3-83, 3-85). With T_k the 12 × 12 map from dq_e to the member's node velocities
+// (rows of T_a, T_b; angular rows turned by R_relᵀ), the virtual power of each member gives
+// (3-97, 3-99, 3-102)
+//     M_e = Σ T_kᵀ M_k T_k,   F_e = Σ T_kᵀ (F_k + M_k Ṫ_k dq_e),
+// F_k the member's inertial, elastic (and damping) and gravity forces at its node velocities
+// T_k dq_e, and Ṫ_k dq_e its node accelerations at d(dq_e)/dt = 0, obtained by one forward-AD
+// direction along the path r(τ) = r + τṙ, R(τ) = R(I + τω̃) of the section frames. This is the
+// exact kinetic energy of the members' own interpolations, so the inertial forces do no work
+// (dq_eᵀ F_ine = ½ dq_eᵀ Ṁ_e dq_e) and rigid motions carry the exact mass properties of the tubes.
+// Members whose two nodes lie on the same end section (the cross-section beams) move rigidly
+// with it: no elastic force; their mass is lumped once into a rigid body on that section
+// (mass m, first moment s, inertia J about the section origin, from the same Timoshenko mass
+// matrix), whose mass matrix is [[m I, −R s̃], [s̃ Rᵀ, J]] and whose forces are
+// [R(ω × (ω × s)) − m g; ω × Jω − s × Rᵀg].
+//
+// Scalars: templated on S; KernelElement's Jacobian runs everything on Dual<double, 24>. The node
+// kinematics of a call are kept in a per-thread scratch buffer (allocated on the first call of a
+// thread, reused afterwards): the kernel call itself does not allocate.
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "cranesim/elements/spline_beam.hpp"
+#include "cranesim/elements/timoshenko_beam.hpp"
+#include "cranesim/math/autodiff.hpp"
+#include "cranesim/math/hermite.hpp"
+#include "cranesim/math/rotation.hpp"
+#include "cranesim/model/truss_geometry.hpp"
+
+namespace cranesim {
+
+struct SuperTrussKernel {
+  static constexpr int kNodes = 2;
+  static constexpr int kNq = 12;
+  static constexpr int kNv = 12;
+  template <class S> using Q = Eigen::Matrix<S, kNq, 1>;
+  template <class S> using V = Eigen::Matrix<S, kNv, 1>;
+  template <class S> using Vec6T = Eigen::Matrix<S, 6, 1>;
+  template <class S> using NodeMap = Eigen::Matrix<S, 6, kNv>;
+  using Mat12 = Eigen::Matrix<double, 12, 12>;
+  using Mat6 = Eigen::Matrix<double, 6, 6>;
+
+  /// How a truss node follows the end sections.
+  struct NodeModel {
+    int section = -1;  // 0/1: end-section node, rigid with that section; −1: internal node
+    Vec3 offset;       // end-section node: position in its section frame
+    int chord = -1;    // internal node: its chord and station ξ on it
+    double xi = 0.0;
+    Mat3 frame;  // reference node frame in the truss frame: I (section node) or the chord frame R_c
+  };
+  struct ChordModel {
+    Vec3 offset[2];           // end nodes in their section frames
+    Vec3 tangent;             // t: unit reference direction in the section frames
+    Mat3 frame;               // R_c, x axis = t
+    SplineBeamKernel spline;  // its length L_c is the chord's arc length (only the kinematics are used)
+  };
+  struct MemberModel {
+    int node[2];
+    Mat3 relative[2];  // R_rel: member node frame in the node frame (3-83, 3-85)
+    TimoshenkoBeamKernel beam;
+    Mat12 stiffness;   // beam.localStiffness()
+  };
+  /// Mass of the members that move rigidly with one end section, about its origin, section axes.
+  struct RigidPart {
+    double mass = 0.0;
+    Vec3 first_moment = Vec3::Zero();  // s = m c
+    Mat3 inertia = Mat3::Zero();       // J about the section origin
+  };
+
+  double length = 0.0;
+  std::vector<NodeModel> nodes;
+  std::vector<ChordModel> chords;
+  std::vector<MemberModel> members;  // the flexible ones
+  std::array<RigidPart, 2> rigid;
+
+  SuperTrussKernel() = default;
+
+  /// Builds the kernel from a truss geometry. `mass_points`: Gauss points of each tube's mass
+  /// (Timoshenko default 4); `damping`: Kelvin–Voigt retardation time η of every tube, s.
+  explicit SuperTrussKernel(const TrussGeometry& g, int mass_points = 4, double damping = 0.0) : length(g.length) {
+    for (const auto& c : g.chords) {
+      ChordModel m;
+      for (int e = 0; e < 2; ++e) m.offset[e] = sectionOffset(g, c[e], e);
+      const Vec3 chord = m.offset[1] + length * Vec3::UnitX() - m.offset[0];
+      m.tangent = chord.normalized();
+      m.frame = alignX(m.tangent);
+      m.spline.length = chord.norm();
+      chords.push_back(m);
+    }
+    for (int n = 0; n < static_cast<int>(g.nodes.size()); ++n) {
+      const TrussNode& t = g.nodes[n];
+      NodeModel m;
+      m.frame = Mat3::Identity();
+      if (t.end_section >= 0) {
+        m.section = t.end_section;
+        m.offset = sectionOffset(g, n, t.end_section);
+      } else {
+        if (t.chord < 0 || t.chord >= static_cast<int>(chords.size()))
+          throw std::invalid_argument("super truss: an internal node does not lie on a main beam");
+        const ChordModel& c = chords[t.chord];
+        m.chord = t.chord;
+        m.xi = t.xi;
+        m.frame = c.frame;
+        const Vec3 on_chord = c.offset[0] + t.xi * c.spline.length * c.tangent;
+        if ((on_chord - t.position).norm() > 1e-9 * (1.0 + length))
+          throw std::invalid_argument("super truss: an internal node is not at its station on the main beam");
+      }
+      nodes.push_back(m);
+    }
+    Mat6 lumped[2] = {Mat6::Zero(), Mat6::Zero()};
+    const SectionFrames<double> reference = {{Vec3::Zero(), length * Vec3::UnitX()}, {Mat3::Identity(), Mat3::Identity()}};
+    for (const TrussMember& tm : g.members) {
+      MemberModel m;
+      m.node[0] = tm.node1, m.node[1] = tm.node2;
+      const Vec3 axis = g.nodes[tm.node2].position - g.nodes[tm.node1].position;
+      const Mat3 R = memberFrame(axis, tm.z_axis);
+      for (int e = 0; e < 2; ++e) m.relative[e] = nodes[m.node[e]].frame.transpose() * R;
+      m.beam.length = axis.norm();
+      m.beam.section = tm.section;
+      m.beam.material = g.material;
+      m.beam.mass_points = mass_points;
+      m.beam.damping = damping;
+      m.stiffness = m.beam.localStiffness();
+      const int s0 = nodes[m.node[0]].section, s1 = nodes[m.node[1]].section;
+      if (s0 >= 0 && s0 == s1) {  // moves rigidly with section s0: mass only
+        const NodeState<double> a = nodeState<double>(reference, nodes[m.node[0]]);
+        const NodeState<double> b = nodeState<double>(reference, nodes[m.node[1]]);
+        const Mat12 T = memberMap<double>(m, a, b);
+        lumped[s0] += (T.transpose() * m.beam.massMatrix<double>(memberEndFrames<double>(m, a, b)) * T)
+                          .block<6, 6>(6 * s0, 6 * s0);
+      } else {
+        members.push_back(m);
+      }
+    }
+    for (int s = 0; s < 2; ++s) {
+      rigid[s].mass = lumped[s](0, 0);
+      rigid[s].first_moment = unskew(lumped[s].block<3, 3>(3, 0));
+      rigid[s].inertia = lumped[s].block<3, 3>(3, 3);
+    }
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Node kinematics
+
+  template <class T> struct SectionFrames {
+    Vec3T<T> r[2];
+    Mat3T<T> R[2];
+  };
+  /// A node's position, frame and velocity map [ṙ; ω] = map dq_e (ω in the node frame).
+  template <class T> struct NodeState {
+    Vec3T<T> r;
+    Mat3T<T> R;
+    NodeMap<T> map;
+  };
+
+  template <class S> static SectionFrames<S> sectionFrames(const Q<S>& q) {
+    return {{q.template segment<3>(0), q.template segment<3>(6)},
+            {rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)))}};
+  }
+
+  template <class T> NodeState<T> nodeState(const SectionFrames<T>& s, const NodeModel& n) const {
+    NodeState<T> out;
+    out.map.setZero();
+    if (n.section >= 0) {  // (3-87..3-89)
+      const int i = n.section;
+      out.r = s.r[i] + s.R[i] * n.offset.cast<T>();
+      out.R = s.R[i];
+      out.map.template block<3, 3>(0, 6 * i).setIdentity();
+      out.map.template block<3, 3>(0, 6 * i + 3) = -(s.R[i] * skew<T>(Vec3T<T>(n.offset.cast<T>())));
+      out.map.template block<3, 3>(3, 6 * i + 3).setIdentity();
+      return out;
+    }
+    const ChordModel& c = chords[n.chord];
+    const Mat3T<T> Rc = c.frame.cast<T>();
+    const Vec3T<T> pk = c.offset[0].cast<T>(), pl = c.offset[1].cast<T>(), t = c.tangent.cast<T>();
+    const Mat3T<T> Rk = s.R[0] * Rc, Rl = s.R[1] * Rc;
+    const Vec3T<T> rk = s.r[0] + s.R[0] * pk, rl = s.r[1] + s.R[1] * pl;
+    const typename SplineBeamKernel::Relative<T> rel{Rk.transpose() * (rl - rk), Rk.transpose() * Rl, T(1.0), T(1.0)};
+    const HermiteBasis b = hermiteBasis(n.xi, c.spline.length);
+    // Position (3-92 with A-9) and its map.
+    const Vec3T<T> lever1 = T(b.N[0]) * pk + T(b.N[1]) * t, lever2 = T(b.N[2]) * pl + T(b.N[3]) * t;
+    out.r = T(b.N[0]) * s.r[0] + T(b.N[2]) * s.r[1] + s.R[0] * lever1 + s.R[1] * lever2;
+    for (int k = 0; k < 3; ++k) out.map(k, k) = T(b.N[0]), out.map(k, 6 + k) = T(b.N[2]);
+    out.map.template block<3, 3>(0, 3) = -(s.R[0] * skew<T>(lever1));
+    out.map.template block<3, 3>(0, 9) = -(s.R[1] * skew<T>(lever2));
+    // Frame R = Rᵏ C(α) (3-64..3-67) and ω = Cᵀωᵏ + T_C ∂α/∂δ_local Λ dq_chord (3-69).
+    const auto sd = c.spline.template sectionDerivatives<T>(rel, n.xi, false);
+    const Mat3T<T> C = SplineBeamKernel::cardanMatrix<T>(sd.alpha);
+    out.R = Rk * C;
+    const Eigen::Matrix<T, 3, SplineBeamKernel::kLocal> TD = SplineBeamKernel::cardanRateMap<T>(sd.alpha) * sd.dalpha;
+    const Mat3T<T> Td = TD.template leftCols<3>(), Tchi = TD.template middleCols<3>(3);
+    const Mat3T<T> B = Td * Rk.transpose();
+    const Mat3T<T> BRk = B * s.R[0] * skew<T>(pk), BRl = B * s.R[1] * skew<T>(pl);
+    out.map.template block<3, 3>(3, 0) = -B;
+    out.map.template block<3, 3>(3, 3) =
+        BRk + (Mat3T<T>(C.transpose()) + Td * skew<T>(rel.d) - Tchi * rel.R12.transpose()) * Rc.transpose();
+    out.map.template block<3, 3>(3, 6) = B;
+    out.map.template block<3, 3>(3, 9) = Tchi * Rc.transpose() - BRl;
+    return out;
+  }
+
+  /// Position and frame of truss node n.
+  Frame nodeFrame(const Q<double>& q, int n) const {
+    const NodeState<double> s = nodeState<double>(sectionFrames<double>(q), nodes[n]);
+    return {s.r, s.R};
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Kernel contract (element.hpp)
+
+  /// M_e = Σ T_kᵀ M_k T_k (3-97, 3-99, 3-102) + the rigid parts of the end sections.
+  template <class S> Eigen::Matrix<S, kNv, kNv> massMatrix(const Q<S>& q, double = 0.0) const {
+    const SectionFrames<S> s = sectionFrames<S>(q);
+    std::vector<NodeState<S>>& state = scratch<NodeState<S>>();
+    for (std::size_t n = 0; n < nodes.size(); ++n) state[n] = nodeState<S>(s, nodes[n]);
+    Eigen::Matrix<S, kNv, kNv> M = Eigen::Matrix<S, kNv, kNv>::Zero();
+    for (int i = 0; i < 2; ++i) {
+      const RigidPart& p = rigid[i];
+      for (int k = 0; k < 3; ++k) M(6 * i + k, 6 * i + k) = S(p.mass);
+      const Mat3T<S> Rs = s.R[i] * skew<S>(Vec3T<S>(p.first_moment.cast<S>()));
+      M.template block<3, 3>(6 * i, 6 * i + 3) = -Rs;
+      M.template block<3, 3>(6 * i + 3, 6 * i) = -Rs.transpose();
+      M.template block<3, 3>(6 * i + 3, 6 * i + 3) = p.inertia.cast<S>();
+    }
+    for (const MemberModel& m : members) {
+      const NodeState<S>& a = state[m.node[0]];
+      const NodeState<S>& b = state[m.node[1]];
+      const Eigen::Matrix<S, 12, kNv> T = memberMap<S>(m, a, b);
+      const Eigen::Matrix<S, 12, 12> Mk = m.beam.template massMatrix<S>(memberEndFrames<S>(m, a, b));
+      M.noalias() += T.transpose() * (Mk * T);
+    }
+    return M;
+  }
+
+  /// F_e = Σ T_kᵀ (F_k + M_k Ṫ_k dq_e) + the rigid parts' inertial and gravity forces.
+  template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
+    return forces<S>(q, v, gravity, true);
+  }
+
+  /// Elastic and damping forces alone (zero for rigid placements and rigid velocities).
+  template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
+    return forces<S>(q, v, Vec3::Zero(), false);
+  }
+
+  double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
+    return 0.5 * v.dot(massMatrix<double>(q) * v);
+  }
+
+  /// Σ ½ dᵀ K d of the flexible members (3-77 for each Timoshenko tube).
+  double strainEnergy(const Q<double>& q) const {
+    const SectionFrames<double> s = sectionFrames<double>(q);
+    double U = 0.0;
+    for (const MemberModel& m : members) {
+      const auto e = memberEndFrames<double>(m, nodeState<double>(s, nodes[m.node[0]]), nodeState<double>(s, nodes[m.node[1]]));
+      const Eigen::Matrix<double, 12, 1> d = m.beam.coRotate<double>(e.r1, e.R1, e.r2, e.R2).d;
+      U += 0.5 * d.dot(m.stiffness * d);
+    }
+    return U;
+  }
+
+  /// Gravity potential of all tubes + strain energy.
+  double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const {
+    const SectionFrames<double> s = sectionFrames<double>(q);
+    double V = strainEnergy(q);
+    for (int i = 0; i < 2; ++i) V -= gravity.dot(rigid[i].mass * s.r[i] + s.R[i] * rigid[i].first_moment);
+    for (const MemberModel& m : members)
+      V += m.beam.gravityPotential(
+          memberEndFrames<double>(m, nodeState<double>(s, nodes[m.node[0]]), nodeState<double>(s, nodes[m.node[1]])), gravity);
+    return V;
+  }
+
+  /// Total mass of the tubes.
+  double mass() const {
+    double m = rigid[0].mass + rigid[1].mass;
+    for (const MemberModel& k : members) m += k.beam.material.density * k.beam.section.area * k.beam.length;
+    return m;
+  }
+
+ private:
+  static Vec3 sectionOffset(const TrussGeometry& g, int node, int section) {
+    if (node < 0 || node >= static_cast<int>(g.nodes.size()) || g.nodes[node].end_section != section)
+      throw std::invalid_argument("super truss: a main beam does not start and end at end-section nodes");
+    return g.nodes[node].position - (section * g.length) * Vec3::UnitX();
+  }
+
+  /// The smallest rotation taking e_x onto the unit vector t (t·e_x > −1).
+  static Mat3 alignX(const Vec3& t) {
+    const Mat3 K = skew<double>(Vec3(Vec3::UnitX().cross(t)));
+    return Mat3::Identity() + K + K * K / (1.0 + t.x());
+  }
+
+  /// Section axes of a straight tube: x along it, z as close to the hint as possible.
+  static Mat3 memberFrame(const Vec3& axis, const Vec3& z_hint) {
+    const Vec3 x = axis.normalized();
+    Vec3 z = z_hint - z_hint.dot(x) * x;
+    if (z.norm() < 1e-6) throw std::invalid_argument("super truss: a tube's z-axis hint is along the tube");
+    z.normalize();
+    Mat3 R;
+    R << x, z.cross(x), z;
+    return R;
+  }
+
+  template <class Item> static std::vector<Item>& scratchBuffer() {
+    thread_local std::vector<Item> buffer;
+    return buffer;
+  }
+  template <class Item> std::vector<Item>& scratch() const {
+    std::vector<Item>& buffer = scratchBuffer<Item>();
+    if (buffer.size() < nodes.size()) buffer.resize(nodes.size());
+    return buffer;
+  }
+
+  /// T_k: member node velocities [ṙ_a, ω_a, ṙ_b, ω_b] (member node frames) = T_k dq_e.
+  template <class S>
+  static Eigen::Matrix<S, 12, kNv> memberMap(const MemberModel& m, const NodeState<S>& a, const NodeState<S>& b) {
+    Eigen::Matrix<S, 12, kNv> T;
+    const NodeState<S>* end[2] = {&a, &b};
+    for (int e = 0; e < 2; ++e) {
+      T.template middleRows<3>(6 * e) = end[e]->map.template topRows<3>();
+      T.template middleRows<3>(6 * e + 3) = m.relative[e].transpose().cast<S>() * end[e]->map.template bottomRows<3>();
+    }
+    return T;
+  }
+
+  template <class S>
+  static typename TimoshenkoBeamKernel::EndFrames<S> memberEndFrames(const MemberModel& m, const NodeState<S>& a,
+                                                                     const NodeState<S>& b) {
+    return m.beam.endFrames<S>(a.r, Mat3T<S>(a.R * m.relative[0].cast<S>()), b.r, Mat3T<S>(b.R * m.relative[1].cast<S>()));
+  }
+
+  /// A node's state with its velocity v = map dq and its acceleration at d(dq)/dt = 0, a0 = ṁap dq.
+  template <class S> struct NodeMotion {
+    NodeState<S> state;
+    Vec6T<S> v, a0;
+  };
+
+  template <class S> V<S> forces(const Q<S>& q, const V<S>& v, const Vec3& gravity, bool inertia_and_gravity) const {
+    using P = Dual<S, 1>;
+    // Section frames along the path r(τ) = r + τṙ, R(τ) = R(I + τω̃) (first order).
+    const SectionFrames<S> s = sectionFrames<S>(q);
+    SectionFrames<P> path;
+    for (int i = 0; i < 2; ++i) {
+      const Mat3T<S> dR = s.R[i] * skew<S>(Vec3T<S>(v.template segment<3>(6 * i + 3)));
+      for (int j = 0; j < 3; ++j) {
+        path.r[i](j) = P(s.r[i](j), Eigen::Matrix<S, 1, 1>(v(6 * i + j)));
+        for (int k = 0; k < 3; ++k) path.R[i](j, k) = P(s.R[i](j, k), Eigen::Matrix<S, 1, 1>(dR(j, k)));
+      }
+    }
+    const Eigen::Matrix<P, kNv, 1> vp = v.template cast<P>();
+    std::vector<NodeMotion<S>>& motion = scratch<NodeMotion<S>>();
+    for (std::size_t n = 0; n < nodes.size(); ++n) {
+      NodeMotion<S>& out = motion[n];
+      if (!inertia_and_gravity) {
+        out.state = nodeState<S>(s, nodes[n]);
+        out.v = out.state.map * v;
+        continue;
+      }
+      const NodeState<P> p = nodeState<P>(path, nodes[n]);
+      const Vec6T<P> vn = p.map * vp;
+      for (int i = 0; i < 3; ++i) {
+        out.state.r(i) = p.r(i).value();
+        for (int j = 0; j < 3; ++j) out.state.R(i, j) = p.R(i, j).value();
+      }
+      for (int i = 0; i < 6; ++i) {
+        for (int j = 0; j < kNv; ++j) out.state.map(i, j) = p.map(i, j).value();
+        out.v(i) = vn(i).value();
+        out.a0(i) = vn(i).derivatives()(0);
+      }
+    }
+
+    V<S> F = V<S>::Zero();
+    if (inertia_and_gravity) {
+      const Vec3T<S> g = gravity.cast<S>();
+      for (int i = 0; i < 2; ++i) {
+        const RigidPart& p = rigid[i];
+        const Vec3T<S> w = v.template segment<3>(6 * i + 3), c = p.first_moment.cast<S>();
+        F.template segment<3>(6 * i) += s.R[i] * Vec3T<S>(w.cross(w.cross(c))) - S(p.mass) * g;
+        F.template segment<3>(6 * i + 3) += w.cross(Vec3T<S>(p.inertia.cast<S>() * w)) - c.cross(Vec3T<S>(s.R[i].transpose() * g));
+      }
+    }
+    for (const MemberModel& m : members) {
+      const NodeMotion<S>* end[2] = {&motion[m.node[0]], &motion[m.node[1]]};
+      const auto e = memberEndFrames<S>(m, end[0]->state, end[1]->state);
+      Eigen::Matrix<S, 12, 1> vk, ak;
+      for (int k = 0; k < 2; ++k) {
+        vk.template segment<3>(6 * k) = end[k]->v.template head<3>();
+        vk.template segment<3>(6 * k + 3) = m.relative[k].transpose().cast<S>() * end[k]->v.template tail<3>();
+      }
+      Eigen::Matrix<S, 12, 1> Fk = m.beam.template elasticForce<S>(e.r1, e.R1, e.r2, e.R2, vk, m.stiffness);
+      if (inertia_and_gravity) {
+        for (int k = 0; k < 2; ++k) {
+          ak.template segment<3>(6 * k) = end[k]->a0.template head<3>();
+          ak.template segment<3>(6 * k + 3) = m.relative[k].transpose().cast<S>() * end[k]->a0.template tail<3>();
+        }
+        Fk += m.beam.template inertialAndGravityForce<S>(e.r1, e.R1, e.r2, e.R2, vk, gravity) +
+              m.beam.template massMatrix<S>(e) * ak;
+      }
+      // T_kᵀ F_k, node by node.
+      for (int k = 0; k < 2; ++k) {
+        Vec6T<S> f;
+        f << Fk.template segment<3>(6 * k), m.relative[k].cast<S>() * Fk.template segment<3>(6 * k + 3);
+        F.noalias() += end[k]->state.map.transpose() * f;
+      }
+    }
+    return F;
+  }
+};
+
+}  // namespace cranesim

@@ -1,0 +1,20 @@
+#pragma once
+// Writes the result of a modal analysis (solvers/modes.hpp) as an HDF5 file: frequencies, mode
+// shapes in velocity coordinates and as joint displacements, and the equilibrium they belong to.
+
+#include <string>
+
+#include "cranesim/solvers/modes.hpp"
+
+namespace cranesim {
+
+struct ModesMetadata {
+  std::string scene_path, scene_text;
+  double t = 0.0;  // time of the equilibrium (drives evaluated there)
+};
+
+/// Writes under `path`.partial and renames to `path`.
+void writeModes(const std::string& path, const Model& model, const VecX& q_eq, const ModalResult& modes,
+                const ModesMetadata& meta);
+
+}  // namespace cranesim

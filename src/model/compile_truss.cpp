@@ -1,0 +1,174 @@
+// Truss members (`type: truss`, DESIGN §7): one truss description placed in the scene becomes
+// either the super truss element (3.5) or the full-member model, in which every tube is its own
+// Timoshenko beam on shared frame nodes (docs/truss.md).
+//
+// Full-member model:
+// - One frame node per truss node (end-section and internal nodes), shared by every tube that
+//   meets there: a rigid connection (assumption 3). Every tube end is turned against its node
+//   by a constant rotation (rotated_ends.hpp); all nodes start with the truss frame's axes.
+// - Each end section is rigid (assumption 1): a plate, i.e. a frame node at the section origin
+//   (on the truss axis) with a rigid body carrying the mass and inertia of that section's
+//   cross-section beams, fixed to every node of the section. The cross-section beams are
+//   therefore no elements of their own. The plates carry the joints <name>.start / <name>.end.
+// - `segments` > 1 splits every tube into that many beams with nodes of its own.
+
+#include "compile_truss.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+
+#include "cranesim/elements/rigid_body.hpp"
+#include "cranesim/elements/rotated_ends.hpp"
+#include "cranesim/elements/super_truss.hpp"
+#include "cranesim/math/rotation.hpp"
+#include "model_building.hpp"
+
+namespace cranesim {
+namespace {
+
+/// Joint names of the truss nodes: <name>.s<section>n<node> for end-section nodes (numbered
+/// from 1 as in the scene), <name>.c<chord>k<station> for internal nodes (station k = 1 … order − 1).
+std::vector<std::string> nodeNames(const MemberSpec& m, const TrussGeometry& g) {
+  std::array<int, 2> in_section{0, 0};
+  std::vector<int> on_chord(g.chords.size(), 0);
+  std::vector<std::string> names;
+  for (const TrussNode& n : g.nodes)
+    names.push_back(n.end_section >= 0 ? fmt::format("{}.s{}n{}", m.name, n.end_section + 1, ++in_section[n.end_section])
+                                       : fmt::format("{}.c{}k{}", m.name, n.chord + 1, ++on_chord[n.chord]));
+  return names;
+}
+
+/// Mass, centroid and inertia about the section origin of the cross-section beams of one end
+/// section, as thin-walled tubes (centre line and rotary inertia, as the beam elements have).
+RigidBodyKernel endPlate(const TrussGeometry& g, int section) {
+  const Vec3 origin(section == 0 ? 0.0 : g.length, 0.0, 0.0);
+  const double rho = g.material.density;
+  RigidBodyKernel plate;
+  plate.mass = 0.0;
+  Vec3 first_moment = Vec3::Zero();
+  Mat3 inertia = Mat3::Zero();
+  for (const TrussMember& t : g.members) {
+    if (t.role != TrussMemberRole::Cross || g.nodes[t.node1].end_section != section) continue;
+    const Vec3 a = g.nodes[t.node1].position - origin, b = g.nodes[t.node2].position - origin;
+    const double length = (b - a).norm(), mass = rho * t.section.area * length;
+    const Vec3 e = (b - a) / length, c = 0.5 * (a + b);
+    const Mat3 axial = e * e.transpose(), transverse = Mat3::Identity() - axial;
+    const Mat3 own = mass * length * length / 12.0 * transverse +
+                     rho * length * ((t.section.Iy + t.section.Iz) * axial + t.section.Iy * transverse);
+    plate.mass += mass;
+    first_moment += mass * c;
+    inertia += own - mass * skew(c) * skew(c);
+  }
+  plate.centroid = plate.mass > 0.0 ? Vec3(first_moment / plate.mass) : Vec3::Zero();
+  plate.inertia_origin = inertia;
+  return plate;
+}
+
+/// Of the four section frames of a round tube (x and z each up to sign), the one closest to
+/// the placed truss frame R: its relative rotation stays below 120°, away from the π where a
+/// rotation vector of the section frame would change branch.
+Mat3 closestSectionAxes(const Mat3& R, const Mat3& axes) {
+  static const std::array<Vec3, 4> flips = {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, -1, 1), Vec3(-1, 1, -1)};
+  Mat3 best = axes;
+  double best_trace = -4.0;
+  for (const Vec3& f : flips) {
+    const Mat3 candidate = axes * f.asDiagonal();
+    const double trace = (R * candidate).trace();
+    if (trace > best_trace) best_trace = trace, best = candidate;
+  }
+  return best;
+}
+
+void compileMembers(Model& model, const MemberSpec& m, const TrussGeometry& g) {
+  const Mat3 R = memberFrame(m.start, m.end, m.z_axis);  // truss frame → inertial
+  const Vec3 phi = rotationVector(R);
+  const auto addFrameNode = [&](const std::string& name, const Vec3& truss_position, const std::string& member) {
+    const int n = model.addNode(name, NodeKind::Frame, member);
+    const Node& node = model.nodes[n];
+    model.q0.segment<3>(node.q) = m.start + R * truss_position;
+    model.q0.segment<3>(node.q + 3) = phi;
+    model.joints.push_back({name, n, Vec3::Zero(), Mat3::Identity()});
+    return n;
+  };
+
+  const std::vector<std::string> names = nodeNames(m, g);
+  std::vector<int> node_of(g.nodes.size());
+  for (std::size_t n = 0; n < g.nodes.size(); ++n) node_of[n] = addFrameNode(names[n], g.nodes[n].position, m.name);
+
+  for (int s = 0; s < 2; ++s) {
+    const Vec3 origin(s == 0 ? 0.0 : g.length, 0.0, 0.0);
+    const std::string plate_name = fmt::format("{}.section{}", m.name, s + 1);
+    const int plate = model.addNode(plate_name, NodeKind::Frame);
+    const Node& node = model.nodes[plate];
+    model.q0.segment<3>(node.q) = m.start + R * origin;
+    model.q0.segment<3>(node.q + 3) = phi;
+    const RigidBodyKernel kernel = endPlate(g, s);
+    if (kernel.mass > 0.0) addElement(model, kernel, {plate});
+    model.joints.push_back({s == 0 ? m.name + ".start" : m.name + ".end", plate, Vec3::Zero(), Mat3::Identity()});
+    for (std::size_t n = 0; n < g.nodes.size(); ++n) {
+      if (g.nodes[n].end_section != s) continue;
+      const std::string& name = model.nodes[node_of[n]].name;
+      const int on_plate = static_cast<int>(model.joints.size());
+      model.joints.push_back({name + ".plate", plate, g.nodes[n].position - origin, Mat3::Identity()});
+      Constraint c;
+      c.name = name;
+      c.type = ConstraintType::Fixed;
+      c.joint1 = on_plate;
+      c.joint2 = model.findJoint(name);
+      c.where = m.where;
+      addConstraint(model, std::move(c));
+    }
+  }
+
+  for (std::size_t t = 0; t < g.members.size(); ++t) {
+    const TrussMember& tube = g.members[t];
+    if (tube.role == TrussMemberRole::Cross) continue;  // carried by the end plates
+    const Vec3 p1 = g.nodes[tube.node1].position, p2 = g.nodes[tube.node2].position;
+    const Mat3 axes = closestSectionAxes(R, memberFrame(p1, p2, tube.z_axis));
+    const bool reversed = axes.col(0).dot(p2 - p1) < 0.0;
+    const Vec3 from = reversed ? p2 : p1, to = reversed ? p1 : p2;
+    std::vector<int> chain = {node_of[reversed ? tube.node2 : tube.node1]};
+    for (int j = 1; j < m.segments; ++j)
+      chain.push_back(addFrameNode(fmt::format("{}.t{}n{}", m.name, t + 1, j), from + (static_cast<double>(j) / m.segments) * (to - from), m.name));
+    chain.push_back(node_of[reversed ? tube.node1 : tube.node2]);
+    TimoshenkoBeamKernel beam;
+    beam.length = (to - from).norm() / m.segments;
+    beam.section = tube.section;
+    beam.material = g.material;
+    if (m.quadrature > 0) beam.mass_points = m.quadrature;
+    beam.damping = m.damping;
+    for (int j = 0; j < m.segments; ++j) addElement(model, RotatedEndsBeamKernel(beam, axes, axes), {chain[j], chain[j + 1]});
+  }
+}
+
+/// Super truss element: two frame nodes, the end sections (joints <name>.start / <name>.end),
+/// with the end-section nodes as joints on them (the same names as in the full-member model).
+void compileSuperTruss(Model& model, const MemberSpec& m, const TrussGeometry& g) {
+  const Mat3 R = memberFrame(m.start, m.end, m.z_axis);  // truss frame → inertial
+  const std::vector<std::string> names = nodeNames(m, g);
+  std::array<int, 2> section{};
+  for (int s = 0; s < 2; ++s) {
+    const Vec3 origin(s == 0 ? 0.0 : g.length, 0.0, 0.0);
+    section[s] = model.addNode(fmt::format("{}.section{}", m.name, s + 1), NodeKind::Frame, m.name);
+    const Node& node = model.nodes[section[s]];
+    model.q0.segment<3>(node.q) = m.start + R * origin;
+    model.q0.segment<3>(node.q + 3) = rotationVector(R);
+    model.joints.push_back({s == 0 ? m.name + ".start" : m.name + ".end", section[s], Vec3::Zero(), Mat3::Identity()});
+    for (std::size_t n = 0; n < g.nodes.size(); ++n)
+      if (g.nodes[n].end_section == s) model.joints.push_back({names[n], section[s], g.nodes[n].position - origin, Mat3::Identity()});
+  }
+  addElement(model, SuperTrussKernel(g, m.quadrature > 0 ? m.quadrature : 4, m.damping), {section[0], section[1]});
+}
+
+}  // namespace
+
+void compileTrussMember(Model& model, const MemberSpec& member, const TrussDescription& truss) {
+  const TrussGeometry geometry = buildTrussGeometry(truss);
+  switch (member.fidelity) {
+    case TrussFidelity::Members: compileMembers(model, member, geometry); break;
+    case TrussFidelity::SuperTruss: compileSuperTruss(model, member, geometry); break;
+  }
+}
+
+}  // namespace cranesim

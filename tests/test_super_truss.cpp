@@ -1,0 +1,301 @@
+// Super truss element (thesis 3.5) on the thesis' type 2 section: node kinematics, exact rigid-body
+// mass properties, objectivity of the elastic forces, forces as energy gradients, AD Jacobian,
+// energy consistency of the inertial forces.
+
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <random>
+
+#include "cranesim/elements/super_truss.hpp"
+#include "cranesim/model/element.hpp"
+
+using namespace cranesim;
+
+namespace {
+
+using Q12 = Eigen::Matrix<double, 12, 1>;
+using M12 = Eigen::Matrix<double, 12, 12>;
+using TrussElement = KernelElement<SuperTrussKernel>;
+
+TrussTube tube(double outer, double inner) {
+  TrussTube t;
+  t.outer_radius = outer, t.inner_radius = inner;
+  return t;
+}
+
+TrussNodePair pair(int a, int b) {
+  TrussNodePair p;
+  p.nodes = {a, b};
+  return p;
+}
+
+/// The thesis' type 2 section (Table D-3, radii; E = 2.06e11, DESIGN §10).
+TrussDescription type2() {
+  TrussDescription d;
+  d.name = "type2";
+  d.length = 15.0;
+  d.order = 6;
+  for (auto& s : d.sections) {
+    s.nodes = {{1.5, 1.4}, {-1.5, 1.4}, {-1.5, -1.4}, {1.5, -1.4}};
+    s.cross_beams = {pair(0, 1), pair(1, 2), pair(2, 3), pair(3, 0)};
+  }
+  d.main_beams = {pair(0, 0), pair(1, 1), pair(2, 2), pair(3, 3)};
+  d.lacing = LacingForm::Type1;
+  d.main_tube = d.cross_tube = tube(0.1, 0.08);
+  d.sub_tube = tube(0.05, 0.04);
+  d.poisson_ratio = 0.25;
+  d.material.density = 7800.0;
+  d.material.youngs_modulus = 2.06e11;
+  d.material.shear_modulus = 2.06e11 / 2.5;
+  return d;
+}
+
+std::vector<int> range(int n) {
+  std::vector<int> v(n);
+  for (int i = 0; i < n; ++i) v[i] = i;
+  return v;
+}
+
+struct Rng {
+  std::mt19937 gen;
+  std::uniform_real_distribution<double> u{-1.0, 1.0};
+  explicit Rng(unsigned seed) : gen(seed) {}
+  double operator()() { return u(gen); }
+  Vec3 vec(double scale = 1.0) { return scale * Vec3((*this)(), (*this)(), (*this)()); }
+  Mat3 rotation(double max_angle) { return axisAngle(vec().normalized(), max_angle * std::abs((*this)())); }
+};
+
+Q12 coordinates(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2) {
+  Q12 q;
+  q << r1, rotationVector(R1), r2, rotationVector(R2);
+  return q;
+}
+
+/// The undeformed truss placed by (r0, R0) (section 1 at r0).
+Q12 rigidPlacement(double L, const Vec3& r0, const Mat3& R0) { return coordinates(r0, R0, r0 + L * R0.col(0), R0); }
+
+/// A placed and deformed truss: section 2 displaced by ~`size` m and turned by ~`size` rad
+/// relative to section 1 (bending, torsion, stretch together).
+Q12 deformedState(Rng& rng, double L, double size) {
+  const Vec3 r1 = rng.vec(5.0);
+  const Mat3 R1 = rng.rotation(3.0);
+  return coordinates(r1, R1, r1 + R1 * (L * Vec3::UnitX() + rng.vec(size)), R1 * rng.rotation(size));
+}
+
+/// q moved by the twist δ: r + δr, R exp(δθ̃).
+Q12 twisted(const Q12& q, const Q12& delta) {
+  Q12 p = q;
+  for (int e = 0; e < 2; ++e) {
+    p.segment<3>(6 * e) += delta.segment<3>(6 * e);
+    p.segment<3>(6 * e + 3) = rotationVector(rotationMatrix<double>(Vec3(q.segment<3>(6 * e + 3))) *
+                                             rotationMatrix<double>(Vec3(delta.segment<3>(6 * e + 3))));
+  }
+  return p;
+}
+
+/// dq of the rigid motion with origin velocity u and inertial angular velocity Ω.
+Q12 rigidVelocity(const Q12& q, const Vec3& u, const Vec3& Omega) {
+  Q12 v;
+  for (int e = 0; e < 2; ++e) {
+    v.segment<3>(6 * e) = u + Omega.cross(Vec3(q.segment<3>(6 * e)));
+    v.segment<3>(6 * e + 3) = rotationMatrix<double>(Vec3(q.segment<3>(6 * e + 3))).transpose() * Omega;
+  }
+  return v;
+}
+
+/// Mass, centre and inertia tensor about the centre of the tubes as rigid thick-walled cylinders.
+struct MassProperties {
+  double mass = 0.0;
+  Vec3 centre = Vec3::Zero();
+  Mat3 inertia = Mat3::Zero();
+};
+
+MassProperties tubeMassProperties(const TrussGeometry& g) {
+  MassProperties p;
+  Vec3 first = Vec3::Zero();
+  Mat3 about_origin = Mat3::Zero();
+  for (const TrussMember& m : g.members) {
+    const Vec3 a = g.nodes[m.node1].position, b = g.nodes[m.node2].position, x = (b - a).normalized();
+    const double L = (b - a).norm(), mass = g.material.density * m.section.area * L;
+    const double r2 = m.section.outer_radius * m.section.outer_radius + m.section.inner_radius * m.section.inner_radius;
+    const Mat3 axial = x * x.transpose();
+    const Mat3 own = mass * r2 / 2.0 * axial + mass * (3.0 * r2 + L * L) / 12.0 * (Mat3::Identity() - axial);
+    const Vec3 c = 0.5 * (a + b);
+    p.mass += mass;
+    first += mass * c;
+    about_origin += own + mass * (c.squaredNorm() * Mat3::Identity() - c * c.transpose());
+  }
+  p.centre = first / p.mass;
+  p.inertia = about_origin - p.mass * (p.centre.squaredNorm() * Mat3::Identity() - p.centre * p.centre.transpose());
+  return p;
+}
+
+const TrussGeometry& type2Geometry() {
+  static const TrussGeometry g = buildTrussGeometry(type2());
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("Super truss: node velocity maps are the derivatives of the node frames", "[super_truss]") {
+  const SuperTrussKernel k(type2Geometry());
+  Rng rng(3);
+  const Q12 q = deformedState(rng, k.length, 0.15);
+  const double h = 1e-6;
+  for (int n = 0; n < static_cast<int>(k.nodes.size()); ++n) {
+    const auto s = k.nodeState<double>(SuperTrussKernel::sectionFrames<double>(q), k.nodes[n]);
+    Eigen::Matrix<double, 6, 12> fd;
+    for (int j = 0; j < 12; ++j) {
+      const Q12 e = Q12::Unit(j);
+      const Frame p = k.nodeFrame(twisted(q, h * e), n), m = k.nodeFrame(twisted(q, -h * e), n);
+      fd.col(j) << (p.r - m.r) / (2.0 * h), unskew(Mat3(s.R.transpose() * (p.R - m.R) / (2.0 * h)));
+    }
+    INFO("node " << n);
+    CHECK((fd - s.map).norm() < 1e-6 * (1.0 + s.map.norm()));
+  }
+}
+
+TEST_CASE("Super truss: mass matrix SPD with the tubes' exact rigid-body mass properties", "[super_truss]") {
+  const TrussGeometry& g = type2Geometry();
+  const SuperTrussKernel k(g);
+  const MassProperties p = tubeMassProperties(g);
+  CHECK(k.mass() == Approx(p.mass).epsilon(1e-12));
+  Rng rng(7);
+  for (int trial = 0; trial < 3; ++trial) {
+    const Vec3 r0 = rng.vec(10.0);
+    const Mat3 R0 = trial == 0 ? axisAngle(Vec3(1.0, 1.0, 0.0), std::numbers::pi) : rng.rotation(3.0);
+    const Q12 q = rigidPlacement(k.length, r0, R0);
+    const M12 M = k.massMatrix<double>(q);
+    CHECK((M - M.transpose()).norm() < 1e-12 * M.norm());
+    CHECK(Eigen::SelfAdjointEigenSolver<M12>(M).eigenvalues().minCoeff() > 0.0);
+    const Vec3 u = rng.vec(2.0), Omega = rng.vec(1.5);
+    const Vec3 c = r0 + R0 * p.centre;  // centre of mass in space
+    const Q12 v = rigidVelocity(q, u, Omega);
+    const Vec3 vc = u + Omega.cross(c);
+    const double expected = 0.5 * p.mass * vc.squaredNorm() + 0.5 * Omega.dot(R0 * p.inertia * R0.transpose() * Omega);
+    INFO("trial " << trial);
+    CHECK(0.5 * v.dot(M * v) == Approx(expected).epsilon(1e-11));
+    // Inertia about the truss axis through the centre of mass alone.
+    const Vec3 axis = R0.col(0);
+    const Q12 spin = rigidVelocity(q, -axis.cross(c), axis);
+    CHECK(0.5 * spin.dot(M * spin) == Approx(0.5 * p.inertia(0, 0)).epsilon(1e-11));
+  }
+}
+
+TEST_CASE("Super truss: no elastic force under rigid placements and rigid velocities", "[super_truss]") {
+  SuperTrussKernel k(type2Geometry(), 4, 0.01);  // with Kelvin–Voigt damping
+  Rng rng(11);
+  Q12 q = deformedState(rng, k.length, 0.05);
+  const double typical = k.elasticForce<double>(q, Q12::Zero()).norm();  // 5 cm / 0.05 rad deformation
+  for (int trial = 0; trial < 4; ++trial) {
+    const Mat3 R0 = trial == 0 ? axisAngle(Vec3(0.0, 0.0, 1.0), std::numbers::pi) : rng.rotation(3.1);
+    q = rigidPlacement(k.length, rng.vec(20.0), R0);
+    const Q12 v = rigidVelocity(q, rng.vec(3.0), rng.vec(2.0));
+    INFO("trial " << trial << ", typical force " << typical);
+    CHECK(k.elasticForce<double>(q, v).norm() < 1e-12 * typical);
+    CHECK(k.strainEnergy(q) < 1e-12);
+  }
+}
+
+TEST_CASE("Super truss: elastic force is the twist gradient of the strain energy", "[super_truss]") {
+  const SuperTrussKernel k(type2Geometry());
+  Rng rng(5);
+  const Q12 q = deformedState(rng, k.length, 0.1);
+  const Q12 F = k.elasticForce<double>(q, Q12::Zero());
+  Q12 fd;
+  for (int j = 0; j < 12; ++j) {
+    const double h = j % 6 < 3 ? 1e-6 : 1e-7;
+    fd(j) = (k.strainEnergy(twisted(q, h * Q12::Unit(j))) - k.strainEnergy(twisted(q, -h * Q12::Unit(j)))) / (2.0 * h);
+  }
+  INFO("F = " << F.transpose() << "\nfd = " << fd.transpose());
+  CHECK((F - fd).norm() < 1e-6 * F.norm());
+}
+
+TEST_CASE("Super truss: AD Jacobian matches finite differences", "[super_truss]") {
+  SuperTrussKernel k(type2Geometry(), 4, 0.02);
+  Rng rng(13);
+  const Q12 q = deformedState(rng, k.length, 0.05);
+  const Q12 v = rng.vec(1.0).replicate<4, 1>() + Q12::Random();
+  const Q12 a = Q12::Random();
+  const TrussElement el(k, {0, 1}, range(12), range(12));
+  const Vec3 gravity(0.0, 0.0, -9.81);
+  const double cj = 3.0;
+  auto residual = [&](const Q12& qq, const Q12& vv) {
+    Q12 r;
+    const ElementInput in{qq.data(), vv.data(), a.data(), 0.0, gravity};
+    el.residual(in, r.data());
+    return r;
+  };
+  const ElementInput in{q.data(), v.data(), a.data(), 0.0, gravity};
+  Eigen::Matrix<double, 12, 24> J;
+  el.jacobian(in, cj, J.data());
+  Eigen::Matrix<double, 12, 24> fd;
+  for (int j = 0; j < 12; ++j) {
+    const double h = 1e-6;
+    const Q12 e = Q12::Unit(j);
+    fd.col(j) = (residual(q + h * e, v) - residual(q - h * e, v)) / (2.0 * h);
+    fd.col(12 + j) = (residual(q, v + h * e) - residual(q, v - h * e)) / (2.0 * h);
+  }
+  M12 M;
+  el.mass(in, M.data());
+  fd.rightCols<12>() += cj * M;
+  for (int j = 0; j < 24; ++j) {
+    INFO("column " << j);
+    CHECK((J.col(j) - fd.col(j)).norm() < 1e-5 * (1.0 + fd.col(j).norm()));
+  }
+}
+
+TEST_CASE("Super truss: inertial forces do no work (dqᵀ F_ine = ½ dqᵀ Ṁ dq)", "[super_truss]") {
+  const SuperTrussKernel k(type2Geometry());
+  Rng rng(17);
+  for (int trial = 0; trial < 3; ++trial) {
+    const Q12 q = deformedState(rng, k.length, 0.1);
+    const Q12 v = Q12::Random() * 2.0;
+    const Q12 Fine = k.force<double>(q, v, 0.0, Vec3::Zero()) - k.elasticForce<double>(q, v);
+    const double h = 1e-6;
+    const M12 Mdot = (k.massMatrix<double>(twisted(q, h * v)) - k.massMatrix<double>(twisted(q, -h * v))) / (2.0 * h);
+    const double power = v.dot(Fine), expected = 0.5 * v.dot(Mdot * v);
+    INFO("trial " << trial << ": " << power << " vs " << expected);
+    CHECK(power == Approx(expected).epsilon(1e-6).margin(1e-7 * v.dot(k.massMatrix<double>(q) * v)));
+  }
+}
+
+TEST_CASE("Super truss: gravity force is the gradient of the gravity potential", "[super_truss]") {
+  const SuperTrussKernel k(type2Geometry());
+  Rng rng(19);
+  const Q12 q = deformedState(rng, k.length, 0.1);
+  const Vec3 g(1.0, -2.0, -9.81);
+  const Q12 F = k.force<double>(q, Q12::Zero(), 0.0, g);  // elastic + gravity at rest
+  Q12 fd;
+  for (int j = 0; j < 12; ++j) {
+    const double h = j % 6 < 3 ? 1e-6 : 1e-7;
+    fd(j) = (k.potentialEnergy(twisted(q, h * Q12::Unit(j)), 0.0, g) - k.potentialEnergy(twisted(q, -h * Q12::Unit(j)), 0.0, g)) /
+            (2.0 * h);
+  }
+  CHECK((F - fd).norm() < 1e-6 * F.norm());
+}
+
+TEST_CASE("Super truss: cost of force and Jacobian per call", "[super_truss][.timing]") {
+  const SuperTrussKernel k(type2Geometry());
+  Rng rng(23);
+  const Q12 q = deformedState(rng, k.length, 0.05), v = Q12::Random(), a = Q12::Random();
+  const TrussElement el(k, {0, 1}, range(12), range(12));
+  const ElementInput in{q.data(), v.data(), a.data(), 0.0, Vec3(0.0, 0.0, -9.81)};
+  Q12 r;
+  Eigen::Matrix<double, 12, 24> J;
+  using Clock = std::chrono::steady_clock;
+  const int n = 1000;
+  auto t0 = Clock::now();
+  for (int i = 0; i < n; ++i) el.residual(in, r.data());
+  auto t1 = Clock::now();
+  for (int i = 0; i < n / 10; ++i) el.jacobian(in, 1.0, J.data());
+  auto t2 = Clock::now();
+  std::printf("super truss type 2 (%zu flexible tubes): residual %.1f us, jacobian %.1f us per call\n", k.members.size(),
+              std::chrono::duration<double, std::micro>(t1 - t0).count() / n,
+              std::chrono::duration<double, std::micro>(t2 - t1).count() / (n / 10));
+  SUCCEED();
+}

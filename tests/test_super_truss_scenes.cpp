@@ -1,0 +1,135 @@
+// The super truss element against the full-member model of the same truss (thesis 8.2, issue 4):
+// the type 2 cantilever's static tip deflection under self-gravity and under an end force, and
+// its first eigenfrequencies. Scene level only (no kernel is instantiated in this file).
+//
+// The super truss moves the tubes of the full-member model on a restricted set of shapes (the
+// internal nodes follow the chord splines of the end sections), so by Rayleigh–Ritz it can only
+// be stiffer: smaller static deflections, higher frequencies. How much stiffer is the measure
+// of the reduction's error; the issue's target is 5 %, the thesis' assumptions give about 30 %
+// on this truss (the lacing's shear compliance is lost: README, docs/truss.md). The lower
+// brackets (half the deflection, 1.5× the frequency) only catch a broken kernel.
+
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "cranesim/assembly/assembler.hpp"
+#include "cranesim/solvers/statics.hpp"
+#include "scene_fixtures.hpp"
+
+using namespace cranesim;
+
+namespace {
+
+const char* const kFullMembers = "truss_type2_cantilever.yaml";
+const char* const kSuperTruss = "truss_type2_super.yaml";
+
+/// Static displacement of the free end section (joint boom.end).
+Vec3 tipDisplacement(const Scene& scene) {
+  const Model model = compileModel(scene);
+  const StaticResult eq = solveStatics(model, model.q0, 0.0);
+  REQUIRE(eq.converged);
+  const int tip = model.findJoint("boom.end");
+  return model.jointFrame(eq.q.data(), tip).r - model.jointFrame(model.q0.data(), tip).r;
+}
+
+Scene withEndForce(Scene scene, const Vec3& force) {
+  scene.gravity = Vec3::Zero();
+  LoadSpec load;
+  load.name = "tip";
+  load.joint = "boom.end";
+  load.force = force;
+  scene.loads.push_back(load);
+  return scene;
+}
+
+/// The lowest eigenfrequencies (Hz) of the scene linearised about its undeformed initial state
+/// (all node rotation vectors zero there, so ∂F/∂q is the stiffness along dq), gravity off:
+/// K and M restricted to the null space of the constraint Jacobian.
+Eigen::VectorXd lowestFrequencies(Scene scene, int count) {
+  scene.gravity = Vec3::Zero();
+  const Model model = compileModel(scene);
+  REQUIRE(model.nq == model.nv);
+  for (const Node& node : model.nodes)
+    if (node.hasRotation()) REQUIRE(model.q0.segment<3>(node.q + 3).norm() == 0.0);
+  const Assembler assembler(model);
+  const VecX q0 = model.q0, v0 = VecX::Zero(model.nv);
+  MatX K(model.nv, model.nv);
+  for (int j = 0; j < model.nv; ++j) {
+    const double h = 1e-6;
+    VecX qp = q0, qm = q0;
+    qp(j) += h, qm(j) -= h;
+    K.col(j) = (assembler.appliedForces(0.0, qp.data(), v0.data()) - assembler.appliedForces(0.0, qm.data(), v0.data())) / (2.0 * h);
+  }
+  const MatX M = MatX(assembler.massMatrix(0.0, q0.data()));
+  const MatX G = MatX(assembler.constraints(0.0, q0.data(), v0.data()).G);
+  const MatX N = Eigen::FullPivLU<MatX>(G).kernel();
+  const MatX Kr = N.transpose() * K * N, Mr = N.transpose() * M * N;
+  const Eigen::GeneralizedSelfAdjointEigenSolver<MatX> eig(0.5 * (Kr + Kr.transpose()), 0.5 * (Mr + Mr.transpose()));
+  return eig.eigenvalues().head(count).cwiseSqrt() / (2.0 * std::numbers::pi);
+}
+
+}  // namespace
+
+TEST_CASE("Super truss vs full-member model: static cantilever deflection", "[super_truss][scenes][statics]") {
+  const Scene full = test::loadScene(kFullMembers), reduced = test::loadScene(kSuperTruss);
+  SECTION("self-gravity") {
+    const Vec3 a = tipDisplacement(full), b = tipDisplacement(reduced);
+    std::printf("type 2 cantilever, self-gravity: tip z full-member %.5e m, super truss %.5e m, relative difference %.2f %%\n", a.z(),
+                b.z(), 100.0 * (b.z() - a.z()) / a.z());
+    CHECK(std::abs(b.z()) <= std::abs(a.z()) * (1.0 + 1e-6));
+    CHECK(std::abs(b.z()) >= 0.5 * std::abs(a.z()));
+  }
+  SECTION("end force, vertical and lateral") {
+    for (const Vec3& force : {Vec3(0.0, 0.0, -1e5), Vec3(0.0, 1e5, 0.0)}) {
+      const Vec3 a = tipDisplacement(withEndForce(full, force)), b = tipDisplacement(withEndForce(reduced, force));
+      const int k = force.z() != 0.0 ? 2 : 1;
+      std::printf("type 2 cantilever, end force along %c: tip full-member %.5e m, super truss %.5e m, relative difference %.2f %%\n",
+                  "xyz"[k], a(k), b(k), 100.0 * (b(k) - a(k)) / a(k));
+      CHECK(std::abs(b(k)) <= std::abs(a(k)) * (1.0 + 1e-6));
+      CHECK(std::abs(b(k)) >= 0.5 * std::abs(a(k)));
+    }
+  }
+}
+
+TEST_CASE("Super truss vs full-member model: first eigenfrequencies", "[super_truss][scenes]") {
+  const Eigen::VectorXd a = lowestFrequencies(test::loadScene(kFullMembers), 3);
+  const Eigen::VectorXd b = lowestFrequencies(test::loadScene(kSuperTruss), 3);
+  for (int k = 0; k < 3; ++k)
+    std::printf("type 2 cantilever mode %d: full-member %.4f Hz, super truss %.4f Hz, relative difference %.2f %%\n", k + 1, a(k), b(k),
+                100.0 * (b(k) - a(k)) / a(k));
+  for (int k = 0; k < 3; ++k) {
+    CHECK(b(k) >= a(k) * (1.0 - 1e-6));
+    CHECK(b(k) <= 1.5 * a(k));
+  }
+}
+
+TEST_CASE("Super truss vs full-member model: cost per DAE evaluation and of a released cantilever", "[super_truss][scenes][.timing]") {
+  using Clock = std::chrono::steady_clock;
+  for (const char* name : {kFullMembers, kSuperTruss}) {
+    Scene scene = test::loadScene(name);
+    const Model model = compileModel(scene);
+    const Assembler assembler(model);
+    std::vector<double> y(assembler.size(), 0.0), yp(assembler.size(), 0.0), res(assembler.size());
+    std::vector<double> values(assembler.pattern().nonZeros());
+    for (int i = 0; i < model.nq; ++i) y[i] = model.q0(i);
+    const int n = 200;
+    const auto t0 = Clock::now();
+    for (int i = 0; i < n; ++i) assembler.residual(0.0, y.data(), yp.data(), res.data());
+    const auto t1 = Clock::now();
+    for (int i = 0; i < n / 10; ++i) assembler.jacobian(0.0, 1.0, y.data(), yp.data(), values.data());
+    const auto t2 = Clock::now();
+    scene.solver.t_end = 1.0;
+    const test::SimulationRun run(scene);
+    const SolverStatistics& s = run.outcome.statistics;
+    std::printf("%s: %d unknowns, residual %.1f us, jacobian %.1f us; 1 s released under gravity: %.2f s wall, %ld steps, "
+                "%ld residuals, %ld jacobians, tip z at 1 s %.5e m\n",
+                name, assembler.size(), std::chrono::duration<double, std::micro>(t1 - t0).count() / n,
+                std::chrono::duration<double, std::micro>(t2 - t1).count() / (n / 10), s.wall_time_s, s.steps,
+                s.residual_evaluations, s.jacobian_evaluations, run.jointPositions("boom.end").back() - 0.0);
+    CHECK(run.outcome.complete);
+  }
+}
