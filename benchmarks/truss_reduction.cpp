@@ -230,6 +230,19 @@ int main(int argc, char** argv) {
     VecX v = VecX::Zero(model.nv);
     for (const Node& n : model.nodes) v(n.v) = 1.0;
     record(f.name, "mass_kg", 2.0 * assembler.kineticEnergy(0.0, model.q0.data(), v.data()));
+    // Equivalent mass (8.2.3): rotary inertia about the axis and about the transverse axes
+    // through the clamped end, from 2T of a unit rigid rotation (node rotations are zero in q0,
+    // so the body-frame angular velocity of every node is the rotation's own).
+    for (int axis = 0; axis < 3; ++axis) {
+      const Vec3 omega = Vec3::Unit(axis);
+      VecX w = VecX::Zero(model.nv);
+      for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+        const Node& node = model.nodes[n];
+        w.segment<3>(node.v) = omega.cross(Vec3(model.q0.segment<3>(node.q)));
+        if (node.hasRotation()) w.segment<3>(node.v + 3) = omega;
+      }
+      record(f.name, fmt::format("inertia_{}_kgm2", "xyz"[axis]), 2.0 * assembler.kineticEnergy(0.0, model.q0.data(), w.data()));
+    }
     record(f.name, "coordinates", model.nv);
     const StaticResult gravity = solveStatics(model, model.q0, 0.0);
     if (!gravity.converged) throw std::runtime_error(f.name + ": " + gravity.message);

@@ -11,13 +11,14 @@
 //     r = rⁱ + R_i p,  node frame R_i,  ṙ = ṙⁱ − R_i p̃ ωⁱ,  ω_node = ωⁱ.
 // - Main beams (chords) are cubic Hermite splines (assumption 2, 3-92) between their end nodes k
 //   (section 1) and l (section 2), with unit end tangents R_1 t and R_2 t, t the chord's reference
-//   direction in the section frames, and the reference chord length L_c as arc length: no axial
-//   stretch degree of freedom (s = 1 in the spline beam's terms). The thesis says the tangents
+//   direction in the section frames, and no axial stretch degree of freedom of its own: both end
+//   stretches (s¹ = s² in the spline beam's terms) follow the chord, s = ‖rˡ − rᵏ‖ / L_c, where
+//   the thesis keeps s = 1 (which stretches a chord non-uniformly, 6ξ(1 − ξ), and stiffens it). The thesis says the tangents
 //   stay "parallel to the normal direction of the cross-section"; for chords parallel to the
 //   truss axis (type 2) that is R_i e_x, and for inclined chords (transition pieces) the rigid
 //   connection (assumption 3, 3-83) turns the chord's own reference direction with the section,
 //   which is what R_i t does in both cases.
-//     r(ξ) = N₀¹ rᵏ + N₁¹ R_1 t + N₀² rˡ + N₁² R_2 t   (A-9, hermite.hpp)
+//     r(ξ) = N₀¹ rᵏ + N₁¹ s R_1 t + N₀² rˡ + N₁² s R_2 t   (A-9, hermite.hpp)
 //   The internal node at ξ takes the spline's section frame R(ξ) = Rᵏ C(α(ξ)) of the spline beam
 //   (3-64..3-67, spline_beam.hpp: Cardan angles of the tangent relative to the chord frame
 //   Rᵏ = R_1 R_c at node k, torsion interpolated linearly), R_c the chord's reference frame (the
@@ -208,14 +209,29 @@ struct SuperTrussKernel {
     const Vec3T<T> pk = c.offset[0].cast<T>(), pl = c.offset[1].cast<T>(), t = c.tangent.cast<T>();
     const Mat3T<T> Rk = s.R[0] * Rc, Rl = s.R[1] * Rc;
     const Vec3T<T> rk = s.r[0] + s.R[0] * pk, rl = s.r[1] + s.R[1] * pl;
-    const typename SplineBeamKernel::Relative<T> rel{Rk.transpose() * (rl - rk), Rk.transpose() * Rl, T(1.0), T(1.0)};
+    // Both end tangents are stretched by the chord's stretch s = ‖rˡ − rᵏ‖ / L_c: the chord
+    // keeps no axial degree of freedom of its own, but a uniformly stretched chord is
+    // represented exactly (with s = 1 the spline would stretch as 6ξ(1 − ξ), 25 % too stiff).
+    const Vec3T<T> chord = rl - rk;
+    const T chord_length = chord.norm();
+    const T stretch = chord_length / c.spline.length;
+    const typename SplineBeamKernel::Relative<T> rel{Rk.transpose() * chord, Rk.transpose() * Rl, stretch, stretch};
     const HermiteBasis b = hermiteBasis(n.xi, c.spline.length);
     // Position (3-92 with A-9) and its map.
-    const Vec3T<T> lever1 = T(b.N[0]) * pk + T(b.N[1]) * t, lever2 = T(b.N[2]) * pl + T(b.N[3]) * t;
+    const Vec3T<T> lever1 = T(b.N[0]) * pk + (T(b.N[1]) * stretch) * t, lever2 = T(b.N[2]) * pl + (T(b.N[3]) * stretch) * t;
     out.r = T(b.N[0]) * s.r[0] + T(b.N[2]) * s.r[1] + s.R[0] * lever1 + s.R[1] * lever2;
     for (int k = 0; k < 3; ++k) out.map(k, k) = T(b.N[0]), out.map(k, 6 + k) = T(b.N[2]);
     out.map.template block<3, 3>(0, 3) = -(s.R[0] * skew<T>(lever1));
     out.map.template block<3, 3>(0, 9) = -(s.R[1] * skew<T>(lever2));
+    // ṡ = ĉᵀ(ṙˡ − ṙᵏ) / L_c with ṙᵏ = ṙ¹ − R₁ p̃ₖ ω¹, ṙˡ = ṙ² − R₂ p̃ₗ ω²; ∂r/∂s = N₁¹ R₁ t + N₁² R₂ t.
+    const Eigen::Matrix<T, 1, 3> c_hat = (chord / (chord_length * T(c.spline.length))).transpose();
+    Eigen::Matrix<T, 1, kNv> stretch_rate;
+    stretch_rate.template segment<3>(0) = -c_hat;
+    stretch_rate.template segment<3>(3) = c_hat * s.R[0] * skew<T>(pk);
+    stretch_rate.template segment<3>(6) = c_hat;
+    stretch_rate.template segment<3>(9) = -(c_hat * s.R[1] * skew<T>(pl));
+    const Vec3T<T> dr_dstretch = T(b.N[1]) * (s.R[0] * t) + T(b.N[3]) * (s.R[1] * t);
+    out.map.template topRows<3>() += dr_dstretch * stretch_rate;
     // Frame R = Rᵏ C(α) (3-64..3-67) and ω = Cᵀωᵏ + T_C ∂α/∂δ_local Λ dq_chord (3-69).
     const auto sd = c.spline.template sectionDerivatives<T>(rel, n.xi, false);
     const Mat3T<T> C = SplineBeamKernel::cardanMatrix<T>(sd.alpha);
@@ -229,6 +245,7 @@ struct SuperTrussKernel {
         BRk + (Mat3T<T>(C.transpose()) + Td * skew<T>(rel.d) - Tchi * rel.R12.transpose()) * Rc.transpose();
     out.map.template block<3, 3>(3, 6) = B;
     out.map.template block<3, 3>(3, 9) = Tchi * Rc.transpose() - BRl;
+    out.map.template bottomRows<3>() += Vec3T<T>(TD.col(6) + TD.col(7)) * stretch_rate;
     return out;
   }
 
