@@ -62,6 +62,7 @@ double median(std::vector<double> x) {
 /// The type 2 section as one Timoshenko beam of `segments` elements with the truss' equivalent
 /// section: chords by the parallel-axis theorem, the lacing faces as shear webs (Bredt for the
 /// torsion of the closed lattice box), the density chosen so that the mass is the truss'.
+/// Assumes four chords on a rectangle with one diagonal per bay and face (type1), as type 2.
 Scene equivalentBeam(const Scene& truss_scene, int segments) {
   const TrussDescription& d = truss_scene.trusses.at(0);
   const TrussGeometry g = buildTrussGeometry(d);
@@ -79,7 +80,13 @@ Scene equivalentBeam(const Scene& truss_scene, int segments) {
   Section lacing;
   for (const TrussMember& m : g.members)
     if (m.role == TrussMemberRole::Sub) lacing = m.section;
-  const double a = L / d.order, h = 2.8, w = 3.0;  // the section's height (z) and width (y)
+  // Bay length, and the height (z) and width (y) of the chords' rectangle in section 1.
+  Eigen::Vector2d low(1e300, 1e300), high(-1e300, -1e300);
+  for (const auto& c : g.chords) {
+    const Eigen::Vector2d yz = g.nodes[c[0]].position.tail<2>();
+    low = low.cwiseMin(yz), high = high.cwiseMax(yz);
+  }
+  const double a = L / d.order, w = high(0) - low(0), h = high(1) - low(1);
   const auto faceShear = [&](double b) { return E * lacing.area * a * b * b / std::pow(std::hypot(a, b), 3); };
   const double shear_z = 2.0 * faceShear(h);
   const double Gt_side = faceShear(h) / h, Gt_top = faceShear(w) / w;
