@@ -100,8 +100,8 @@ int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticO
   int short_steps = 0;
   for (int it = 1; it <= options.max_iterations; ++it) {
     // Directions without stiffness (a slack rope, a body free to turn about its joint) make
-    // the Jacobian singular: shift the coordinate block's diagonal as in Levenberg–Marquardt
-    // until it factorises. The shift changes the step, not the equations being solved.
+    // the Jacobian singular: the coordinate block's diagonal is shifted as in
+    // Levenberg–Marquardt. The shift changes the step, not the equations being solved.
     const Eigen::SparseMatrix<double> J = system.jacobian(x);
     Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
     lu.compute(J);
@@ -136,7 +136,6 @@ int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticO
     // are not Newton steps.
     const double merit = r.squaredNorm(), correction = dx.head(model.nq).norm();
     double step = rotationStepLimit(model, dx);
-    const bool full_step_allowed = step == 1.0;
     VecX trial;
     VecX r_trial;
     for (int k = 0; k < 30; ++k, step *= 0.5) {
@@ -159,9 +158,7 @@ int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticO
     }
     // Converged only on a full step: a short damped step proves nothing.
     const double scale = 1.0 + x.head(model.nq).cwiseAbs().maxCoeff();
-    if (full_step_allowed && step == 1.0 &&
-        (step * dx.head(model.nq)).cwiseAbs().maxCoeff() < options.tolerance * scale)
-      return it;
+    if (step == 1.0 && dx.head(model.nq).cwiseAbs().maxCoeff() < options.tolerance * scale) return it;
   }
   why = fmt::format("no convergence in {} Newton iterations (residual {:.3g})", options.max_iterations,
                     r.cwiseAbs().maxCoeff());
