@@ -11,6 +11,7 @@
 
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/model/element.hpp"
+#include "cantilever_theory.hpp"
 
 using namespace cranesim;
 
@@ -386,39 +387,6 @@ double cantileverFrequency(const TimoshenkoBeamKernel& element, int n) {
   return std::sqrt(eig.eigenvalues().minCoeff()) / (2.0 * kPi);
 }
 
-/// Timoshenko clamped–free frequency equation (shear and rotary inertia), first root, Hz.
-double timoshenkoCantileverFrequency(double L, double EI, double kGA, double rhoA, double rhoI) {
-  const auto det = [&](double w) {
-    const double w2 = w * w;
-    const double a4 = EI * kGA, a2 = w2 * (kGA * rhoI + rhoA * EI), a0 = rhoA * w2 * (rhoI * w2 - kGA);
-    const double disc = std::sqrt(a2 * a2 - 4 * a4 * a0);
-    const double a = std::sqrt((-a2 + disc) / (2 * a4)), b = std::sqrt((a2 + disc) / (2 * a4));
-    const double ca = (kGA * a * a + rhoA * w2) / (kGA * a), db = (rhoA * w2 - kGA * b * b) / (kGA * b);
-    // Basis (v, θ): (cosh ax, ca sinh ax), (sinh ax, ca cosh ax), (cos bx, db sin bx), (sin bx, −db cos bx)
-    const double ch = std::cosh(a * L), sh = std::sinh(a * L), c = std::cos(b * L), s = std::sin(b * L);
-    Eigen::Matrix4d D;
-    D << 1, 0, 1, 0,                                        // v(0)
-        0, ca, 0, -db,                                      // θ(0)
-        ca * a * ch, ca * a * sh, db * b * c, db * b * s,   // θ'(L)
-        (a - ca) * sh, (a - ca) * ch, -(b + db) * s, (b + db) * c;  // v'(L) − θ(L)
-    return D.determinant();
-  };
-  const double w_eb = 1.8751 * 1.8751 / (L * L) * std::sqrt(EI / rhoA);
-  double lo = 0.2 * w_eb, flo = det(lo);
-  for (double w = lo + 0.001 * w_eb;; w += 0.001 * w_eb) {
-    const double f = det(w);
-    if ((f > 0) != (flo > 0)) {
-      double hi = w;
-      for (int it = 0; it < 100; ++it) {
-        const double mid = 0.5 * (lo + hi), fm = det(mid);
-        if ((fm > 0) == (flo > 0)) lo = mid, flo = fm; else hi = mid;
-      }
-      return 0.5 * (lo + hi) / (2.0 * kPi);
-    }
-    lo = w, flo = f;
-  }
-}
-
 }  // namespace
 
 TEST_CASE("Timoshenko beam: cantilever eigenfrequencies (Euler–Bernoulli slender, Timoshenko thick)", "[timoshenko]") {
@@ -439,9 +407,9 @@ TEST_CASE("Timoshenko beam: cantilever eigenfrequencies (Euler–Bernoulli slend
     const double EI = k.material.youngs_modulus * k.section.Iz, rhoA = k.material.density * k.section.area;
     const double kGA = k.section.shear_factor * k.material.shear_modulus * k.section.area;
     const double f_eb = 1.8751 * 1.8751 / (2 * kPi * L * L) * std::sqrt(EI / rhoA);
-    const double f_t = timoshenkoCantileverFrequency(L, EI, kGA, rhoA, k.material.density * k.section.Iz);
+    const double f_t = test::timoshenkoCantileverFrequencies(L, EI, kGA, rhoA, k.material.density * k.section.Iz, 1)[0];
     // The reference itself: Euler–Bernoulli in the slender limit (same section, 100× longer).
-    const double f_slender = timoshenkoCantileverFrequency(100 * L, EI, kGA, rhoA, k.material.density * k.section.Iz);
+    const double f_slender = test::timoshenkoCantileverFrequencies(100 * L, EI, kGA, rhoA, k.material.density * k.section.Iz, 1)[0];
     CHECK(f_slender == Approx(f_eb / 1e4).epsilon(1e-4));
     const double f = cantileverFrequency(k, 10);
     std::printf("[timoshenko] thick cantilever (L=2, r=0.3), 10 elements: f1 = %.4f Hz, Timoshenko %.4f Hz "
