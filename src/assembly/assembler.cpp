@@ -1,22 +1,10 @@
 #include "cranesim/assembly/assembler.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include "cranesim/assembly/constraint_evaluation.hpp"
 #include "cranesim/math/rotation.hpp"
 
 namespace cranesim {
 namespace {
-
-constexpr std::size_t kParallelElementThreshold = 32;  // below: the loop is cheaper than TBB
-
-template <class Body> void forEachElement(std::size_t n, const Body& body) {
-  if (n < kParallelElementThreshold) {
-    for (std::size_t e = 0; e < n; ++e) body(e);
-    return;
-  }
-  tbb::parallel_for(std::size_t{0}, n, body);
-}
 
 std::vector<int> range(int first, int count) {
   std::vector<int> out(count);
@@ -163,7 +151,7 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
   }
 
   const ElementInput in{q, v, a, t, gravity(), mass_damping_};
-  forEachElement(model_.elements.size(), [&](std::size_t e) {
+  residual_loop_.run(model_.elements.size(), [&](std::size_t e) {
     element_scratch_[e].resize(model_.elements[e]->size());
     model_.elements[e]->residual(in, element_scratch_[e].data());
   });
@@ -248,7 +236,7 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
   }
 
   const ElementInput in{q, v, a, t, gravity(), mass_damping_};
-  forEachElement(model_.elements.size(), [&](std::size_t e) {
+  jacobian_loop_.run(model_.elements.size(), [&](std::size_t e) {
     const auto& el = *model_.elements[e];
     element_scratch_[e].resize(el.size() * (el.coordinateIndices().size() + el.size()));
     el.jacobian(in, cj, element_scratch_[e].data());

@@ -11,6 +11,7 @@
 
 #include <Eigen/Sparse>
 
+#include "cranesim/assembly/element_loop.hpp"
 #include "cranesim/assembly/sparsity.hpp"
 #include "cranesim/model/model.hpp"
 
@@ -97,6 +98,7 @@ class Assembler {
   std::vector<ConstraintBlocks> constraint_blocks_;
   // Per-element scratch written in parallel and reduced in a fixed order.
   mutable std::vector<std::vector<double>> element_scratch_;
+  mutable ElementLoop residual_loop_, jacobian_loop_;
 };
 
 }  // namespace cranesim

@@ -284,12 +284,19 @@ struct SuperTrussKernel {
 
   /// F_e = Σ T_kᵀ (F_k + M_k Ṫ_k dq_e) + the rigid parts' inertial and gravity forces.
   template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
-    return forces<S>(q, v, gravity, true);
+    return forces<S>(q, v, nullptr, gravity, true);
+  }
+
+  /// M_e a + F_e = Σ T_kᵀ (F_k + M_k (T_k a + Ṫ_k dq_e)) + the rigid parts' terms, in one pass over
+  /// the members (element.hpp: a kernel's optional fused residual). Cheaper than massMatrix and
+  /// force apart, which would evaluate every member's mass matrix twice.
+  template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
+    return forces<S>(q, v, &a, gravity, true);
   }
 
   /// Elastic and damping forces alone (zero for rigid placements and rigid velocities).
   template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
-    return forces<S>(q, v, Vec3::Zero(), false);
+    return forces<S>(q, v, nullptr, Vec3::Zero(), false);
   }
 
   double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
@@ -384,7 +391,9 @@ struct SuperTrussKernel {
     Vec6T<S> v, a0;
   };
 
-  template <class S> V<S> forces(const Q<S>& q, const V<S>& v, const Vec3& gravity, bool inertia_and_gravity) const {
+  /// F_e (+ M_e a when `a` is given); without inertia and gravity: the elastic and damping forces.
+  template <class S>
+  V<S> forces(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity, bool inertia_and_gravity) const {
     using P = Dual<S, 1>;
     // Section frames along the path r(τ) = r + τṙ, R(τ) = R(I + τω̃) (first order).
     const SectionFrames<S> s = sectionFrames<S>(q);
@@ -416,6 +425,7 @@ struct SuperTrussKernel {
         out.v(i) = vn(i).value();
         out.a0(i) = vn(i).derivatives()(0);
       }
+      if (a) out.a0.noalias() += out.state.map * *a;  // node accelerations T_n a + Ṫ_n dq_e
     }
 
     V<S> F = V<S>::Zero();
@@ -426,6 +436,10 @@ struct SuperTrussKernel {
         const Vec3T<S> w = v.template segment<3>(6 * i + 3), c = p.first_moment.cast<S>();
         F.template segment<3>(6 * i) += s.R[i] * Vec3T<S>(w.cross(w.cross(c))) - S(p.mass) * g;
         F.template segment<3>(6 * i + 3) += w.cross(Vec3T<S>(p.inertia.cast<S>() * w)) - c.cross(Vec3T<S>(s.R[i].transpose() * g));
+        if (!a) continue;
+        const Vec3T<S> linear = a->template segment<3>(6 * i), angular = a->template segment<3>(6 * i + 3);
+        F.template segment<3>(6 * i) += S(p.mass) * linear + s.R[i] * Vec3T<S>(angular.cross(c));
+        F.template segment<3>(6 * i + 3) += c.cross(Vec3T<S>(s.R[i].transpose() * linear)) + p.inertia.cast<S>() * angular;
       }
     }
     for (const MemberModel& m : members) {

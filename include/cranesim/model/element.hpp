@@ -13,9 +13,13 @@
 //   double potentialEnergy(q, t, gravity) const;  gravity + strain energy
 // so that its equations read M(q, t) d(dq)/dt + F(q, dq, t) = applied and constraint forces
 // (3-26, 3-51). q_e and dq_e are the concatenated coordinates of the element's nodes, in order.
+// Optionally, a kernel whose mass matrix is costly provides the fused residual
+//   template <class S> Matrix<S, kNv, 1> residual(q, dq, a, t, gravity) const;   M(q) a + F
+// which KernelElement then uses for the residual and its Jacobian.
 // The templated functions must not branch on derivative parts and must not allocate.
 
 #include <array>
+#include <concepts>
 #include <vector>
 
 #include "cranesim/math/autodiff.hpp"
@@ -54,6 +58,13 @@ class Element {
   virtual double potentialEnergy(const ElementInput& in) const = 0;
 };
 
+/// A kernel that computes M(q) a + F(q, dq, t) in one call.
+template <class K>
+concept FusedResidualKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
+                                       const Eigen::Matrix<double, K::kNv, 1>& v, const Vec3& g) {
+  { k.template residual<double>(q, v, v, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
+};
+
 template <class Kernel> class KernelElement final : public Element {
  public:
   static constexpr int kNq = Kernel::kNq, kNv = Kernel::kNv;
@@ -75,8 +86,11 @@ template <class Kernel> class KernelElement final : public Element {
     const Qd q = gatherQ(in.q);
     Eigen::Map<Vd> out(r);
     const Vd v = gatherV(in.v);
-    out = kernel_.template massMatrix<double>(q, in.t) * (gatherV(in.a) + in.mass_damping * v) +
-          kernel_.template force<double>(q, v, in.t, in.gravity);
+    const Vd a = gatherV(in.a) + in.mass_damping * v;
+    if constexpr (FusedResidualKernel<Kernel>)
+      out = kernel_.template residual<double>(q, v, a, in.t, in.gravity);
+    else
+      out = kernel_.template massMatrix<double>(q, in.t) * a + kernel_.template force<double>(q, v, in.t, in.gravity);
   }
 
   void jacobian(const ElementInput& in, double cj, double* J) const override {
@@ -89,8 +103,11 @@ template <class Kernel> class KernelElement final : public Element {
     for (int k = 0; k < kNv; ++k) v(k) = seeded<double, kNq + kNv>(vd(k), kNq + k);
     Eigen::Matrix<D, kNv, 1> a = ad.template cast<D>();
     if (in.mass_damping != 0.0) a += in.mass_damping * v;
-    const Eigen::Matrix<D, kNv, 1> r = kernel_.template massMatrix<D>(q, in.t) * a +
-                                       kernel_.template force<D>(q, v, in.t, in.gravity);
+    Eigen::Matrix<D, kNv, 1> r;
+    if constexpr (FusedResidualKernel<Kernel>)
+      r = kernel_.template residual<D>(q, v, a, in.t, in.gravity);
+    else
+      r = kernel_.template massMatrix<D>(q, in.t) * a + kernel_.template force<D>(q, v, in.t, in.gravity);
     Eigen::Map<Eigen::Matrix<double, kNv, kNq + kNv>> Jm(J);
     for (int i = 0; i < kNv; ++i) Jm.row(i) = r(i).derivatives().transpose();
     Jm.template rightCols<kNv>() += cj * kernel_.template massMatrix<double>(qd, in.t);
