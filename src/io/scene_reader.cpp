@@ -12,6 +12,7 @@
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/rotation.hpp"
 #include "profile_reader.hpp"
+#include "scene_composition.hpp"
 #include "yaml_field.hpp"
 
 namespace cranesim {
@@ -358,21 +359,14 @@ SolverSpec readSolver(const YamlField& f) {
   return s;
 }
 
-}  // namespace
-
-Scene parseScene(const std::string& text, const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw SceneError({"<document>", e.mark.line + 1, e.mark.column + 1}, "not valid YAML: " + e.msg);
-  }
+Scene sceneFromYaml(const ComposedScene& composed, const std::string& path) {
+  const YAML::Node& root = composed.root;
   const YamlField f(root, "");
   if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
   f.allowKeys({"name", "gravity", "ground", "bodies", "trusses", "members", "constraints", "loads", "solver", "output"});
   Scene s;
   s.path = path;
-  s.text = text;
+  s.text = composed.text;
   s.name = f.has("name") ? f.at("name").text() : path;
   s.gravity = f.vec3("gravity", s.gravity);
   if (const auto g = f.find("ground")) {
@@ -417,6 +411,12 @@ Scene parseScene(const std::string& text, const std::string& path) {
     s.output.interval = o->positive("interval", s.output.interval);
   }
   return s;
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& path) {
+  return sceneFromYaml(composeScene(text, path, [](const ComposedScene& base, const std::string& base_path) { sceneFromYaml(base, base_path); }), path);
 }
 
 Scene readScene(const std::string& path) {

@@ -176,4 +176,26 @@ Vec3 YamlField::vec3(const std::string& key, const Vec3& fallback) const {
   return f ? f->vec3() : fallback;
 }
 
+void applyMergeKeys(YAML::Node node, const std::string& path) {
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) applyMergeKeys(node[i], fmt::format("{}[{}]", path, i));
+    return;
+  }
+  if (!node.IsMap()) return;
+  const std::string child_prefix = path.empty() ? "" : path + ".";
+  if (const YAML::Node merge = node["<<"]) {
+    std::vector<YAML::Node> sources;
+    if (merge.IsMap()) sources.push_back(merge);
+    if (merge.IsSequence())
+      for (const YAML::Node& item : merge) sources.push_back(item);
+    if (sources.empty() || std::any_of(sources.begin(), sources.end(), [](const YAML::Node& n) { return !n.IsMap(); }))
+      YamlField(merge, child_prefix + "<<").fail("a merge key '<<' takes a mapping (*anchor) or a list of mappings");
+    node.remove("<<");
+    for (const YAML::Node& source : sources)
+      for (const auto& kv : source)
+        if (!node[kv.first.as<std::string>()]) node[kv.first.as<std::string>()] = kv.second;
+  }
+  for (const auto& kv : node) applyMergeKeys(kv.second, child_prefix + kv.first.as<std::string>());
+}
+
 }  // namespace cranesim

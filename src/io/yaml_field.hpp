@@ -55,4 +55,10 @@ class YamlField {
   std::string path_;
 };
 
+/// Applies YAML merge keys (`<<: *anchor` or `<<: [*a, *b]`) in place, which yaml-cpp 0.7 parses
+/// but does not apply: keys of the merged mappings that the mapping lacks are copied into it
+/// (earlier sources win), and the `<<` key is removed. Fails on a `<<` that is not a mapping or
+/// a list of mappings.
+void applyMergeKeys(YAML::Node node, const std::string& path = "");
+
 }  // namespace cranesim

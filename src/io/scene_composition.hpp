@@ -1,0 +1,35 @@
+#pragma once
+// Scene composition: a scene may start from another one.
+//
+//   base: crane.yaml                 # path relative to this file
+//   modify:                          # set single fields of the base scene
+//     members.hoist_rope.length: {type: trapezoid, from: 53.9937, distance: -20, ...}
+//     constraints.slewing.drive: {type: trapezoid, from: 0, distance: 90, unit: deg, ...}
+//     solver.t_end: 60
+//   solver: {...}                    # any other top-level key replaces the base's
+//
+// A `modify` key is `<list>.<item name>.<field>[.<field>…]` for the named items of a top-level
+// list (bodies, trusses, members, constraints, loads) or `<mapping>.<field>[.<field>…]` for a
+// top-level mapping (solver, output, ground). The base is validated on its own first, so an error
+// in it names the base file.
+
+#include <yaml-cpp/yaml.h>
+
+#include <functional>
+#include <string>
+
+namespace cranesim {
+
+struct ComposedScene {
+  YAML::Node root;   // the scene with `base` and `modify` applied, merge keys expanded
+  std::string text;  // this file's text followed by its bases' texts (stored in the results)
+};
+
+/// Reads a composed scene, throwing SceneError on bad content (the scene reader).
+using BaseValidator = std::function<void(const ComposedScene& base, const std::string& base_path)>;
+
+/// Parses `text` (the scene file at `path`) and applies `base` and `modify`; every base scene is
+/// checked by `validate_base` before it is modified. Throws SceneError.
+ComposedScene composeScene(const std::string& text, const std::string& path, const BaseValidator& validate_base);
+
+}  // namespace cranesim
