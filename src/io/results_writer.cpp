@@ -116,13 +116,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     std::vector<std::string> bodies, joints, rows, constraints, constraint_joints, member_segments;
     for (std::size_t n = 0; n < model.nodes.size(); ++n) {
       const Node& node = model.nodes[n];
-      if (!node.member.empty()) {  // drawn as a polyline through the member's node joints
-        if (n + 1 < model.nodes.size() && model.nodes[n + 1].member == node.member) {
-          member_segments.push_back(node.name);
-          member_segments.push_back(model.nodes[n + 1].name);
-        }
-        continue;
-      }
+      if (!node.member.empty()) continue;  // drawn by model.drawing_lines
       const std::string g = "/bodies/" + node.name;
       bodies.push_back(node.name);
       file.writeDoubles(g + "/position", {N, 3}, body_position_[n].data());
@@ -147,6 +141,8 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     file.writeStrings("/model/constraints", {constraints.size()}, constraints);
     file.writeStrings("/model/constraint_joints", {constraints.size(), 2}, constraint_joints);
     file.writeStrings("/model/constraint_rows", {rows.size()}, rows);
+    for (const auto& line : model.drawing_lines)
+      for (const int j : line) member_segments.push_back(model.joints[j].name);
     file.writeStrings("/model/member_segments", {member_segments.size() / 2, 2}, member_segments);
 
     file.writeDoubles("/energy/kinetic", {N}, kinetic_.data());

@@ -44,6 +44,7 @@ void compileMember(Model& model, const MemberSpec& m) {
     if (kind == NodeKind::FrameStretch) model.q0(node.q + 6) = 1.0;
     if (kind == NodeKind::PointSlope) model.q0.segment<3>(node.q + 3) = axis / unstretched;  // r' = dr/ds
     model.joints.push_back({node.name, n, Vec3::Zero(), Mat3::Identity()});
+    if (i > 0) model.drawing_lines.push_back({static_cast<int>(model.joints.size()) - 2, static_cast<int>(model.joints.size()) - 1});
     nodes.push_back(n);
   }
   model.joints.push_back({m.name + ".start", nodes.front(), Vec3::Zero(), Mat3::Identity()});

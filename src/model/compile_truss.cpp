@@ -95,6 +95,7 @@ void compileMembers(Model& model, const MemberSpec& m, const TrussGeometry& g) {
   const std::vector<std::string> names = nodeNames(m, g);
   std::vector<int> node_of(g.nodes.size());
   for (std::size_t n = 0; n < g.nodes.size(); ++n) node_of[n] = addFrameNode(names[n], g.nodes[n].position, m.name);
+  for (const TrussMember& tube : g.members) model.drawing_lines.push_back({model.findJoint(names[tube.node1]), model.findJoint(names[tube.node2])});
 
   for (int s = 0; s < 2; ++s) {
     const Vec3 origin(s == 0 ? 0.0 : g.length, 0.0, 0.0);
@@ -158,6 +159,11 @@ void compileSuperTruss(Model& model, const MemberSpec& m, const TrussGeometry& g
     for (std::size_t n = 0; n < g.nodes.size(); ++n)
       if (g.nodes[n].end_section == s) model.joints.push_back({names[n], section[s], g.nodes[n].position - origin, Mat3::Identity()});
   }
+  // Drawn: the cross-section beams and the chords as straight lines (the internal nodes are no joints).
+  for (const TrussMember& tube : g.members)
+    if (g.nodes[tube.node1].end_section >= 0 && g.nodes[tube.node2].end_section >= 0)
+      model.drawing_lines.push_back({model.findJoint(names[tube.node1]), model.findJoint(names[tube.node2])});
+  for (const auto& chord : g.chords) model.drawing_lines.push_back({model.findJoint(names[chord[0]]), model.findJoint(names[chord[1]])});
   addElement(model, SuperTrussKernel(g, m.quadrature > 0 ? m.quadrature : 4, m.damping), {section[0], section[1]});
 }
 

@@ -3,6 +3,7 @@
 // (frames fixed on nodes, 4-5), constraints between joints, loads on joints. Built once from a
 // Scene (model/compile.hpp); constant during a simulation.
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -87,6 +88,9 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Constraint> constraints;
   std::vector<Load> loads;
+  /// Pairs of joints joined by a straight line when the mechanism is drawn (members' elements,
+  /// truss tubes); rigid bodies are drawn from their origin to each of their joints.
+  std::vector<std::array<int, 2>> drawing_lines;
   /// Time-dependent element parameters (rope lengths): their breakpoints restart the integrator.
   std::vector<Profile> parameter_profiles;
   Vec3 gravity = Vec3::Zero();
