@@ -91,6 +91,28 @@ void printEquilibrium(const StaticResult& eq) {
              eq.iterations, eq.load_steps, eq.force_residual, eq.constraint_residual);
 }
 
+/// The equilibrium as an engineer reads it: where the bodies are, and what each joint carries
+/// (the force of its x, y, z rows; the norm of its other rows: moments, or a drive's force or
+/// torque). A rope's tension is the force of the joint at its end.
+void printEquilibriumReport(const Model& model, const StaticResult& eq) {
+  fmt::print("{:<24} {:>12} {:>12} {:>12}\n", "body", "x [m]", "y [m]", "z [m]");
+  for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    if (!model.nodes[n].member.empty()) continue;
+    const Vec3 r = model.nodeFrame(eq.q.data(), static_cast<int>(n)).r;
+    fmt::print("{:<24} {:>12.4f} {:>12.4f} {:>12.4f}\n", model.nodes[n].name, r.x(), r.y(), r.z());
+  }
+  fmt::print("{:<24} {:>12} {:>22}\n", "constraint", "force [N]", "moment or drive");
+  for (const Constraint& c : model.constraints) {
+    double force = 0.0, other = 0.0;
+    for (int k = 0; k < c.rows; ++k) {
+      const std::string& label = c.row_labels[k];
+      const std::string axis = label.substr(label.rfind('/') + 1);
+      (axis == "x" || axis == "y" || axis == "z" ? force : other) += eq.lambda(c.row + k) * eq.lambda(c.row + k);
+    }
+    fmt::print("{:<24} {:>12.5g} {:>22.5g}\n", c.name, std::sqrt(force), std::sqrt(other));
+  }
+}
+
 int run(const std::string& scene_path, std::string out, bool quiet) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
@@ -151,6 +173,7 @@ int statics(const std::string& scene_path, std::string out) {
   out = outputPath(scene_path, out, "_static.h5");
   const StaticResult eq = equilibrium(scene, model, given, false);
   printEquilibrium(eq);
+  printEquilibriumReport(model, eq);
   ResultsRecorder recorder(assembler);
   VecX y = VecX::Zero(assembler.size());
   y.head(model.nq) = eq.q;
@@ -175,6 +198,7 @@ int modes(const std::string& scene_path, std::string out, int count) {
   out = outputPath(scene_path, out, "_modes.h5");
   const StaticResult eq = equilibrium(scene, model, given, false);
   printEquilibrium(eq);
+  printEquilibriumReport(model, eq);
   const ModalResult modal = computeModes(model, eq.q, eq.t, count);
   fmt::print("degrees of freedom: {}, rigid-body modes: {}, stiffness asymmetry: {:.2g}\n", modal.free_dofs,
              modal.rigid_modes, modal.stiffness_asymmetry);

@@ -295,3 +295,15 @@ def test_modes_bad_scene_and_missing_equilibrium(tmp_path: Path):
     assert result.returncode == EXIT_SOLVER_FAILURE, result.stderr
     assert "static equilibrium not found" in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["falling.yaml"]
+
+
+def test_static_reports_bodies_and_joint_forces(tmp_path: Path):
+    """The pendulum hangs from its hinge: the hinge carries its weight m g = 9.81 N."""
+    out = tmp_path / "static.h5"
+    result = crane_sim("static", PENDULUM, "-o", out, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    rows = {line.split()[0]: line.split()[1:] for line in result.stdout.splitlines() if line.strip()}
+    assert rows["body"] == ["x", "[m]", "y", "[m]", "z", "[m]"]
+    assert float(rows["hinge"][0]) == pytest.approx(9.81, rel=1e-6)
+    assert float(rows["rod"][2]) < 0.0  # hangs below the pivot
+    assert out.is_file()
