@@ -34,14 +34,15 @@ void applyModification(YAML::Node base, const YamlField& entry, const std::strin
   if (target.IsSequence()) {
     if (parts.size() < 3) entry.fail(fmt::format("name the item of '{}' and the field to set: {}.<name>.<field>", parts[0], parts[0]));
     YAML::Node item;
+    bool found = false;
     std::string known;
     for (YAML::Node candidate : target) {
       const std::string name = candidate.IsMap() && candidate["name"] ? candidate["name"].as<std::string>() : "";
       known += (known.empty() ? "" : ", ") + name;
-      if (name == parts[1]) item = candidate;
+      if (name == parts[1] && !found) item.reset(candidate), found = true;
     }
-    if (!item) entry.fail(fmt::format("the base scene's {} have no item named '{}' (known: {})", parts[0], parts[1], known));
-    target.reset(item);  // rebind only: Node assignment would overwrite the list
+    if (!found) entry.fail(fmt::format("the base scene's {} have no item named '{}' (known: {})", parts[0], parts[1], known));
+    target.reset(item);  // rebind: assigning a Node would overwrite the list with the item
     next = 2;
   }
   for (; next + 1 < parts.size(); ++next) {
@@ -63,12 +64,12 @@ ComposedScene compose(const std::string& text, const std::string& path, const Ba
   } catch (const YAML::Exception& e) {
     throw SceneError({"<document>", e.mark.line + 1, e.mark.column + 1}, "not valid YAML: " + e.msg);
   }
-  const YAML::Node base_key = out.root.IsMap() ? out.root["base"] : YAML::Node();
-  if (!base_key) {
-    if (out.root.IsMap() && out.root["modify"]) YamlField(out.root["modify"], "modify").fail("'modify' needs a 'base' scene");
+  if (!out.root.IsMap()) return out;  // the scene reader reports it
+  if (!out.root["base"]) {
+    if (out.root["modify"]) YamlField(out.root["modify"], "modify").fail("'modify' needs a 'base' scene");
     return out;
   }
-  const YamlField base_field(base_key, "base");
+  const YamlField base_field(out.root["base"], "base");
   if (depth >= kMaxBaseDepth) base_field.fail(fmt::format("more than {} nested base scenes (a cycle?)", kMaxBaseDepth));
   const std::filesystem::path base_path = std::filesystem::path(path).parent_path() / base_field.text();
   std::ifstream in(base_path);
