@@ -154,3 +154,25 @@ def test_every_script_has_help_with_example():
         help_text, _ = process.communicate(timeout=60)
         assert process.returncode == 0, script
         assert "usage:" in help_text and "Example" in help_text, script
+
+
+def test_load_plot_and_sway_period(results_file, tmp_path):
+    from plot_load import sway_period
+    time = np.linspace(0.0, 60.0, 601)
+    direction = np.array([0.6, 0.8])
+    velocity = np.outer(0.3 * np.sin(2 * np.pi * time / 15.0 + 0.4), direction) + [0.01, -0.02]
+    period, crossings = sway_period(time, velocity)
+    assert period == pytest.approx(15.0, rel=1e-3)
+    assert crossings == 8
+
+    out = tmp_path / "link.png"
+    result = run("plot_load.py", results_file, "--body", "link1", "-o", out)
+    assert result.returncode == 0, result.stderr
+    assert_image(out, PNG_SIGNATURE)
+    assert "max |y - y0|" in result.stdout
+
+    assert_clean_error(run("plot_load.py", results_file, "--body", "hook"), "no body 'hook'")
+    assert_clean_error(run("plot_load.py", results_file, "--body", "link1", "--pivot", "link1.tip"),
+                       "--pivot needs --sway-after")
+    assert_clean_error(run("plot_load.py", results_file, "--body", "link1", "--sway-after", "0"),
+                       "fewer than 3 zero crossings")
