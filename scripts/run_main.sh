@@ -14,7 +14,7 @@ name="$(basename "$scene" .yaml)"
 results="$out/$name.h5"
 "$root/build/crane-sim" run "$scene" -o "$results"
 python3 "$root/scripts/report.py" "$results"
-if python3 "$root/scripts/cranesim_results.py" "$results" | grep -q "/bodies/load/position"; then
+if python3 -c 'import sys, h5py; sys.exit("bodies/load" not in h5py.File(sys.argv[1], "r"))' "$results"; then
   python3 "$root/scripts/plot_load.py" "$results" -o "$out/${name}_load.png"
 fi
 python3 "$root/scripts/plot_timeseries.py" "$results" energy/kinetic energy/potential energy/drive_work \
