@@ -164,16 +164,23 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   return 0;
 }
 
+/// The equilibrium `static` and `modes` start from, solved from the scene's consistent initial
+/// state and reported.
+StaticResult reportedEquilibrium(const Scene& scene, const Model& model, const Assembler& assembler) {
+  const DynamicState given =
+      consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+  const StaticResult eq = equilibrium(scene, model, given, false);
+  printEquilibrium(eq);
+  printEquilibriumReport(model, eq);
+  return eq;
+}
+
 int statics(const std::string& scene_path, std::string out) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  const DynamicState given =
-      consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
   out = outputPath(scene_path, out, "_static.h5");
-  const StaticResult eq = equilibrium(scene, model, given, false);
-  printEquilibrium(eq);
-  printEquilibriumReport(model, eq);
+  const StaticResult eq = reportedEquilibrium(scene, model, assembler);
   ResultsRecorder recorder(assembler);
   VecX y = VecX::Zero(assembler.size());
   y.head(model.nq) = eq.q;
@@ -193,12 +200,8 @@ int modes(const std::string& scene_path, std::string out, int count) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  const DynamicState given =
-      consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
   out = outputPath(scene_path, out, "_modes.h5");
-  const StaticResult eq = equilibrium(scene, model, given, false);
-  printEquilibrium(eq);
-  printEquilibriumReport(model, eq);
+  const StaticResult eq = reportedEquilibrium(scene, model, assembler);
   const ModalResult modal = computeModes(model, eq.q, eq.t, count);
   fmt::print("degrees of freedom: {}, rigid-body modes: {}, stiffness asymmetry: {:.2g}\n", modal.free_dofs,
              modal.rigid_modes, modal.stiffness_asymmetry);
