@@ -1,0 +1,43 @@
+#pragma once
+// The static equilibrium equations as a square system in x = [q, λ]: the dq rows and the Φ
+// rows of the GGL residual at dq = 0, d(dq)/dt = 0,
+//   F(q, 0, t) + Gᵀ(q) λ = 0,   Φ(q, t) = 0,
+// with its sparse Jacobian. Used by the Newton statics and by sweeps of many equilibria (the
+// static map of crane-opt). Not thread-safe: one system per thread; the model is shared.
+
+#include <Eigen/Sparse>
+
+#include <vector>
+
+#include "cranesim/assembly/assembler.hpp"
+
+namespace cranesim {
+
+class EquilibriumSystem {
+ public:
+  EquilibriumSystem(const Model& model, double t);
+
+  const Model& model() const { return model_; }
+  int size() const { return model_.nq + model_.m; }
+  void setLoadFactor(double f) { assembler_.setLoadFactor(f); }
+  /// Drives, loads and element parameters (rope lengths) are evaluated at this time.
+  void setTime(double t) { t_ = t; }
+  double time() const { return t_; }
+
+  VecX residual(const VecX& x);
+  Eigen::SparseMatrix<double> jacobian(const VecX& x);
+
+ private:
+  void load(const VecX& x);
+
+  const Model& model_;
+  Assembler assembler_;
+  double t_;
+  VecX y_, yp_;
+  std::vector<double> values_;
+};
+
+/// Maps every node's rotation vector of x = [q, …] back into the first turn (|φ| ≤ π).
+void reparameteriseRotations(const Model& model, VecX& x);
+
+}  // namespace cranesim
