@@ -1,0 +1,21 @@
+#pragma once
+// Smooth drives from planned control trajectories (6.4): the planner produces the controls
+// (boom angle, rope lengths) at discrete times; the simulator needs them as smooth functions
+// that start and end at rest.
+
+#include <vector>
+
+#include "cranesim/math/profile.hpp"
+
+namespace cranesim {
+
+/// The discrete control trajectory (t_k, y_k), k = 0..n (increasing t, any spacing) resampled
+/// by linear interpolation at `points` equally spaced times over [t_0, t_n], padded with
+/// `steady_points` knots of value y_0 before t_0 and y_n after t_n at the same spacing, and
+/// interpolated by the cubic spline with zero slope at both ends. Throws
+/// std::invalid_argument on points < 2, steady_points < 0, sizes mismatching or below 2, or
+/// t not strictly increasing.
+TableProfile smoothControlTrajectory(const std::vector<double>& t, const std::vector<double>& y, int points,
+                                     int steady_points);
+
+}  // namespace cranesim

@@ -1,0 +1,76 @@
+#pragma once
+// Quasi-static optimal control (thesis chapter 6, 8.4): static map → fitted surfaces → QR
+// end-point trajectory → control trajectory → verification by simulating the crane.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cranesim/math/profile.hpp"
+#include "cranesim/planning/target.hpp"
+#include "cranesim/solvers/dynamics.hpp"
+
+namespace cranesim {
+
+/// The map's surfaces over (boom angle °, hoist change m) (6.2).
+struct MapFit {
+  GridData x, z, luffing;  // end point x, z and the luffing rope's unstretched length
+  FittedSurface fx, fz, fluffing;
+};
+
+MapFit fitStaticMap(const StaticMap& map, const SurfaceSpec& spec);
+
+/// One point of the control trajectory: where the map puts an end point.
+struct ControlPoint {
+  double boom_angle_deg = 0.0, hoist_change = 0.0;
+  double luffing_length = 0.0, hoist_length = 0.0;
+};
+
+/// The map inverted at an end point (absolute crane coordinates x, z); throws std::domain_error
+/// outside the map.
+ControlPoint controlsAt(const MapFit& fit, const StaticMap& map, double x, double z);
+
+/// map(inverse(p)) − p: the crane's equilibrium under the controls that the fitted map gives for p.
+struct InversionCheck {
+  double t = 0.0;                     // trajectory time of p
+  Eigen::Vector2d planned, reached;   // absolute end point (x, z)
+  double error = 0.0;                 // ‖reached − planned‖, m
+};
+
+struct Verification {
+  std::vector<double> t;                        // simulation time (the motion starts at lead_time)
+  std::vector<Eigen::Vector2d> planned;         // planned end point (absolute x, z) at t
+  std::vector<Eigen::Vector3d> simulated;       // simulated end point (absolute x, y, z)
+  double max_error = 0.0, rms_error = 0.0;      // tracking error during the motion, m
+  double residual_sway = 0.0;                   // half the peak-to-peak horizontal motion after the motion, m
+  double final_error = 0.0;                     // mean end point after the motion − target, m
+  SimulationOutcome outcome;
+};
+
+struct QuasiStaticPlan {
+  StaticMap map;
+  MapFit fit;
+  QrTrajectory trajectory;                 // relative to the target's origin
+  std::vector<ControlPoint> controls;      // per trajectory point
+  TableProfile luffing_spline, hoist_spline;
+  double lead_time = 0.0;                  // steady time before the motion in the splines and the simulation
+  std::vector<InversionCheck> inversion_checks;
+  Verification verification;
+  double map_s = 0.0, fit_s = 0.0, trajectory_s = 0.0, controls_s = 0.0, inversion_s = 0.0, verification_s = 0.0;
+};
+
+using PlanLog = std::function<void(const std::string&)>;
+
+/// Map, fit, trajectory, control trajectory and the inversion checks. Throws SceneError (bad
+/// input: a start or target outside the map) or std::runtime_error (a solver failure).
+QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log = {});
+
+/// Simulates the crane driven by the plan's control splines (8.4.3) and fills
+/// plan.verification; writes the run as a crane-sim results file when `results_path` is given.
+void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::string& results_path, const PlanLog& log = {});
+
+/// The verification scene: the target's scene with its ropes driven by the control splines,
+/// from t = 0 to the end of the splines plus the settle time.
+Scene verificationScene(const TargetSpec& target, const QuasiStaticPlan& plan);
+
+}  // namespace cranesim

@@ -1,0 +1,86 @@
+#pragma once
+// The crane's static map (thesis 6.2, 8.4.1): on a grid of boom angles × hoist-rope changes,
+// the equilibrium of the crane with its control variables (the unstretched luffing and hoist
+// rope lengths) and the load's end point.
+//
+// The boom angle is prescribed and the luffing rope length is the unknown that holds it: each
+// point solves the equilibrium equations bordered by one angle condition,
+//   R(x, L) = 0,   θ(q) − θ* = 0,   x = [q, λ], L the luffing rope's unstretched length,
+// by a chord (modified Newton) method whose factorised Jacobian is reused from point to point
+// and refreshed when the contraction slows. Every point starts from its neighbour's solution:
+// first the boom angles at hoist change 0, outwards from the scene's own equilibrium, then every
+// boom angle's row of hoist changes, the rows in parallel.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cranesim/model/model.hpp"
+
+namespace cranesim {
+
+/// Which parts of the scene are the crane's controls and its end point.
+struct CraneControls {
+  std::string luffing_rope;          // rope member whose unstretched length sets the boom angle
+  std::string hoist_rope;            // rope member whose unstretched length sets the load height
+  std::string boom_foot, boom_head;  // joints: boom angle = elevation of (head − foot) above horizontal
+  std::string end_point;             // joint whose position is the planned end point
+};
+
+struct StaticMapSpec {
+  std::vector<double> boom_angles_deg;  // increasing
+  std::vector<double> hoist_changes;    // increasing; m of hoist rope taken in from hoist_length
+  double hoist_length = 0.0;            // unstretched hoist rope at hoist change 0 (≤ 0: the scene's)
+  double tolerance = 1e-10;             // on the chord step, relative to 1 + max|q| and to L
+  int max_iterations = 40;              // per point
+  int threads = 0;                      // 0: all cores
+};
+
+/// Values per grid point (rows: boom angles, columns: hoist changes); NaN where a point failed.
+struct StaticMap {
+  std::vector<double> boom_angles_deg, hoist_changes;
+  double hoist_length = 0.0;
+  Eigen::MatrixXd luffing_length, hoist_rope_length, end_x, end_y, end_z;
+  Eigen::MatrixXi iterations;            // chord iterations per point
+  std::vector<VecX> equilibria;          // [q, λ] per point, row-major (i · columns + j)
+  std::vector<std::string> failures;     // one line per failed point
+  int jacobians = 0;                     // Jacobian factorisations over the sweep
+  int start_iterations = 0;              // Newton iterations of the scene's own equilibrium
+  double start_time_s = 0.0, sweep_time_s = 0.0;
+  int threads = 1;
+
+  int rows() const { return static_cast<int>(boom_angles_deg.size()); }
+  int columns() const { return static_cast<int>(hoist_changes.size()); }
+};
+
+/// The scene with every drive, load scale and rope length frozen at its value at solver.t_start.
+Scene freezeScene(const Scene& scene);
+
+/// Checks that the controls name rope members and existing joints; throws SceneError naming
+/// `where` (the target file's YAML location of the controls) otherwise.
+void checkControls(const Scene& scene, const CraneControls& controls, const SourceLocation& where);
+
+/// The scene as the map solves it: drives frozen at solver.t_start, the hoist rope at
+/// `hoist_length`, and the luffing rope's length the time argument (L(t) = t, so that the
+/// equilibrium system at time L is the crane with luffing rope L), starting at `luffing_length`.
+Model mapModel(const Scene& scene, const CraneControls& controls, double hoist_length, double luffing_length);
+
+/// An equilibrium of the map's bordered system.
+struct MapPoint {
+  bool converged = false;
+  VecX x;                       // [q, λ]
+  double luffing_length = 0.0;  // unstretched
+  Vec3 end_point = Vec3::Zero();
+  std::string why;              // when not converged
+};
+
+/// The equilibrium with the boom at `boom_angle_deg` and the hoist rope at `hoist_length`,
+/// continued from a nearby one (`near`, at boom angle `near_angle_deg`).
+MapPoint solveMapPoint(const Scene& scene, const CraneControls& controls, double hoist_length, double boom_angle_deg,
+                       const MapPoint& near, double near_angle_deg, const StaticMapSpec& spec);
+
+/// Sweeps the grid. `log` receives one progress line per finished row (may be empty).
+StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, const StaticMapSpec& spec,
+                           const std::function<void(const std::string&)>& log = {});
+
+}  // namespace cranesim

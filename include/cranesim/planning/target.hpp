@@ -1,0 +1,36 @@
+#pragma once
+// The planning target of crane-opt (thesis chapter 6, 8.4, Table 8-2): which scene and which of
+// its parts are the crane's controls, the static map's grid, the surface fit, the QR end-point
+// problem, the smoothing of the control trajectory and the verification run.
+
+#include <string>
+
+#include "cranesim/model/scene.hpp"
+#include "cranesim/planning/qr_trajectory.hpp"
+#include "cranesim/planning/static_map.hpp"
+#include "cranesim/planning/surface_fit.hpp"
+
+namespace cranesim {
+
+struct TargetSpec {
+  std::string path, text;
+  Scene scene;
+  CraneControls controls;
+  SourceLocation where_controls;
+  StaticMapSpec map;
+  SurfaceSpec fit;
+  /// The QR problem in trajectory coordinates: (x, z) of the end point relative to `origin`
+  /// (crane frame: x horizontal in the boom's plane, z up), and their rates.
+  QrProblem trajectory;
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  SourceLocation where_start, where_target, where_trajectory;
+  int resample_points = 20;  // 6.4: knots taken at equal times from the discrete controls
+  int steady_points = 5;     // 6.4: steady-state knots added before and after
+  double settle_time = 20.0;  // verification: simulated time after the motion, s
+};
+
+/// Reads and validates a target file (the scene path in it is relative to the file). Throws
+/// SceneError naming the YAML path and line of the first problem.
+TargetSpec readTarget(const std::string& path);
+
+}  // namespace cranesim

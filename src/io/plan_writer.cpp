@@ -1,0 +1,158 @@
+#include "cranesim/io/plan_writer.hpp"
+
+#include <filesystem>
+
+#include "cranesim/version.hpp"
+#include "hdf5_file.hpp"
+
+namespace cranesim {
+namespace {
+
+void writeMatrix(Hdf5File& file, const std::string& path, const Eigen::MatrixXd& m) {
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = m;
+  file.writeDoubles(path, {hsize_t(m.rows()), hsize_t(m.cols())}, rows.data());
+}
+
+void writeVector(Hdf5File& file, const std::string& path, const std::vector<double>& v) {
+  file.writeDoubles(path, {hsize_t(v.size())}, v.data());
+}
+
+template <int N, class Points> void writePoints(Hdf5File& file, const std::string& path, const Points& points) {
+  std::vector<double> flat;
+  for (const auto& p : points)
+    for (int k = 0; k < N; ++k) flat.push_back(p(k));
+  file.writeDoubles(path, {hsize_t(points.size()), hsize_t(N)}, flat.data());
+}
+
+void writeMap(Hdf5File& file, const StaticMap& map) {
+  writeVector(file, "/map/boom_angle", map.boom_angles_deg);
+  writeVector(file, "/map/hoist_change", map.hoist_changes);
+  writeMatrix(file, "/map/luffing_length", map.luffing_length);
+  writeMatrix(file, "/map/hoist_length", map.hoist_rope_length);
+  writeMatrix(file, "/map/end_x", map.end_x);
+  writeMatrix(file, "/map/end_y", map.end_y);
+  writeMatrix(file, "/map/end_z", map.end_z);
+  writeMatrix(file, "/map/iterations", map.iterations.cast<double>());
+  if (!map.failures.empty())
+    file.writeStrings("/map/failures", {hsize_t(map.failures.size())}, map.failures);
+  file.attribute("/map", "hoist_length_reference", map.hoist_length);
+  file.attribute("/map", "jacobians", static_cast<long>(map.jacobians));
+  file.attribute("/map", "threads", static_cast<long>(map.threads));
+  file.attribute("/map", "start_iterations", static_cast<long>(map.start_iterations));
+  file.attribute("/map", "start_time_s", map.start_time_s);
+  file.attribute("/map", "sweep_time_s", map.sweep_time_s);
+}
+
+void writeFit(Hdf5File& file, const MapFit& fit, const SurfaceSpec& spec) {
+  file.ensureGroup("/fit");
+  file.attribute("/fit", "type", std::string(spec.kind == SurfaceKind::Spline ? "spline" : "polynomial"));
+  if (spec.kind == SurfaceKind::Polynomial) {
+    file.attribute("/fit", "order_boom_angle", static_cast<long>(spec.order_u));
+    file.attribute("/fit", "order_hoist_change", static_cast<long>(spec.order_v));
+  }
+  for (const auto& [name, data, surface] : {std::tuple{"end_x", &fit.x, &fit.fx}, std::tuple{"end_z", &fit.z, &fit.fz},
+                                            std::tuple{"luffing_length", &fit.luffing, &fit.fluffing}}) {
+    Eigen::MatrixXd values(data->u.size(), data->v.size());
+    for (int i = 0; i < values.rows(); ++i)
+      for (int j = 0; j < values.cols(); ++j) values(i, j) = (*surface)(data->u[i], data->v[j]);
+    const std::string path = std::string("/fit/") + name;
+    writeMatrix(file, path, values);
+    file.attribute(path, "max_residual", surface->maxResidual());
+    file.attribute(path, "rms_residual", surface->rmsResidual());
+  }
+}
+
+void writeTrajectory(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& plan) {
+  const QrTrajectory& tr = plan.trajectory;
+  writeVector(file, "/trajectory/t", tr.t);
+  writePoints<4>(file, "/trajectory/state", tr.states);
+  writePoints<2>(file, "/trajectory/control", tr.controls);
+  file.writeDoubles("/trajectory/origin", {2}, target.origin.data());
+  file.attribute("/trajectory", "cost", tr.cost);
+  file.attribute("/trajectory", "iterations", static_cast<long>(tr.iterations));
+  file.attribute("/trajectory", "solve_time_s", tr.solve_time_s);
+  file.attribute("/trajectory", "receding_horizon", static_cast<long>(target.trajectory.receding_horizon));
+  writePoints<4>(file, "/trajectory/start", std::vector{target.trajectory.start});
+  writePoints<4>(file, "/trajectory/target", std::vector{target.trajectory.target});
+}
+
+void writeControls(Hdf5File& file, const QuasiStaticPlan& plan) {
+  std::vector<double> angle, change, luffing, hoist;
+  for (const ControlPoint& c : plan.controls) {
+    angle.push_back(c.boom_angle_deg);
+    change.push_back(c.hoist_change);
+    luffing.push_back(c.luffing_length);
+    hoist.push_back(c.hoist_length);
+  }
+  writeVector(file, "/controls/t", plan.trajectory.t);
+  writeVector(file, "/controls/boom_angle", angle);
+  writeVector(file, "/controls/hoist_change", change);
+  writeVector(file, "/controls/luffing_length", luffing);
+  writeVector(file, "/controls/hoist_length", hoist);
+  for (const auto& [name, spline] : {std::pair{"luffing_length", &plan.luffing_spline}, std::pair{"hoist_length", &plan.hoist_spline}}) {
+    const std::string g = std::string("/controls/spline/") + name;
+    writeVector(file, g + "/t", spline->t);
+    writeVector(file, g + "/y", spline->y);
+    writeVector(file, g + "/slopes", spline->slopes);
+  }
+  file.attribute("/controls", "lead_time", plan.lead_time);
+}
+
+void writeVerification(Hdf5File& file, const QuasiStaticPlan& plan) {
+  std::vector<double> t, planned_error;
+  for (const InversionCheck& c : plan.inversion_checks) {
+    t.push_back(c.t);
+    planned_error.push_back(c.error);
+  }
+  std::vector<Eigen::Vector2d> planned, reached;
+  for (const InversionCheck& c : plan.inversion_checks) {
+    planned.push_back(c.planned);
+    reached.push_back(c.reached);
+  }
+  writeVector(file, "/inversion/t", t);
+  writePoints<2>(file, "/inversion/planned", planned);
+  writePoints<2>(file, "/inversion/reached", reached);
+  writeVector(file, "/inversion/error", planned_error);
+
+  const Verification& v = plan.verification;
+  writeVector(file, "/verification/t", v.t);
+  writePoints<2>(file, "/verification/planned", v.planned);
+  writePoints<3>(file, "/verification/simulated", v.simulated);
+  file.attribute("/verification", "max_error", v.max_error);
+  file.attribute("/verification", "rms_error", v.rms_error);
+  file.attribute("/verification", "residual_sway", v.residual_sway);
+  file.attribute("/verification", "final_error", v.final_error);
+  file.attribute("/verification", "status", std::string(v.outcome.complete ? "complete" : "incomplete"));
+  file.attribute("/verification", "message", v.outcome.message);
+  file.attribute("/verification", "t_reached", v.outcome.t_reached);
+  file.attribute("/verification", "wall_time_s", v.outcome.statistics.wall_time_s);
+  file.attribute("/verification", "steps", v.outcome.statistics.steps);
+}
+
+}  // namespace
+
+void writePlan(const std::string& path, const TargetSpec& target, const QuasiStaticPlan& plan, bool map_only) {
+  const std::string partial = path + ".partial";
+  {
+    Hdf5File file(partial);
+    file.attribute("/", "engine_version", std::string(kVersion));
+    file.attribute("/", "target_path", target.path);
+    file.attribute("/", "target_text", target.text);
+    file.attribute("/", "contents", std::string(map_only ? "map" : "plan"));
+    writeMap(file, plan.map);
+    if (!map_only) {
+      writeFit(file, plan.fit, target.fit);
+      writeTrajectory(file, target, plan);
+      writeControls(file, plan);
+      writeVerification(file, plan);
+    }
+    file.ensureGroup("/timing");
+    for (const auto& [name, seconds] : {std::pair{"map_s", plan.map_s}, std::pair{"fit_s", plan.fit_s},
+                                        std::pair{"trajectory_s", plan.trajectory_s}, std::pair{"controls_s", plan.controls_s},
+                                        std::pair{"inversion_s", plan.inversion_s}, std::pair{"verification_s", plan.verification_s}})
+      file.attribute("/timing", name, seconds);
+  }
+  std::filesystem::rename(partial, path);
+}
+
+}  // namespace cranesim

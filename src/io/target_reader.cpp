@@ -1,0 +1,165 @@
+#include "cranesim/planning/target.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cranesim/io/scene_reader.hpp"
+#include "yaml_field.hpp"
+
+namespace cranesim {
+namespace {
+
+/// {from, to, step} → from, from + step, …, to.
+std::vector<double> readGrid(const YamlField& f) {
+  f.allowKeys({"from", "to", "step"});
+  const double from = f.at("from").number(), to = f.at("to").number(), step = f.at("step").positive();
+  if (!(to > from)) f.at("to").fail(fmt::format("must be above from ({}), found {}", from, to));
+  const double count = (to - from) / step;
+  if (std::abs(count - std::round(count)) > 1e-9 * std::max(1.0, count))
+    f.at("step").fail(fmt::format("the range {} … {} is not a whole number of steps of {}", from, to, step));
+  if (count > 1000) f.at("step").fail(fmt::format("{} grid points: at most 1000 per axis", count + 1));
+  std::vector<double> values;
+  for (int k = 0; k <= std::lround(count); ++k) values.push_back(from + k * step);
+  return values;
+}
+
+template <int N> Eigen::Matrix<double, N, 1> readVector(const YamlField& f) {
+  const std::vector<double> v = f.numbers();
+  if (static_cast<int>(v.size()) != N) f.fail(fmt::format("expected a list of {} numbers, found {}", N, v.size()));
+  return Eigen::Map<const Eigen::Matrix<double, N, 1>>(v.data());
+}
+
+/// A weight matrix given by its diagonal.
+template <int N> Eigen::Matrix<double, N, N> readDiagonal(const YamlField& f) {
+  const Eigen::Matrix<double, N, 1> d = readVector<N>(f);
+  if ((d.array() < 0.0).any()) f.fail("weights must not be negative");
+  return d.asDiagonal();
+}
+
+CraneControls readControls(const YamlField& f) {
+  f.allowKeys({"luffing_rope", "hoist_rope", "boom_angle", "end_point"});
+  CraneControls c;
+  c.luffing_rope = f.at("luffing_rope").text();
+  c.hoist_rope = f.at("hoist_rope").text();
+  const YamlField boom = f.at("boom_angle");
+  const std::vector<YamlField> joints = boom.items();
+  if (joints.size() != 2) boom.fail("expected [foot joint, head joint]");
+  c.boom_foot = joints[0].text();
+  c.boom_head = joints[1].text();
+  c.end_point = f.at("end_point").text();
+  return c;
+}
+
+StaticMapSpec readMap(const YamlField& f) {
+  f.allowKeys({"boom_angle", "hoist_change", "hoist_length", "tolerance", "max_iterations", "threads"});
+  StaticMapSpec m;
+  m.boom_angles_deg = readGrid(f.at("boom_angle"));
+  if (m.boom_angles_deg.front() <= 0.0 || m.boom_angles_deg.back() >= 90.0)
+    f.at("boom_angle").fail("boom angles must lie between 0° and 90° (exclusive)");
+  m.hoist_changes = readGrid(f.at("hoist_change"));
+  if (const auto h = f.find("hoist_length")) m.hoist_length = h->positive();
+  m.tolerance = f.positive("tolerance", m.tolerance);
+  if (const auto it = f.find("max_iterations")) m.max_iterations = it->integer();
+  if (const auto t = f.find("threads")) m.threads = t->integer();
+  if (m.threads < 0) f.at("threads").fail("must not be negative (0: all cores)");
+  return m;
+}
+
+SurfaceSpec readFit(const YamlField& f) {
+  f.allowKeys({"type", "order"});
+  SurfaceSpec s;
+  s.kind = f.at("type").choice({"polynomial", "spline"}) == "spline" ? SurfaceKind::Spline : SurfaceKind::Polynomial;
+  if (const auto o = f.find("order")) {
+    if (s.kind == SurfaceKind::Spline) o->fail("a spline surface has no order (it is bicubic)");
+    const std::vector<YamlField> orders = o->items();
+    if (orders.size() != 2) o->fail("expected [order in boom angle, order in hoist change]");
+    s.order_u = orders[0].integer();
+    s.order_v = orders[1].integer();
+    for (const YamlField& order : orders)
+      if (order.integer() < 1 || order.integer() > 5) order.fail("polynomial orders run from 1 to 5");
+  }
+  return s;
+}
+
+void readTrajectory(const YamlField& f, TargetSpec& t) {
+  f.allowKeys({"origin", "start", "target", "state_min", "state_max", "control_min", "control_max", "Q", "R", "P_end",
+               "steps", "sample_time", "receding_horizon", "tolerance"});
+  QrProblem& p = t.trajectory;
+  if (const auto o = f.find("origin")) t.origin = readVector<2>(*o);
+  p.start = readVector<4>(f.at("start"));
+  p.target = readVector<4>(f.at("target"));
+  t.where_start = f.at("start").where();
+  t.where_target = f.at("target").where();
+  p.state_min = readVector<4>(f.at("state_min"));
+  p.state_max = readVector<4>(f.at("state_max"));
+  p.control_min = readVector<2>(f.at("control_min"));
+  p.control_max = readVector<2>(f.at("control_max"));
+  p.Q = readDiagonal<4>(f.at("Q"));
+  p.R = readDiagonal<2>(f.at("R"));
+  p.P_end = readDiagonal<4>(f.at("P_end"));
+  p.steps = f.at("steps").integer();
+  p.sample_time = f.at("sample_time").positive();
+  if (const auto h = f.find("receding_horizon")) p.receding_horizon = h->integer();
+  p.tolerance = f.positive("tolerance", p.tolerance);
+  try {
+    validate(p);
+  } catch (const std::invalid_argument& e) {
+    f.fail(e.what());
+  }
+}
+
+}  // namespace
+
+TargetSpec readTarget(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError({path, 0, 0}, "cannot open the target file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  YAML::Node root;
+  try {
+    root = YAML::Load(buffer.str());
+  } catch (const YAML::Exception& e) {
+    throw SceneError({"<document>", e.mark.line + 1, e.mark.column + 1}, "not valid YAML: " + e.msg);
+  }
+  const YamlField f(root, "");
+  if (!f.isMap()) f.fail("a target file is a mapping (scene, crane, map, fit, trajectory, …)");
+  f.allowKeys({"name", "scene", "crane", "map", "fit", "trajectory", "control_spline", "verification"});
+
+  TargetSpec t;
+  t.path = path;
+  t.text = buffer.str();
+  const YamlField scene = f.at("scene");
+  const std::string scene_path = (std::filesystem::path(path).parent_path() / scene.text()).string();
+  try {
+    t.scene = readScene(scene_path);
+  } catch (const SceneError& e) {
+    scene.fail(fmt::format("in the scene '{}': {}", scene_path, e.what()));
+  }
+  const YamlField crane = f.at("crane");
+  t.controls = readControls(crane);
+  t.where_controls = crane.where();
+  checkControls(t.scene, t.controls, t.where_controls);
+  t.map = readMap(f.at("map"));
+  if (const auto fit = f.find("fit")) t.fit = readFit(*fit);
+  const YamlField trajectory = f.at("trajectory");
+  t.where_trajectory = trajectory.where();
+  readTrajectory(trajectory, t);
+  if (const auto c = f.find("control_spline")) {
+    c->allowKeys({"resample_points", "steady_points"});
+    if (const auto r = c->find("resample_points")) t.resample_points = r->integer();
+    if (const auto s = c->find("steady_points")) t.steady_points = s->integer();
+    if (t.resample_points < 2) c->at("resample_points").fail("at least 2 points");
+    if (t.steady_points < 0) c->at("steady_points").fail("must not be negative");
+  }
+  if (const auto v = f.find("verification")) {
+    v->allowKeys({"settle_time"});
+    if (const auto s = v->find("settle_time")) t.settle_time = s->nonNegative();
+  }
+  return t;
+}
+
+}  // namespace cranesim

@@ -1,0 +1,238 @@
+#include "cranesim/planning/quasi_static_plan.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "cranesim/io/results_writer.hpp"
+#include "cranesim/model/compile.hpp"
+#include "cranesim/planning/control_trajectory.hpp"
+#include "cranesim/solvers/statics.hpp"
+
+namespace cranesim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+GridData grid(const StaticMap& map, const Eigen::MatrixXd& values) {
+  return {map.boom_angles_deg, map.hoist_changes, values};
+}
+
+MemberSpec& member(Scene& scene, const std::string& name) {
+  for (MemberSpec& m : scene.members)
+    if (m.name == name) return m;
+  throw std::logic_error("no member " + name);  // checkControls rules this out
+}
+
+/// The crane's equilibrium under the controls of `c`, in two continuation steps from the
+/// nearest map point: the map's bordered system at c's boom angle and hoist rope (where the
+/// luffing rope is the map's own), then Newton with c's luffing rope (the fitted one).
+StaticResult equilibriumUnder(const Model& model, double t, const TargetSpec& target, const StaticMap& map,
+                              const ControlPoint& c) {
+  const auto nearest = [](const std::vector<double>& axis, double value) {
+    return static_cast<int>(std::min_element(axis.begin(), axis.end(), [&](double a, double b) {
+                              return std::abs(a - value) < std::abs(b - value);
+                            }) - axis.begin());
+  };
+  const int i = nearest(map.boom_angles_deg, c.boom_angle_deg), j = nearest(map.hoist_changes, c.hoist_change);
+  MapPoint near;
+  near.x = map.equilibria[static_cast<std::size_t>(i) * map.columns() + j];
+  near.luffing_length = map.luffing_length(i, j);
+  const MapPoint on_map = solveMapPoint(target.scene, target.controls, c.hoist_length, c.boom_angle_deg, near,
+                                        map.boom_angles_deg[i], target.map);
+  if (!on_map.converged)
+    throw std::runtime_error(fmt::format("no equilibrium at boom angle {:.4g}°, hoist rope {:.6g} m: {}", c.boom_angle_deg,
+                                         c.hoist_length, on_map.why));
+  StaticResult eq = solveStatics(model, on_map.x.head(model.nq), t);
+  if (!eq.converged) throw std::runtime_error("equilibrium under the fitted controls: " + eq.message);
+  return eq;
+}
+
+/// The trajectory point (relative coordinates) at time t, interpolated linearly and held at the ends.
+Eigen::Vector2d trajectoryAt(const QrTrajectory& trajectory, double t) {
+  const auto& ts = trajectory.t;
+  if (t <= ts.front()) return trajectory.states.front().head<2>();
+  if (t >= ts.back()) return trajectory.states.back().head<2>();
+  const std::size_t k = std::upper_bound(ts.begin(), ts.end(), t) - ts.begin();
+  const double w = (t - ts[k - 1]) / (ts[k] - ts[k - 1]);
+  return (1.0 - w) * trajectory.states[k - 1].head<2>() + w * trajectory.states[k].head<2>();
+}
+
+}  // namespace
+
+MapFit fitStaticMap(const StaticMap& map, const SurfaceSpec& spec) {
+  MapFit fit{grid(map, map.end_x), grid(map, map.end_z), grid(map, map.luffing_length), {}, {}, {}};
+  fit.fx = FittedSurface::fit(fit.x, spec);
+  fit.fz = FittedSurface::fit(fit.z, spec);
+  fit.fluffing = FittedSurface::fit(fit.luffing, spec);
+  return fit;
+}
+
+ControlPoint controlsAt(const MapFit& fit, const StaticMap& map, double x, double z) {
+  const Eigen::Vector2d uv = invertSurfaces(fit.fx, fit.fz, fit.x, fit.z, x, z);
+  ControlPoint c;
+  c.boom_angle_deg = uv(0);
+  c.hoist_change = uv(1);
+  c.luffing_length = fit.fluffing(uv(0), uv(1));
+  c.hoist_length = map.hoist_length - uv(1);  // exact: the hoist change is the map's own variable
+  return c;
+}
+
+QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
+  const auto say = [&](const std::string& line) {
+    if (log) log(line);
+  };
+  QuasiStaticPlan plan;
+  const QrProblem& problem = target.trajectory;
+  const Eigen::Vector2d origin = target.origin;
+
+  // 1. Static map (6.2).
+  auto t0 = Clock::now();
+  plan.map = computeStaticMap(target.scene, target.controls, target.map, log);
+  plan.map_s = secondsSince(t0);
+  if (!plan.map.failures.empty())
+    throw std::runtime_error(fmt::format("{} static map points failed; the first: {}", plan.map.failures.size(),
+                                         plan.map.failures.front()));
+  say(fmt::format("static map: {} × {} equilibria in {:.1f} s ({} Jacobian factorisations, {} threads)",
+                  plan.map.rows(), plan.map.columns(), plan.map_s, plan.map.jacobians, plan.map.threads));
+
+  // 2. Fitted surfaces.
+  t0 = Clock::now();
+  plan.fit = fitStaticMap(plan.map, target.fit);
+  plan.fit_s = secondsSince(t0);
+  say(fmt::format("fit: max residual x {:.3g} m, z {:.3g} m, luffing rope {:.3g} m", plan.fit.fx.maxResidual(),
+                  plan.fit.fz.maxResidual(), plan.fit.fluffing.maxResidual()));
+  for (const auto& [point, where, what] :
+       {std::tuple{problem.start, target.where_start, "start"}, std::tuple{problem.target, target.where_target, "target"}}) {
+    try {
+      controlsAt(plan.fit, plan.map, origin(0) + point(0), origin(1) + point(1));
+    } catch (const std::domain_error& e) {
+      throw SceneError(where, fmt::format("the {} is not reachable within the static map: {}", what, e.what()));
+    }
+  }
+
+  // 3. QR end-point trajectory (6.3).
+  t0 = Clock::now();
+  plan.trajectory = solveQrTrajectory(problem);
+  plan.trajectory_s = secondsSince(t0);
+  const EndState end = plan.trajectory.states.back();
+  say(fmt::format("trajectory: {} steps, cost {:.6g}, {} Ipopt iterations in {:.3f} s; end at ({:.4f}, {:.4f}) m", problem.steps,
+                  plan.trajectory.cost, plan.trajectory.iterations, plan.trajectory_s, end(0), end(1)));
+
+  // 4. Control trajectory (6.4).
+  t0 = Clock::now();
+  std::vector<double> luffing, hoist;
+  for (const EndState& s : plan.trajectory.states) {
+    ControlPoint c;
+    try {
+      c = controlsAt(plan.fit, plan.map, origin(0) + s(0), origin(1) + s(1));
+    } catch (const std::domain_error& e) {
+      throw SceneError(target.where_trajectory, fmt::format("the planned trajectory leaves the static map: {}", e.what()));
+    }
+    plan.controls.push_back(c);
+    luffing.push_back(c.luffing_length);
+    hoist.push_back(c.hoist_length);
+  }
+  plan.luffing_spline = smoothControlTrajectory(plan.trajectory.t, luffing, target.resample_points, target.steady_points);
+  plan.hoist_spline = smoothControlTrajectory(plan.trajectory.t, hoist, target.resample_points, target.steady_points);
+  plan.lead_time = plan.trajectory.t.front() - plan.luffing_spline.t.front();
+  for (TableProfile* spline : {&plan.luffing_spline, &plan.hoist_spline})
+    for (double& t : spline->t) t += plan.lead_time;
+  plan.controls_s = secondsSince(t0);
+
+  // 5. map(inverse(p)) − p at five points of the trajectory, against the crane's own equilibrium.
+  t0 = Clock::now();
+  const int n = static_cast<int>(plan.trajectory.states.size());
+  for (int k : {0, (n - 1) / 4, (n - 1) / 2, 3 * (n - 1) / 4, n - 1}) {
+    const ControlPoint& c = plan.controls[k];
+    Scene scene = freezeScene(target.scene);
+    member(scene, target.controls.luffing_rope).length = Profile(ConstantProfile{c.luffing_length});
+    member(scene, target.controls.hoist_rope).length = Profile(ConstantProfile{c.hoist_length});
+    const Model model = compileModel(scene);
+    const StaticResult eq = equilibriumUnder(model, scene.solver.t_start, target, plan.map, c);
+    const Vec3 reached = model.jointFrame(eq.q.data(), model.findJoint(target.controls.end_point)).r;
+    InversionCheck check;
+    check.t = plan.trajectory.t[k];
+    check.planned = origin + plan.trajectory.states[k].head<2>();
+    check.reached = Eigen::Vector2d(reached.x(), reached.z());
+    check.error = (check.reached - check.planned).norm();
+    plan.inversion_checks.push_back(check);
+  }
+  plan.inversion_s = secondsSince(t0);
+  double worst = 0.0;
+  for (const InversionCheck& c : plan.inversion_checks) worst = std::max(worst, c.error);
+  say(fmt::format("inversion: map(inverse(p)) − p ≤ {:.3g} m at {} trajectory points", worst, plan.inversion_checks.size()));
+  return plan;
+}
+
+Scene verificationScene(const TargetSpec& target, const QuasiStaticPlan& plan) {
+  Scene scene = freezeScene(target.scene);
+  member(scene, target.controls.luffing_rope).length = Profile(plan.luffing_spline);
+  member(scene, target.controls.hoist_rope).length = Profile(plan.hoist_spline);
+  scene.solver.t_start = 0.0;
+  scene.solver.t_end = plan.luffing_spline.t.back() + target.settle_time;
+  scene.solver.start_from_equilibrium = true;
+  scene.name += " — quasi-static plan verification";
+  return scene;
+}
+
+void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::string& results_path, const PlanLog& log) {
+  const auto t0 = Clock::now();
+  const Scene scene = verificationScene(target, plan);
+  const Model model = compileModel(scene);
+  const Assembler assembler(model);
+  const StaticResult eq = equilibriumUnder(model, 0.0, target, plan.map, plan.controls.front());
+  const DynamicState initial =
+      consistentInitialState(assembler, 0.0, eq.q, VecX::Zero(model.nv), model.solver.initial_tolerance);
+  ResultsRecorder recorder(assembler);
+  Verification& v = plan.verification;
+  v.outcome = simulate(assembler, initial, recorder);
+  if (!results_path.empty())
+    recorder.write(results_path, {target.path, scene.text, "ggl", scene.solver.t_end}, v.outcome);
+
+  const Eigen::Vector2d origin = target.origin;
+  const std::vector<double>& end = recorder.jointPositions(model.findJoint(target.controls.end_point));
+  const double motion_end = plan.lead_time + plan.trajectory.t.back();
+  const double settled = plan.luffing_spline.t.back();
+  double sum = 0.0, x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  int during = 0, after = 0;
+  for (std::size_t k = 0; k < recorder.samples(); ++k) {
+    const double t = recorder.time()[k];
+    const Eigen::Vector3d p(end[3 * k], end[3 * k + 1], end[3 * k + 2]);
+    const Eigen::Vector2d planned = origin + trajectoryAt(plan.trajectory, t - plan.lead_time);
+    v.t.push_back(t);
+    v.planned.push_back(planned);
+    v.simulated.push_back(p);
+    const double error = (Eigen::Vector2d(p.x(), p.z()) - planned).norm();
+    if (t >= plan.lead_time && t <= motion_end) {
+      v.max_error = std::max(v.max_error, error);
+      sum += error * error;
+      ++during;
+    }
+    if (t >= settled) {
+      x_min = std::min(x_min, p.x());
+      x_max = std::max(x_max, p.x());
+      mean += Eigen::Vector2d(p.x(), p.z());
+      ++after;
+    }
+  }
+  v.rms_error = during > 0 ? std::sqrt(sum / during) : 0.0;
+  if (after > 0) {
+    v.residual_sway = 0.5 * (x_max - x_min);
+    v.final_error = (mean / after - (origin + target.trajectory.target.head<2>())).norm();
+  }
+  plan.verification_s = secondsSince(t0);
+  if (log)
+    log(fmt::format("verification: {:.1f} s simulated in {:.1f} s; tracking error max {:.3g} m, RMS {:.3g} m; "
+                    "residual sway ±{:.3g} m, final error {:.3g} m",
+                    v.outcome.t_reached, plan.verification_s, v.max_error, v.rms_error, v.residual_sway, v.final_error));
+  if (!v.outcome.complete) throw std::runtime_error("verification run stopped: " + v.outcome.message);
+}
+
+}  // namespace cranesim

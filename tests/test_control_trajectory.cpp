@@ -1,0 +1,98 @@
+// Smooth drives from discrete control trajectories (6.4): resampled, padded with steady
+// state and interpolated by a cubic spline that starts and ends at rest.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "cranesim/planning/control_trajectory.hpp"
+
+using namespace cranesim;
+
+namespace {
+
+/// An unequally spaced, dense trajectory sample of y(t) over [2, 12].
+std::pair<std::vector<double>, std::vector<double>> samples(double (*y)(double)) {
+  std::vector<double> t, values;
+  const int intervals = 500;
+  for (int k = 0; k <= intervals; ++k) {
+    const double s = static_cast<double>(k) / intervals;
+    t.push_back(2 + 10 * s * s);
+    values.push_back(y(t.back()));
+  }
+  return {t, values};
+}
+
+double linear(double t) { return 1.5 - 0.25 * t; }
+double smoothStep(double t) { return 40 + 20 * std::tanh(t - 7); }
+
+}  // namespace
+
+TEST_CASE("Linear controls: knots, steady pads, resampled values and zero end slopes", "[planning][controls]") {
+  const auto [t, y] = samples(linear);
+  const int points = 41, steady = 5;
+  const TableProfile table = smoothControlTrajectory(t, y, points, steady);
+  REQUIRE(table.t.size() == points + 2 * steady);
+  REQUIRE(table.y.size() == table.t.size());
+  REQUIRE(table.slopes.size() == table.t.size());
+  CHECK(table.slopes.front() == 0.0);
+  CHECK(table.slopes.back() == 0.0);
+
+  const double spacing = 10.0 / (points - 1);
+  for (std::size_t k = 0; k < table.t.size(); ++k) {
+    INFO("knot " << k);
+    CHECK(table.t[k] == Approx(2 + (static_cast<double>(k) - steady) * spacing).epsilon(1e-14));
+    if (k > 0) CHECK(table.t[k] > table.t[k - 1]);
+  }
+  for (int k = 0; k < steady; ++k) {
+    CHECK(table.y[k] == y.front());
+    CHECK(table.y[steady + points + k] == y.back());
+  }
+
+  const Profile profile(table);
+  for (int m = 0; m < points; ++m) {
+    const double time = table.t[steady + m];
+    CHECK(profile(time) == Approx(linear(time)).margin(1e-12));
+  }
+  CHECK(profile(table.t.front() - 3.0) == y.front());
+  CHECK(profile(table.t.back() + 3.0) == y.back());
+
+  const double h = 1e-6;
+  CHECK(std::abs(profile(table.t.front() + h) - profile(table.t.front())) / h < 1e-4);
+  CHECK(std::abs(profile(table.t.back()) - profile(table.t.back() - h)) / h < 1e-4);
+  // Inside, the spline follows the ramp (slope −0.25) well away from the pads.
+  CHECK((profile(7.0 + h) - profile(7.0 - h)) / (2 * h) == Approx(-0.25).epsilon(1e-3));
+}
+
+TEST_CASE("A smooth control is followed between knots and starts and stops at rest", "[planning][controls]") {
+  const auto [t, y] = samples(smoothStep);
+  const TableProfile table = smoothControlTrajectory(t, y, 101, 10);
+  const Profile profile(table);
+  for (double time = 3.05; time < 11.9; time += 0.1) {
+    INFO("t = " << time);
+    // Linear interpolation of the samples (spacing ≤ 0.04, |y''| ≤ 15.4) limits the agreement
+    // to 0.04² / 8 · 15.4 = 3.1e-3.
+    CHECK(profile(time) == Approx(smoothStep(time)).margin(3.5e-3));
+  }
+  const double h = 1e-6;
+  CHECK(std::abs(profile(table.t.front() + h) - profile(table.t.front())) / h < 1e-3);
+  CHECK(std::abs(profile(table.t.back()) - profile(table.t.back() - h)) / h < 1e-3);
+  CHECK(profile(0.0) == y.front());
+  CHECK(profile(20.0) == y.back());
+
+  const TableProfile unpadded = smoothControlTrajectory(t, y, 2, 0);
+  CHECK(unpadded.t == std::vector<double>{2.0, 12.0});
+  CHECK(unpadded.y == std::vector<double>{y.front(), y.back()});
+  CHECK(unpadded.slopes == std::vector<double>{0.0, 0.0});
+}
+
+TEST_CASE("Control trajectory validation", "[planning][controls]") {
+  const std::vector<double> t{0, 1, 2}, y{0, 1, 4};
+  CHECK_NOTHROW(smoothControlTrajectory(t, y, 2, 0));
+  CHECK_THROWS_AS(smoothControlTrajectory(t, y, 1, 3), std::invalid_argument);
+  CHECK_THROWS_AS(smoothControlTrajectory(t, y, 10, -1), std::invalid_argument);
+  CHECK_THROWS_AS(smoothControlTrajectory(t, {0, 1}, 10, 3), std::invalid_argument);
+  CHECK_THROWS_AS(smoothControlTrajectory({0}, {0}, 10, 3), std::invalid_argument);
+  CHECK_THROWS_AS(smoothControlTrajectory({0, 1, 1}, y, 10, 3), std::invalid_argument);
+  CHECK_THROWS_AS(smoothControlTrajectory({0, 2, 1}, y, 10, 3), std::invalid_argument);
+}
