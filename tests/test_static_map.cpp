@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "cranesim/planning/static_map.hpp"
+#include "cranesim/solvers/statics.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -95,4 +96,38 @@ TEST_CASE("Static map: controls must name ropes and joints of the scene", "[plan
   wrong = kJib;
   wrong.hoist_rope = "luffing_rope";
   CHECK_THROWS_WITH(checkControls(scene, wrong, {"crane", 3, 1}), Catch::Contains("different members"));
+}
+
+TEST_CASE("Static map on the thesis crane: its bordered equilibria are the crane's equilibria", "[planning][map][crane]") {
+  const Scene scene = test::loadScene("crane.yaml");
+  const CraneControls crane{"luffing_rope", "hoist_rope", "pedestal.boom_foot", "head.origin", "load.origin"};
+  StaticMapSpec spec;
+  spec.boom_angles_deg = {81, 82};
+  spec.hoist_changes = {0, 1};
+  spec.hoist_length = 53.9937;  // the thesis' initial hoist rope (8.3.1)
+  const StaticMap map = computeStaticMap(scene, crane, spec);
+  REQUIRE(map.failures.empty());
+  // The thesis' initial luffing rope, 7.0608 m, holds the boom at 81.60°: between the two rows.
+  CHECK(map.luffing_length(0, 0) > 7.0608);
+  CHECK(map.luffing_length(1, 0) < 7.0608);
+
+  // The crane under the map's controls at (82°, 1 m), solved as any scene: same boom angle,
+  // same end point.
+  const Scene fixed = withControls(scene, crane, Profile(ConstantProfile{map.luffing_length(1, 1)}),
+                                   Profile(ConstantProfile{map.hoist_rope_length(1, 1)}));
+  const Model model = compileModel(fixed);
+  const StaticResult eq = solveStatics(model, map.equilibria[1 * 2 + 1].head(model.nq), fixed.solver.t_start);
+  REQUIRE(eq.converged);
+  const Vec3 head = model.jointFrame(eq.q.data(), model.findJoint("head.origin")).r;
+  const Vec3 foot = model.jointFrame(eq.q.data(), model.findJoint("pedestal.boom_foot")).r;
+  const Vec3 load = model.jointFrame(eq.q.data(), model.findJoint("load.origin")).r;
+  CHECK(std::atan2(head.z() - foot.z(), std::hypot(head.x() - foot.x(), head.y() - foot.y())) * 180.0 / std::numbers::pi ==
+        Approx(82.0).epsilon(1e-10));
+  CHECK((load - Vec3(map.end_x(1, 1), map.end_y(1, 1), map.end_z(1, 1))).norm() < 1e-8);
+
+  // Taking in 1 m of hoist rope lifts the 390 t load by the metre and the stretch it carried
+  // at the top of the rope (the boom barely moves: its load changes by 1 m of rope).
+  const double area = std::numbers::pi * 0.05 * 0.05, EA = 1e11 * area, w = 7800 * area * 9.8;
+  const double top_strain = (390000.6 * 9.8 + w * (53.9937 - 0.5)) / EA;
+  for (int i = 0; i < 2; ++i) CHECK(map.end_z(i, 1) - map.end_z(i, 0) == Approx(1.0 + top_strain).margin(2e-4));
 }

@@ -72,8 +72,11 @@ void writeTrajectory(Hdf5File& file, const TargetSpec& target, const QuasiStatic
   file.attribute("/trajectory", "iterations", static_cast<long>(tr.iterations));
   file.attribute("/trajectory", "solve_time_s", tr.solve_time_s);
   file.attribute("/trajectory", "receding_horizon", static_cast<long>(target.trajectory.receding_horizon));
-  writePoints<4>(file, "/trajectory/start", std::vector{target.trajectory.start});
-  writePoints<4>(file, "/trajectory/target", std::vector{target.trajectory.target});
+  const QrProblem& p = target.trajectory;
+  writePoints<4>(file, "/trajectory/start", std::vector{p.start});
+  writePoints<4>(file, "/trajectory/target", std::vector{p.target});
+  writePoints<4>(file, "/trajectory/state_bounds", std::vector{p.state_min, p.state_max});
+  writePoints<2>(file, "/trajectory/control_bounds", std::vector{p.control_min, p.control_max});
 }
 
 void writeControls(Hdf5File& file, const QuasiStaticPlan& plan) {

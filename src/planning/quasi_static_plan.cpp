@@ -23,12 +23,6 @@ GridData grid(const StaticMap& map, const Eigen::MatrixXd& values) {
   return {map.boom_angles_deg, map.hoist_changes, values};
 }
 
-MemberSpec& member(Scene& scene, const std::string& name) {
-  for (MemberSpec& m : scene.members)
-    if (m.name == name) return m;
-  throw std::logic_error("no member " + name);  // checkControls rules this out
-}
-
 /// The crane's equilibrium under the controls of `c`, in two continuation steps from the
 /// nearest map point: the map's bordered system at c's boom angle and hoist rope (where the
 /// luffing rope is the map's own), then Newton with c's luffing rope (the fitted one).
@@ -150,9 +144,8 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   const int n = static_cast<int>(plan.trajectory.states.size());
   for (int k : {0, (n - 1) / 4, (n - 1) / 2, 3 * (n - 1) / 4, n - 1}) {
     const ControlPoint& c = plan.controls[k];
-    Scene scene = freezeScene(target.scene);
-    member(scene, target.controls.luffing_rope).length = Profile(ConstantProfile{c.luffing_length});
-    member(scene, target.controls.hoist_rope).length = Profile(ConstantProfile{c.hoist_length});
+    const Scene scene = withControls(target.scene, target.controls, Profile(ConstantProfile{c.luffing_length}),
+                                     Profile(ConstantProfile{c.hoist_length}));
     const Model model = compileModel(scene);
     const StaticResult eq = equilibriumUnder(model, scene.solver.t_start, target, plan.map, c);
     const Vec3 reached = model.jointFrame(eq.q.data(), model.findJoint(target.controls.end_point)).r;
@@ -171,9 +164,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
 }
 
 Scene verificationScene(const TargetSpec& target, const QuasiStaticPlan& plan) {
-  Scene scene = freezeScene(target.scene);
-  member(scene, target.controls.luffing_rope).length = Profile(plan.luffing_spline);
-  member(scene, target.controls.hoist_rope).length = Profile(plan.hoist_spline);
+  Scene scene = withControls(target.scene, target.controls, Profile(plan.luffing_spline), Profile(plan.hoist_spline));
   scene.solver.t_start = 0.0;
   scene.solver.t_end = plan.luffing_spline.t.back() + target.settle_time;
   scene.solver.start_from_equilibrium = true;

@@ -16,6 +16,7 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <optional>
 
 #include "cranesim/model/compile.hpp"
 #include "cranesim/solvers/equilibrium_system.hpp"
@@ -30,6 +31,12 @@ template <class SceneT> auto& member(SceneT& scene, const std::string& name) {
   for (auto& m : scene.members)
     if (m.name == name) return m;
   throw std::logic_error("no member " + name);  // checkControls rules this out
+}
+
+/// A control rope's unstretched length at solver.t_start (the chord when the scene gives none).
+double ropeLengthAtStart(const Scene& scene, const std::string& rope) {
+  const MemberSpec& m = member(scene, rope);
+  return m.length ? (*m.length)(scene.solver.t_start) : (m.end - m.start).norm();
 }
 
 /// Boom angle and end point of a state, with the angle's gradient over the coordinates.
@@ -108,6 +115,20 @@ bool factorise(Eigen::SparseMatrix<double> J, int coordinates, Eigen::SparseLU<E
   return lu.info() == Eigen::Success;
 }
 
+/// J and ∂R/∂L at the state s, factorised.
+bool refreshJacobian(EquilibriumSystem& system, const PointState& s, ChordJacobian& jacobian) {
+  system.setTime(s.luffing_length);
+  const VecX r = system.residual(s.x);
+  if (!factorise(system.jacobian(s.x), system.model().nv, jacobian.lu)) return false;
+  const double h = 1e-7 * s.luffing_length;
+  system.setTime(s.luffing_length + h);
+  jacobian.residual_by_length = (system.residual(s.x) - r) / h;
+  system.setTime(s.luffing_length);
+  jacobian.valid = true;
+  ++jacobian.factorisations;
+  return true;
+}
+
 /// Chord iterations on the bordered system. In the map's models the luffing rope's length is
 /// the time argument (length profile L(t) = t), so R(x, L) is the system at time L.
 PointOutcome solvePoint(EquilibriumSystem& system, const CraneGeometry& geometry, PointState& s, double angle,
@@ -120,13 +141,7 @@ PointOutcome solvePoint(EquilibriumSystem& system, const CraneGeometry& geometry
     const VecX r = system.residual(s.x);
     if (!r.allFinite()) return {false, it, "the residual is not finite"};
     if (!jacobian.valid) {
-      if (!factorise(system.jacobian(s.x), model.nv, jacobian.lu)) return {false, it, "singular equilibrium Jacobian"};
-      const double h = 1e-7 * s.luffing_length;
-      system.setTime(s.luffing_length + h);
-      jacobian.residual_by_length = (system.residual(s.x) - r) / h;
-      system.setTime(s.luffing_length);
-      jacobian.valid = true;
-      ++jacobian.factorisations;
+      if (!refreshJacobian(system, s, jacobian)) return {false, it, "singular equilibrium Jacobian"};
       fresh = true;
     }
     // Bordered solve: dx = −a − b dL with J a = R, J b = ∂R/∂L, and θ(q + dq) = θ* to first order.
@@ -212,12 +227,17 @@ void checkControls(const Scene& scene, const CraneControls& controls, const Sour
     if (model.findJoint(joint) < 0) throw SceneError(where, fmt::format("the scene has no joint '{}'", joint));
 }
 
+Scene withControls(const Scene& scene, const CraneControls& controls, const Profile& luffing, const Profile& hoist) {
+  Scene driven = freezeScene(scene);
+  member(driven, controls.luffing_rope).length = luffing;
+  member(driven, controls.hoist_rope).length = hoist;
+  return driven;
+}
+
 Model mapModel(const Scene& scene, const CraneControls& controls, double hoist_length, double luffing_length) {
-  Scene frozen = freezeScene(scene);
-  frozen.solver.t_start = luffing_length;
-  member(frozen, controls.luffing_rope).length = Profile(RampProfile{0.0, 1.0, 0.0});
-  member(frozen, controls.hoist_rope).length = Profile(ConstantProfile{hoist_length});
-  return compileModel(frozen);
+  Scene driven = withControls(scene, controls, Profile(RampProfile{0.0, 1.0, 0.0}), Profile(ConstantProfile{hoist_length}));
+  driven.solver.t_start = luffing_length;
+  return compileModel(driven);
 }
 
 MapPoint solveMapPoint(const Scene& scene, const CraneControls& controls, double hoist_length, double boom_angle_deg,
@@ -254,14 +274,22 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
   // The scene's own equilibrium: where the continuation starts.
   const auto t0 = Clock::now();
   const Scene frozen = freezeScene(scene);
-  const double start_luffing = (*member(frozen, controls.luffing_rope).length)(0.0);
-  map.hoist_length = spec.hoist_length > 0.0 ? spec.hoist_length : (*member(frozen, controls.hoist_rope).length)(0.0);
+  const double start_luffing = ropeLengthAtStart(scene, controls.luffing_rope);
+  const double scene_hoist = ropeLengthAtStart(scene, controls.hoist_rope);
+  map.hoist_length = spec.hoist_length > 0.0 ? spec.hoist_length : scene_hoist;
   const Model start_model = compileModel(frozen);
   const StaticResult start = solveStatics(start_model, start_model.q0, frozen.solver.t_start);
   map.start_iterations = start.iterations;
   map.start_time_s = std::chrono::duration<double>(Clock::now() - t0).count();
   if (!start.converged) throw std::runtime_error("the scene's own equilibrium, where the map starts: " + start.message);
   say(fmt::format("scene equilibrium: {} Newton iterations, {:.1f} s", start.iterations, map.start_time_s));
+
+  // The spine column: the hoist change closest to the scene's own hoist rope.
+  int spine_column = 0;
+  for (int j = 1; j < columns; ++j)
+    if (std::abs(map.hoist_length - map.hoist_changes[j] - scene_hoist) <
+        std::abs(map.hoist_length - map.hoist_changes[spine_column] - scene_hoist))
+      spine_column = j;
 
   std::vector<Model> models;
   for (double change : spec.hoist_changes) {
@@ -291,11 +319,11 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
     map.equilibria[static_cast<std::size_t>(i) * columns + j] = s.x;
   };
 
-  // The spine: hoist change 0, boom angles outwards from the scene's equilibrium.
+  // The spine: boom angles outwards from the scene's equilibrium, in the spine column.
   std::vector<PointState> spine(rows);
   std::vector<bool> spine_ok(rows, false);
   {
-    EquilibriumSystem system(models[0], start_luffing);
+    EquilibriumSystem system(models[spine_column], start_luffing);
     const CraneGeometry geometry(models[0], controls);
     const double start_angle = start_geometry.boomAngle([&] {
       VecX x(start_model.nq + start_model.m);
@@ -332,7 +360,7 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
                                    angle, jacobian, spec);
           outcome.iterations += spent;
         }
-        record(i, 0, s, outcome, geometry);
+        record(i, spine_column, s, outcome, geometry);
         if (!outcome.converged) break;  // the angles beyond would start from a failed point
         spine[i] = s;
         spine_ok[i] = true;
@@ -340,7 +368,7 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
     }
     factorisations += jacobian.factorisations;
   }
-  say(fmt::format("hoist change {:g} m: {} boom angles, {:.1f} s", map.hoist_changes[0],
+  say(fmt::format("hoist change {:g} m: {} boom angles, {:.1f} s", map.hoist_changes[spine_column],
                   std::count(spine_ok.begin(), spine_ok.end(), true),
                   std::chrono::duration<double>(Clock::now() - t1).count()));
 
@@ -353,16 +381,25 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
     if (mine.empty()) mine.resize(columns);
     const CraneGeometry geometry(models[0], controls);
     ChordJacobian jacobian;
-    std::vector<PointState> row{spine[i]};
-    for (int j = 1; j < columns; ++j) {
-      if (!mine[j]) mine[j] = std::make_unique<EquilibriumSystem>(models[j], start_luffing);
-      PointState s = j >= 2 ? predict(row[j - 2], row[j - 1], map.hoist_changes[j - 2], map.hoist_changes[j - 1],
-                                      map.hoist_changes[j])
-                            : row[j - 1];
-      const PointOutcome outcome = solvePoint(*mine[j], geometry, s, map.boom_angles_deg[i] * kDegree, jacobian, spec);
-      record(i, j, s, outcome, geometry);
-      if (!outcome.converged) break;
-      row.push_back(s);
+    std::vector<std::optional<PointState>> row(columns);
+    row[spine_column] = spine[i];
+    for (int direction : {+1, -1}) {  // from the spine column towards both ends of the row
+      jacobian.valid = false;
+      for (int j = spine_column + direction; j >= 0 && j < columns; j += direction) {
+        if (!mine[j]) mine[j] = std::make_unique<EquilibriumSystem>(models[j], start_luffing);
+        // Extrapolated from the two previous points of the row; on the way back from the spine
+        // column those are the spine and its neighbour on the other side. (A copy of the
+        // neighbour would leave a paid-out hoist rope slack, without stiffness: Newton fails.)
+        const int back1 = j - direction, back2 = j - 2 * direction;
+        PointState s = back2 >= 0 && back2 < columns && row[back2]
+                           ? predict(*row[back2], *row[back1], map.hoist_changes[back2], map.hoist_changes[back1],
+                                     map.hoist_changes[j])
+                           : *row[back1];
+        const PointOutcome outcome = solvePoint(*mine[j], geometry, s, map.boom_angles_deg[i] * kDegree, jacobian, spec);
+        record(i, j, s, outcome, geometry);
+        if (!outcome.converged) break;
+        row[j] = s;
+      }
     }
     factorisations += jacobian.factorisations;
     say(fmt::format("boom angle {:g}°: row done ({}/{})", map.boom_angles_deg[i], ++rows_done, rows));

@@ -8,8 +8,9 @@
 //   R(x, L) = 0,   θ(q) − θ* = 0,   x = [q, λ], L the luffing rope's unstretched length,
 // by a chord (modified Newton) method whose factorised Jacobian is reused from point to point
 // and refreshed when the contraction slows. Every point starts from its neighbour's solution:
-// first the boom angles at hoist change 0, outwards from the scene's own equilibrium, then every
-// boom angle's row of hoist changes, the rows in parallel.
+// first the boom angles at the hoist change nearest the scene's own hoist rope, outwards from
+// the scene's equilibrium (a step that fails is halved), then every boom angle's row of hoist
+// changes in both directions, the rows in parallel.
 
 #include <functional>
 #include <string>
@@ -55,6 +56,9 @@ struct StaticMap {
 
 /// The scene with every drive, load scale and rope length frozen at its value at solver.t_start.
 Scene freezeScene(const Scene& scene);
+
+/// The frozen scene (freezeScene) with the control ropes' unstretched lengths replaced.
+Scene withControls(const Scene& scene, const CraneControls& controls, const Profile& luffing, const Profile& hoist);
 
 /// Checks that the controls name rope members and existing joints; throws SceneError naming
 /// `where` (the target file's YAML location of the controls) otherwise.
