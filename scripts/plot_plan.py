@@ -44,7 +44,9 @@ def hermite(t_query, t, y, slopes) -> np.ndarray:
 
 
 def control_bounds(plan: h5py.File):
-    """(control_min, control_max) of the QR problem."""
+    """(control_min, control_max) of the QR problem; infinite when the file predates them."""
+    if "control_bounds" not in plan["trajectory"]:
+        return np.full(2, -np.inf), np.full(2, np.inf)
     bounds = plan["trajectory/control_bounds"][()]
     return bounds[0], bounds[1]
 
