@@ -11,23 +11,13 @@
 
 #include <filesystem>
 
+#include "cranesim/io/command_line.hpp"
 #include "cranesim/io/plan_writer.hpp"
 #include "cranesim/planning/quasi_static_plan.hpp"
 
 namespace {
 
 using namespace cranesim;
-
-constexpr int kExitSolverFailure = 1;
-constexpr int kExitBadInput = 2;
-
-std::string outputPath(const std::string& target_path, std::string out, const char* suffix) {
-  if (out.empty()) out = std::filesystem::path(target_path).stem().string() + suffix;
-  const auto out_dir = std::filesystem::absolute(out).parent_path();
-  if (!std::filesystem::is_directory(out_dir))
-    throw SceneError({"-o", 0, 0}, fmt::format("the output directory '{}' does not exist", out_dir.string()));
-  return out;
-}
 
 int plan(const std::string& target_path, const std::string& out_arg, int threads, bool quiet, bool map_only) {
   TargetSpec target = readTarget(target_path);

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "cranesim/io/command_line.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_info.hpp"
 #include "cranesim/io/results_writer.hpp"
@@ -30,8 +31,6 @@ namespace {
 
 using namespace cranesim;
 
-constexpr int kExitSolverFailure = 1;
-constexpr int kExitBadInput = 2;
 constexpr int kExitInterrupted = 130;
 
 std::atomic<bool> g_interrupted{false};
@@ -58,14 +57,6 @@ class ProgressLine {
   double t0_, t1_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
-
-std::string outputPath(const std::string& scene_path, std::string out, const char* suffix) {
-  if (out.empty()) out = std::filesystem::path(scene_path).stem().string() + suffix;
-  const auto out_dir = std::filesystem::absolute(out).parent_path();
-  if (!std::filesystem::is_directory(out_dir))
-    throw SceneError({"-o", 0, 0}, fmt::format("the output directory '{}' does not exist", out_dir.string()));
-  return out;
-}
 
 /// Static equilibrium near the scene's initial state by the scene's method (solver.statics);
 /// throws when it is not found.

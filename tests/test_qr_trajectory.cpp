@@ -68,19 +68,11 @@ QrTrajectory closedLoop(const QrProblem& problem, const std::function<Gain(int)>
   return trajectory;
 }
 
-double maxStateDifference(const QrTrajectory& a, const QrTrajectory& b) {
-  REQUIRE(a.states.size() == b.states.size());
+/// max |a_k − b_k| over all entries of two sequences of vectors (states or controls).
+template <class Vectors> double maxDifference(const Vectors& a, const Vectors& b) {
+  REQUIRE(a.size() == b.size());
   double difference = 0.0;
-  for (std::size_t k = 0; k < a.states.size(); ++k)
-    difference = std::max(difference, (a.states[k] - b.states[k]).cwiseAbs().maxCoeff());
-  return difference;
-}
-
-double maxControlDifference(const QrTrajectory& a, const QrTrajectory& b) {
-  REQUIRE(a.controls.size() == b.controls.size());
-  double difference = 0.0;
-  for (std::size_t k = 0; k < a.controls.size(); ++k)
-    difference = std::max(difference, (a.controls[k] - b.controls[k]).cwiseAbs().maxCoeff());
+  for (std::size_t k = 0; k < a.size(); ++k) difference = std::max(difference, (a[k] - b[k]).cwiseAbs().maxCoeff());
   return difference;
 }
 
@@ -164,8 +156,8 @@ TEST_CASE("Unconstrained QR problem (6-1) matches the finite-horizon discrete Ri
 
   REQUIRE(solution.t.size() == 51);
   CHECK(solution.t.back() == Approx(5.0));
-  CHECK(maxStateDifference(solution, reference) <= 1e-6);
-  CHECK(maxControlDifference(solution, reference) <= 1e-6);
+  CHECK(maxDifference(solution.states, reference.states) <= 1e-6);
+  CHECK(maxDifference(solution.controls, reference.controls) <= 1e-6);
   const EndState error = problem.start - problem.target;
   CHECK(solution.cost == Approx(error.dot(lqr.P0 * error)).epsilon(1e-8));
   CHECK(solution.iterations > 0);
@@ -214,8 +206,8 @@ TEST_CASE("Receding horizon (6-2)", "[planning][qr]") {
     const QrTrajectory solution = solveQrTrajectory(problem);
     const Gain first_gain = riccati(problem, problem.receding_horizon).gains.front();
     const QrTrajectory reference = closedLoop(problem, [&](int) { return first_gain; });
-    CHECK(maxStateDifference(solution, reference) <= 1e-6);
-    CHECK(maxControlDifference(solution, reference) <= 1e-6);
+    CHECK(maxDifference(solution.states, reference.states) <= 1e-6);
+    CHECK(maxDifference(solution.controls, reference.controls) <= 1e-6);
   }
 
   SECTION("h = N: the first control is that of the full problem") {

@@ -1,0 +1,15 @@
+#pragma once
+// What the command-line tools (crane-sim, crane-opt) share: exit codes and result paths.
+
+#include <string>
+
+namespace cranesim {
+
+inline constexpr int kExitSolverFailure = 1;  // results kept, marked incomplete
+inline constexpr int kExitBadInput = 2;       // nothing written
+
+/// `out`, or `<stem of input_path><suffix>` in the working directory when `out` is empty.
+/// Throws SceneError (bad input, reported at "-o") when its directory does not exist.
+std::string outputPath(const std::string& input_path, std::string out, const char* suffix);
+
+}  // namespace cranesim
