@@ -297,12 +297,12 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
       throw std::invalid_argument(fmt::format("hoist change {} m exceeds the hoist rope's length {} m", change, map.hoist_length));
     models.push_back(mapModel(scene, controls, map.hoist_length - change, start_luffing));
   }
-  const CraneGeometry start_geometry(start_model, controls);
+  const CraneGeometry geometry(models[0], controls);  // joints sit alike in every map model
 
   const auto t1 = Clock::now();
   std::mutex record_mutex;
   std::atomic<int> factorisations{0};
-  const auto record = [&](int i, int j, const PointState& s, const PointOutcome& outcome, const CraneGeometry& geometry) {
+  const auto record = [&](int i, int j, const PointState& s, const PointOutcome& outcome) {
     std::lock_guard lock(record_mutex);
     map.iterations(i, j) = outcome.iterations;
     if (!outcome.converged) {
@@ -324,20 +324,15 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
   std::vector<bool> spine_ok(rows, false);
   {
     EquilibriumSystem system(models[spine_column], start_luffing);
-    const CraneGeometry geometry(models[0], controls);
-    const double start_angle = start_geometry.boomAngle([&] {
-      VecX x(start_model.nq + start_model.m);
-      x << start.q, start.lambda;
-      return x;
-    }());
-    int nearest = 0;
-    for (int i = 1; i < rows; ++i)
-      if (std::abs(map.boom_angles_deg[i] * kDegree - start_angle) < std::abs(map.boom_angles_deg[nearest] * kDegree - start_angle))
-        nearest = i;
     PointState origin;
     origin.x.resize(system.size());
     origin.x << start.q, start.lambda;
     origin.luffing_length = start_luffing;
+    const double start_angle = geometry.boomAngle(origin.x);
+    int nearest = 0;
+    for (int i = 1; i < rows; ++i)
+      if (std::abs(map.boom_angles_deg[i] * kDegree - start_angle) < std::abs(map.boom_angles_deg[nearest] * kDegree - start_angle))
+        nearest = i;
     ChordJacobian jacobian;
     for (int direction : {-1, +1}) {
       jacobian.valid = false;
@@ -360,7 +355,7 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
                                    angle, jacobian, spec);
           outcome.iterations += spent;
         }
-        record(i, spine_column, s, outcome, geometry);
+        record(i, spine_column, s, outcome);
         if (!outcome.converged) break;  // the angles beyond would start from a failed point
         spine[i] = s;
         spine_ok[i] = true;
@@ -379,7 +374,6 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
     if (!spine_ok[i]) return;
     auto& mine = systems.local();
     if (mine.empty()) mine.resize(columns);
-    const CraneGeometry geometry(models[0], controls);
     ChordJacobian jacobian;
     std::vector<std::optional<PointState>> row(columns);
     row[spine_column] = spine[i];
@@ -396,7 +390,7 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
                                      map.hoist_changes[j])
                            : *row[back1];
         const PointOutcome outcome = solvePoint(*mine[j], geometry, s, map.boom_angles_deg[i] * kDegree, jacobian, spec);
-        record(i, j, s, outcome, geometry);
+        record(i, j, s, outcome);
         if (!outcome.converged) break;
         row[j] = s;
       }
