@@ -63,6 +63,15 @@ int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticO
     // the step is excellent (the cantilever of 8.1.2: 8 iterations with it, 333 without). The
     // first one keeps the progress on a slack rope, whose Levenberg–Marquardt-shifted steps
     // are not Newton steps.
+    // A Newton step below the tolerance ends the iteration whatever the line search would say:
+    // near a root of a stiff, nearly linear system the residual sits at its rounding floor
+    // (stiffness × the spacing of q's doubles) and a step below that spacing cannot lower it.
+    const double scale = 1.0 + x.head(model.nq).cwiseAbs().maxCoeff();
+    if (!shifted_step && dx.head(model.nq).cwiseAbs().maxCoeff() < options.tolerance * scale) {
+      x += dx;
+      reparameteriseRotations(model, x);
+      return it;
+    }
     const double merit = r.squaredNorm(), correction = dx.head(model.nq).norm();
     double step = rotationStepLimit(model, dx);
     VecX trial;
@@ -86,8 +95,8 @@ int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticO
       return -(it + 1);
     }
     // Converged only on a full step: a short damped step proves nothing.
-    const double scale = 1.0 + x.head(model.nq).cwiseAbs().maxCoeff();
-    if (step == 1.0 && dx.head(model.nq).cwiseAbs().maxCoeff() < options.tolerance * scale) return it;
+    if (step == 1.0 && dx.head(model.nq).cwiseAbs().maxCoeff() < options.tolerance * (1.0 + x.head(model.nq).cwiseAbs().maxCoeff()))
+      return it;
   }
   why = fmt::format("no convergence in {} Newton iterations (residual {:.3g})", options.max_iterations,
                     r.cwiseAbs().maxCoeff());
