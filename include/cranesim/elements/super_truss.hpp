@@ -147,7 +147,7 @@ struct SuperTrussKernel {
       MemberModel m;
       m.node[0] = tm.node1, m.node[1] = tm.node2;
       const Vec3 axis = g.nodes[tm.node2].position - g.nodes[tm.node1].position;
-      const Mat3 R = memberFrame(axis, tm.z_axis);
+      const Mat3 R = tubeAxes(axis, tm.z_axis);
       for (int e = 0; e < 2; ++e) m.relative[e] = nodes[m.node[e]].frame.transpose() * R;
       m.beam.length = axis.norm();
       m.beam.section = tm.section;
@@ -344,17 +344,6 @@ struct SuperTrussKernel {
   static Mat3 alignX(const Vec3& t) {
     const Mat3 K = skew<double>(Vec3(Vec3::UnitX().cross(t)));
     return Mat3::Identity() + K + K * K / (1.0 + t.x());
-  }
-
-  /// Section axes of a straight tube: x along it, z as close to the hint as possible.
-  static Mat3 memberFrame(const Vec3& axis, const Vec3& z_hint) {
-    const Vec3 x = axis.normalized();
-    Vec3 z = z_hint - z_hint.dot(x) * x;
-    if (z.norm() < 1e-6) throw std::invalid_argument("super truss: a tube's z-axis hint is along the tube");
-    z.normalize();
-    Mat3 R;
-    R << x, z.cross(x), z;
-    return R;
   }
 
   template <class Item> static std::vector<Item>& scratchBuffer() {

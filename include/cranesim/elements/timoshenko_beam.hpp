@@ -378,6 +378,27 @@ struct TimoshenkoBeamKernel {
   template <class S>
   V<S> inertialAndGravityForce(const Vec3T<S>& r1s, const Mat3T<S>& R1, const Vec3T<S>& r2s, const Mat3T<S>& R2,
                                const V<S>& v, const Vec3& gravity) const {
+    const EndFrames<Dual<S, 1>> e = endFramesAlongMotion<S>(r1s, R1, r2s, R2, v);
+    const Eigen::Matrix<Dual<S, 1>, 12, 1> vp = v.template cast<Dual<S, 1>>();
+    const double rhoA = material.density * section.area;
+    const Vec3T<S> J = rotaryInertia().template cast<S>();
+    const Vec3T<S> g = gravity.cast<S>();
+    const GaussRule rule = gaussLegendre(mass_points);
+    V<S> F = V<S>::Zero();
+    for (int gp = 0; gp < rule.points; ++gp) {
+      const SectionMotion<S> m = sectionMotion<S>(e, rule.xi[gp], vp);
+      const double wl = rule.weight[gp] * length;
+      const Vec3T<S> Jw = J.cwiseProduct(m.omega);
+      F += m.map.project(Vec3T<S>(S(wl * rhoA) * (m.ax - g)), Vec3T<S>(S(wl) * (J.cwiseProduct(m.aw) + m.omega.cross(Jw))));
+    }
+    return F;
+  }
+
+  /// The end frames moving along r(τ) = r + τṙ, R(τ) = R (I + τω̃) with dq held constant: the
+  /// derivative parts of anything computed from them are its rates at d(dq)/dt = 0.
+  template <class S>
+  EndFrames<Dual<S, 1>> endFramesAlongMotion(const Vec3T<S>& r1s, const Mat3T<S>& R1, const Vec3T<S>& r2s,
+                                             const Mat3T<S>& R2, const V<S>& v) const {
     using P = Dual<S, 1>;
     using beam_detail::withDerivatives;
     const Mat3T<S> dR1 = R1 * skew<S>(Vec3T<S>(v.template segment<3>(3)));
@@ -392,32 +413,33 @@ struct TimoshenkoBeamKernel {
         R2p(i, j) = withDerivatives<S, 1>(R2(i, j), Eigen::Matrix<S, 1, 1>(dR2(i, j)));
       }
     }
-    const EndFrames<P> e = endFrames<P>(r1, R1p, r2, R2p);
-    const Eigen::Matrix<P, 12, 1> vp = v.template cast<P>();
-    const double rhoA = material.density * section.area;
-    const Vec3T<S> J = rotaryInertia().template cast<S>();
-    const Vec3T<S> g = gravity.cast<S>();
-    const GaussRule rule = gaussLegendre(mass_points);
-    V<S> F = V<S>::Zero();
-    for (int gp = 0; gp < rule.points; ++gp) {
-      const SectionMap<P> m = sectionMap<P>(e, rule.xi[gp]);
-      const Vec3T<P> xdot = m.velocity(vp), omega = m.angularVelocity(vp);
-      SectionMap<S> h;  // H at the current state: the value parts
-      h.a[0] = m.a[0], h.a[1] = m.a[1];
-      for (int n = 0; n < 2; ++n)
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) h.X[n](i, j) = m.X[n](i, j).value(), h.W[n](i, j) = m.W[n](i, j).value();
-      Vec3T<S> ax, aw, w;  // Ḣ_x dq, Ḣ_Ω dq, Ω
-      for (int i = 0; i < 3; ++i) {
-        ax(i) = xdot(i).derivatives()(0);
-        aw(i) = omega(i).derivatives()(0);
-        w(i) = omega(i).value();
+    return endFrames<P>(r1, R1p, r2, R2p);
+  }
+
+  /// The section at ξ: its map H (value parts), angular velocity Ω = H_Ω dq, and the rates
+  /// Ḣ_x dq, Ḣ_Ω dq at d(dq)/dt = 0.
+  template <class S> struct SectionMotion {
+    SectionMap<S> map;
+    Vec3T<S> omega, ax, aw;
+  };
+
+  template <class S>
+  SectionMotion<S> sectionMotion(const EndFrames<Dual<S, 1>>& e, double xi, const Eigen::Matrix<Dual<S, 1>, 12, 1>& vp) const {
+    const SectionMap<Dual<S, 1>> m = sectionMap<Dual<S, 1>>(e, xi);
+    const Vec3T<Dual<S, 1>> xdot = m.velocity(vp), omega = m.angularVelocity(vp);
+    SectionMotion<S> out;
+    out.map.a[0] = m.a[0], out.map.a[1] = m.a[1];
+    for (int i = 0; i < 3; ++i) {
+      out.map.x(i) = m.x(i).value();
+      out.ax(i) = xdot(i).derivatives()(0);
+      out.aw(i) = omega(i).derivatives()(0);
+      out.omega(i) = omega(i).value();
+      for (int j = 0; j < 3; ++j) {
+        out.map.Rc(i, j) = m.Rc(i, j).value();
+        for (int n = 0; n < 2; ++n) out.map.X[n](i, j) = m.X[n](i, j).value(), out.map.W[n](i, j) = m.W[n](i, j).value();
       }
-      const double wl = rule.weight[gp] * length;
-      const Vec3T<S> Jw = J.cwiseProduct(w);
-      F += h.project(Vec3T<S>(S(wl * rhoA) * (ax - g)), Vec3T<S>(S(wl) * (J.cwiseProduct(aw) + w.cross(Jw))));
     }
-    return F;
+    return out;
   }
 
   template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {

@@ -8,6 +8,7 @@
 // end-section frames are the truss frame translated to x = 0 and x = length.
 
 #include <array>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,18 @@ struct TrussDescription {
   double poisson_ratio = 0.3;
   SourceLocation where, where_length, where_order, where_main_beams, where_lacing;
 };
+
+/// Section axes of a straight tube in the truss frame: x along `axis`, z as close to the
+/// member's z-axis hint as possible.
+inline Mat3 tubeAxes(const Vec3& axis, const Vec3& z_hint) {
+  const Vec3 x = axis.normalized();
+  Vec3 z = z_hint - z_hint.dot(x) * x;
+  if (z.norm() < 1e-6) throw std::invalid_argument("truss: a tube's z-axis hint is along the tube");
+  z.normalize();
+  Mat3 R;
+  R << x, z.cross(x), z;
+  return R;
+}
 
 /// Builds and validates the geometry: end-section nodes first (section 1, then section 2, in the
 /// description's order), then the internal nodes chord by chord at the bay stations
