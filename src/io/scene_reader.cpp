@@ -219,7 +219,8 @@ void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussD
   if (std::abs(distance - type->length) > 1e-6 * type->length)
     f.at("end").fail(fmt::format("|end − start| = {} differs from the length {} of truss type '{}'", distance, type->length, m.truss));
   const YamlField fidelity = f.at("fidelity");
-  m.fidelity = fidelity.choice({"super_truss", "members"}) == "members" ? TrussFidelity::Members : TrussFidelity::SuperTruss;
+  const std::string chosen = fidelity.choice({"super_truss", "condensed", "members"});
+  m.fidelity = chosen == "members" ? TrussFidelity::Members : chosen == "condensed" ? TrussFidelity::Condensed : TrussFidelity::SuperTruss;
   if (const auto e = f.find("element")) {
     if (m.fidelity != TrussFidelity::Members) e->fail("'element' chooses the tubes' beam element of fidelity 'members' only");
     e->choice({"timoshenko"});

@@ -1,6 +1,7 @@
 // Truss members (`type: truss`, DESIGN §7): one truss description placed in the scene becomes
-// either the super truss element (3.5) or the full-member model, in which every tube is its own
-// Timoshenko beam on shared frame nodes (docs/truss.md).
+// the super truss element (3.5), the condensed truss element (the full-member model's stiffness
+// condensed onto the end sections, condensed_truss.hpp) or the full-member model, in which every
+// tube is its own Timoshenko beam on shared frame nodes (docs/truss.md).
 //
 // Full-member model:
 // - One frame node per truss node (end-section and internal nodes), shared by every tube that
@@ -18,6 +19,7 @@
 
 #include <array>
 
+#include "cranesim/elements/condensed_truss.hpp"
 #include "cranesim/elements/rigid_body.hpp"
 #include "cranesim/elements/rotated_ends.hpp"
 #include "cranesim/elements/super_truss.hpp"
@@ -143,9 +145,10 @@ void compileMembers(Model& model, const MemberSpec& m, const TrussGeometry& g) {
   }
 }
 
-/// Super truss element: two frame nodes, the end sections (joints <name>.start / <name>.end),
-/// with the end-section nodes as joints on them (the same names as in the full-member model).
-void compileSuperTruss(Model& model, const MemberSpec& m, const TrussGeometry& g) {
+/// A 12-DOF truss element (super truss or condensed): two frame nodes, the end sections (joints
+/// <name>.start / <name>.end), with the end-section nodes as joints on them (the same names as in
+/// the full-member model).
+template <class Kernel> void compileSectionElement(Model& model, const MemberSpec& m, const TrussGeometry& g, Kernel kernel) {
   const Mat3 R = memberFrame(m.start, m.end, m.z_axis);  // truss frame → inertial
   const std::vector<std::string> names = nodeNames(m, g);
   std::array<int, 2> section{};
@@ -164,7 +167,7 @@ void compileSuperTruss(Model& model, const MemberSpec& m, const TrussGeometry& g
     if (g.nodes[tube.node1].end_section >= 0 && g.nodes[tube.node2].end_section >= 0)
       model.drawing_lines.push_back({model.findJoint(names[tube.node1]), model.findJoint(names[tube.node2])});
   for (const auto& chord : g.chords) model.drawing_lines.push_back({model.findJoint(names[chord[0]]), model.findJoint(names[chord[1]])});
-  addElement(model, SuperTrussKernel(g, m.quadrature > 0 ? m.quadrature : 4, m.damping), {section[0], section[1]});
+  addElement(model, std::move(kernel), {section[0], section[1]});
 }
 
 }  // namespace
@@ -173,7 +176,13 @@ void compileTrussMember(Model& model, const MemberSpec& member, const TrussDescr
   const TrussGeometry geometry = buildTrussGeometry(truss);
   switch (member.fidelity) {
     case TrussFidelity::Members: compileMembers(model, member, geometry); break;
-    case TrussFidelity::SuperTruss: compileSuperTruss(model, member, geometry); break;
+    case TrussFidelity::SuperTruss:
+      compileSectionElement(model, member, geometry, SuperTrussKernel(geometry, member.quadrature > 0 ? member.quadrature : 4, member.damping));
+      break;
+    case TrussFidelity::Condensed:
+      compileSectionElement(model, member, geometry,
+                            CondensedTrussKernel(geometry, member.quadrature > 0 ? member.quadrature : 3, member.damping));
+      break;
   }
 }
 

@@ -36,7 +36,7 @@ struct RigidBodySpec {
 enum class MemberType { StrutTie, Timoshenko, SplineBeam, Rope, Truss };
 
 /// How a truss member is modelled: one super truss element (3.5) or every tube its own beam.
-enum class TrussFidelity { SuperTruss, Members };
+enum class TrussFidelity { SuperTruss, Condensed, Members };
 
 /// A flexible member: a straight line of `segments` elements from `start` to `end`, with nodes
 /// `<name>.n0 … <name>.n<segments>` (joints of the same names; `<name>.start`, `<name>.end`

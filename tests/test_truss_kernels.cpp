@@ -1,6 +1,8 @@
-// Super truss element (thesis 3.5) on the thesis' type 2 section: node kinematics, exact rigid-body
-// mass properties, objectivity of the elastic forces, forces as energy gradients, AD Jacobian,
-// energy consistency of the inertial forces.
+// The 12-DOF truss elements on the thesis' type 2 section: the super truss (thesis 3.5,
+// super_truss.hpp) and the condensed truss (condensed_truss.hpp). Both: exact rigid-body mass
+// properties, objectivity of the elastic forces, forces as energy gradients, AD Jacobian, energy
+// consistency of the inertial forces. Super truss: node kinematics. Condensed truss: the
+// condensed stiffness' rigid modes and its linear limit.
 
 #include <catch2/catch.hpp>
 
@@ -9,7 +11,9 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <type_traits>
 
+#include "cranesim/elements/condensed_truss.hpp"
 #include "cranesim/elements/super_truss.hpp"
 #include "cranesim/model/element.hpp"
 
@@ -19,7 +23,6 @@ namespace {
 
 using Q12 = Eigen::Matrix<double, 12, 1>;
 using M12 = Eigen::Matrix<double, 12, 12>;
-using TrussElement = KernelElement<SuperTrussKernel>;
 
 TrussTube tube(double outer, double inner) {
   TrussTube t;
@@ -139,6 +142,12 @@ const TrussGeometry& type2Geometry() {
   return g;
 }
 
+/// The kernel on the type 2 section with its default quadrature and Kelvin–Voigt time η.
+template <class Kernel> Kernel type2Kernel(double damping = 0.0) {
+  if constexpr (std::is_same_v<Kernel, SuperTrussKernel>) return Kernel(type2Geometry(), 4, damping);
+  else return Kernel(type2Geometry(), 3, damping);
+}
+
 }  // namespace
 
 TEST_CASE("Super truss: node velocity maps are the derivatives of the node frames", "[super_truss]") {
@@ -147,7 +156,7 @@ TEST_CASE("Super truss: node velocity maps are the derivatives of the node frame
   const Q12 q = deformedState(rng, k.length, 0.15);
   const double h = 1e-6;
   for (int n = 0; n < static_cast<int>(k.nodes.size()); ++n) {
-    const auto s = k.nodeState<double>(SuperTrussKernel::sectionFrames<double>(q), k.nodes[n]);
+    const auto s = k.template nodeState<double>(SuperTrussKernel::sectionFrames<double>(q), k.nodes[n]);
     Eigen::Matrix<double, 6, 12> fd;
     for (int j = 0; j < 12; ++j) {
       const Q12 e = Q12::Unit(j);
@@ -159,9 +168,9 @@ TEST_CASE("Super truss: node velocity maps are the derivatives of the node frame
   }
 }
 
-TEST_CASE("Super truss: mass matrix SPD with the tubes' exact rigid-body mass properties", "[super_truss]") {
+TEMPLATE_TEST_CASE("Truss elements: mass matrix SPD with the tubes' exact rigid-body mass properties", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
   const TrussGeometry& g = type2Geometry();
-  const SuperTrussKernel k(g);
+  const TestType k = type2Kernel<TestType>();
   const MassProperties p = tubeMassProperties(g);
   CHECK(k.mass() == Approx(p.mass).epsilon(1e-12));
   Rng rng(7);
@@ -169,7 +178,7 @@ TEST_CASE("Super truss: mass matrix SPD with the tubes' exact rigid-body mass pr
     const Vec3 r0 = rng.vec(10.0);
     const Mat3 R0 = trial == 0 ? axisAngle(Vec3(1.0, 1.0, 0.0), std::numbers::pi) : rng.rotation(3.0);
     const Q12 q = rigidPlacement(k.length, r0, R0);
-    const M12 M = k.massMatrix<double>(q);
+    const M12 M = k.template massMatrix<double>(q);
     CHECK((M - M.transpose()).norm() < 1e-12 * M.norm());
     CHECK(Eigen::SelfAdjointEigenSolver<M12>(M).eigenvalues().minCoeff() > 0.0);
     const Vec3 u = rng.vec(2.0), Omega = rng.vec(1.5);
@@ -186,26 +195,26 @@ TEST_CASE("Super truss: mass matrix SPD with the tubes' exact rigid-body mass pr
   }
 }
 
-TEST_CASE("Super truss: no elastic force under rigid placements and rigid velocities", "[super_truss]") {
-  SuperTrussKernel k(type2Geometry(), 4, 0.01);  // with Kelvin–Voigt damping
+TEMPLATE_TEST_CASE("Truss elements: no elastic force under rigid placements and rigid velocities", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
+  const TestType k = type2Kernel<TestType>(0.01);  // with Kelvin–Voigt damping
   Rng rng(11);
   Q12 q = deformedState(rng, k.length, 0.05);
-  const double typical = k.elasticForce<double>(q, Q12::Zero()).norm();  // 5 cm / 0.05 rad deformation
+  const double typical = k.template elasticForce<double>(q, Q12::Zero()).norm();  // 5 cm / 0.05 rad deformation
   for (int trial = 0; trial < 4; ++trial) {
     const Mat3 R0 = trial == 0 ? axisAngle(Vec3(0.0, 0.0, 1.0), std::numbers::pi) : rng.rotation(3.1);
     q = rigidPlacement(k.length, rng.vec(20.0), R0);
     const Q12 v = rigidVelocity(q, rng.vec(3.0), rng.vec(2.0));
     INFO("trial " << trial << ", typical force " << typical);
-    CHECK(k.elasticForce<double>(q, v).norm() < 1e-12 * typical);
+    CHECK(k.template elasticForce<double>(q, v).norm() < 1e-12 * typical);
     CHECK(k.strainEnergy(q) < 1e-12);
   }
 }
 
-TEST_CASE("Super truss: elastic force is the twist gradient of the strain energy", "[super_truss]") {
-  const SuperTrussKernel k(type2Geometry());
+TEMPLATE_TEST_CASE("Truss elements: elastic force is the twist gradient of the strain energy", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
+  const TestType k = type2Kernel<TestType>();
   Rng rng(5);
   const Q12 q = deformedState(rng, k.length, 0.1);
-  const Q12 F = k.elasticForce<double>(q, Q12::Zero());
+  const Q12 F = k.template elasticForce<double>(q, Q12::Zero());
   Q12 fd;
   for (int j = 0; j < 12; ++j) {
     const double h = j % 6 < 3 ? 1e-6 : 1e-7;
@@ -215,13 +224,13 @@ TEST_CASE("Super truss: elastic force is the twist gradient of the strain energy
   CHECK((F - fd).norm() < 1e-6 * F.norm());
 }
 
-TEST_CASE("Super truss: AD Jacobian matches finite differences", "[super_truss]") {
-  SuperTrussKernel k(type2Geometry(), 4, 0.02);
+TEMPLATE_TEST_CASE("Truss elements: AD Jacobian matches finite differences", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
+  const TestType k = type2Kernel<TestType>(0.02);
   Rng rng(13);
   const Q12 q = deformedState(rng, k.length, 0.05);
   const Q12 v = rng.vec(1.0).replicate<4, 1>() + Q12::Random();
   const Q12 a = Q12::Random();
-  const TrussElement el(k, {0, 1}, range(12), range(12));
+  const KernelElement<TestType> el(k, {0, 1}, range(12), range(12));
   const Vec3 gravity(0.0, 0.0, -9.81);
   const double cj = 3.0;
   auto residual = [&](const Q12& qq, const Q12& vv) {
@@ -249,27 +258,27 @@ TEST_CASE("Super truss: AD Jacobian matches finite differences", "[super_truss]"
   }
 }
 
-TEST_CASE("Super truss: inertial forces do no work (dqᵀ F_ine = ½ dqᵀ Ṁ dq)", "[super_truss]") {
-  const SuperTrussKernel k(type2Geometry());
+TEMPLATE_TEST_CASE("Truss elements: inertial forces do no work (dqᵀ F_ine = ½ dqᵀ Ṁ dq)", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
+  const TestType k = type2Kernel<TestType>();
   Rng rng(17);
   for (int trial = 0; trial < 3; ++trial) {
     const Q12 q = deformedState(rng, k.length, 0.1);
     const Q12 v = Q12::Random() * 2.0;
-    const Q12 Fine = k.force<double>(q, v, 0.0, Vec3::Zero()) - k.elasticForce<double>(q, v);
+    const Q12 Fine = k.template force<double>(q, v, 0.0, Vec3::Zero()) - k.template elasticForce<double>(q, v);
     const double h = 1e-6;
-    const M12 Mdot = (k.massMatrix<double>(twisted(q, h * v)) - k.massMatrix<double>(twisted(q, -h * v))) / (2.0 * h);
+    const M12 Mdot = (k.template massMatrix<double>(twisted(q, h * v)) - k.template massMatrix<double>(twisted(q, -h * v))) / (2.0 * h);
     const double power = v.dot(Fine), expected = 0.5 * v.dot(Mdot * v);
     INFO("trial " << trial << ": " << power << " vs " << expected);
-    CHECK(power == Approx(expected).epsilon(1e-6).margin(1e-7 * v.dot(k.massMatrix<double>(q) * v)));
+    CHECK(power == Approx(expected).epsilon(1e-6).margin(1e-7 * v.dot(k.template massMatrix<double>(q) * v)));
   }
 }
 
-TEST_CASE("Super truss: gravity force is the gradient of the gravity potential", "[super_truss]") {
-  const SuperTrussKernel k(type2Geometry());
+TEMPLATE_TEST_CASE("Truss elements: gravity force is the gradient of the gravity potential", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
+  const TestType k = type2Kernel<TestType>();
   Rng rng(19);
   const Q12 q = deformedState(rng, k.length, 0.1);
   const Vec3 g(1.0, -2.0, -9.81);
-  const Q12 F = k.force<double>(q, Q12::Zero(), 0.0, g);  // elastic + gravity at rest
+  const Q12 F = k.template force<double>(q, Q12::Zero(), 0.0, g);  // elastic + gravity at rest
   Q12 fd;
   for (int j = 0; j < 12; ++j) {
     const double h = j % 6 < 3 ? 1e-6 : 1e-7;
@@ -279,11 +288,11 @@ TEST_CASE("Super truss: gravity force is the gradient of the gravity potential",
   CHECK((F - fd).norm() < 1e-6 * F.norm());
 }
 
-TEST_CASE("Super truss: cost of force and Jacobian per call", "[super_truss][.timing]") {
-  const SuperTrussKernel k(type2Geometry());
+TEMPLATE_TEST_CASE("Truss elements: cost of force and Jacobian per call", "[super_truss][condensed_truss][.timing]", SuperTrussKernel, CondensedTrussKernel) {
+  const TestType k = type2Kernel<TestType>();
   Rng rng(23);
   const Q12 q = deformedState(rng, k.length, 0.05), v = Q12::Random(), a = Q12::Random();
-  const TrussElement el(k, {0, 1}, range(12), range(12));
+  const KernelElement<TestType> el(k, {0, 1}, range(12), range(12));
   const ElementInput in{q.data(), v.data(), a.data(), 0.0, Vec3(0.0, 0.0, -9.81)};
   Q12 r;
   Eigen::Matrix<double, 12, 24> J;
@@ -294,8 +303,52 @@ TEST_CASE("Super truss: cost of force and Jacobian per call", "[super_truss][.ti
   auto t1 = Clock::now();
   for (int i = 0; i < n / 10; ++i) el.jacobian(in, 1.0, J.data());
   auto t2 = Clock::now();
-  std::printf("super truss type 2 (%zu flexible tubes): residual %.1f us, jacobian %.1f us per call\n", k.members.size(),
+  std::printf("%s, type 2: residual %.1f us, jacobian %.1f us per call\n",
+              std::is_same_v<TestType, SuperTrussKernel> ? "super truss" : "condensed truss",
               std::chrono::duration<double, std::micro>(t1 - t0).count() / n,
               std::chrono::duration<double, std::micro>(t2 - t1).count() / (n / 10));
   SUCCEED();
+}
+
+TEST_CASE("Condensed truss: the condensed stiffness has the six rigid modes as null space", "[condensed_truss]") {
+  const CondensedTrussKernel k = type2Kernel<CondensedTrussKernel>();
+  const Eigen::SelfAdjointEigenSolver<M12> eig(k.stiffness);
+  const double largest = eig.eigenvalues().maxCoeff();
+  INFO("eigenvalues " << eig.eigenvalues().transpose());
+  CHECK(eig.eigenvalues().head<6>().cwiseAbs().maxCoeff() < 1e-14 * largest);
+  CHECK(eig.eigenvalues()(6) > 1e-3 * largest);
+  // The rigid modes themselves: translations and rotations about the origin of section 1.
+  for (int j = 0; j < 6; ++j) {
+    Q12 mode = Q12::Zero();
+    const Vec3 e = Vec3::Unit(j % 3);
+    if (j < 3) {
+      mode.segment<3>(0) = mode.segment<3>(6) = e;
+    } else {
+      mode.segment<3>(3) = mode.segment<3>(9) = e;
+      mode.segment<3>(6) = e.cross(Vec3(k.length, 0.0, 0.0));
+    }
+    CHECK((k.stiffness * mode).norm() < 1e-12 * largest);
+  }
+}
+
+TEST_CASE("Condensed truss: its linearisation at any rigid placement is the condensed stiffness", "[condensed_truss]") {
+  const CondensedTrussKernel k = type2Kernel<CondensedTrussKernel>();
+  Rng rng(29);
+  for (int trial = 0; trial < 3; ++trial) {
+    const Mat3 R0 = trial == 0 ? Mat3::Identity() : rng.rotation(3.0);
+    const Q12 q = rigidPlacement(k.length, rng.vec(10.0), R0);
+    M12 K;
+    for (int j = 0; j < 12; ++j) {
+      const double h = j % 6 < 3 ? 1e-7 : 1e-8;
+      K.col(j) = (k.template elasticForce<double>(twisted(q, h * Q12::Unit(j)), Q12::Zero()) -
+                  k.template elasticForce<double>(twisted(q, -h * Q12::Unit(j)), Q12::Zero())) /
+                 (2.0 * h);
+    }
+    // Twist [δr, δθ]: δr inertial, δθ in the section frames (truss axes). The truss-axes
+    // displacements are R0ᵀ δr, so K_twist = T K_red Tᵀ with T = diag(R0, I, R0, I).
+    M12 T = M12::Identity();
+    T.block<3, 3>(0, 0) = T.block<3, 3>(6, 6) = R0;
+    INFO("trial " << trial);
+    CHECK((K - T * k.stiffness * T.transpose()).norm() < 1e-6 * k.stiffness.norm());
+  }
 }

@@ -1,0 +1,273 @@
+#pragma once
+// Condensed truss element: a whole lattice section (truss_geometry.hpp) on its two end sections,
+// like the super truss element (super_truss.hpp, thesis 3.5), but with the stiffness of the
+// full-member model instead of the super truss' spline kinematics.
+//
+// Coordinates: q_e = [r¹, φ¹, r², φ²] of the two end-section frames, dq_e = [ṙ¹, ω¹, ṙ², ω²] with
+// ω in the section's body frame, exactly as the super truss element (12 DOF).
+//
+// Stiffness: static condensation (Guyan) of the linear full-member model onto the rigid end
+// sections. Every tube that does not lie in an end section is one Timoshenko beam
+// (timoshenko_beam.hpp, localStiffness) on the truss nodes; end-section nodes are rigid with
+// their section, u = u_s + θ_s × p (assumption 1), internal nodes keep their six DOF. With the
+// end-section DOF b = [u¹, θ¹, u², θ²] (truss axes, section origins) and the internal ones i,
+//     K_red = K_bb − K_bi K_ii⁻¹ K_ib,
+// the exact linear stiffness of the full-member model between its end sections, including the
+// lacing's shear compliance and the torsion–axial coupling of the lacing pattern, which the super
+// truss' tangent-tied chords lose. It is applied co-rotationally (timoshenko_beam.hpp, 3-29..3-34):
+// the local deformations d = [0, ψ¹, u², ψ²] of the end sections in the co-rotated frame give
+// U = ½ dᵀ K_red d and F = J_dᵀ K_red (d + η ḋ). K_red annihilates the six rigid modes, so rigid
+// placements carry no force and large rigid motion is exact; the deformation itself is linear
+// (small strains in the co-rotated frame, no buckling of single tubes).
+//
+// Inertia and gravity: the tubes' material rides on the sections of a beam interpolation between
+// the end frames (the Timoshenko kernel's: cubic Hermite centre line along the truss axis, geodesic
+// section rotation R_c(ξ)). A material point at station ξ and lateral offset o moves as
+// p = x(ξ) + R_c(ξ) o. The tubes are cut into mass stations: Gauss points per bay (every flexible
+// tube spans whole bays, its mass spread uniformly along the axis, its offset linear) and point
+// stations where a tube lies across the axis (the cross-section beams at ξ = 0 and 1). Each
+// station carries mass m, first moment s = Σ m o and inertia J = Σ m (|o|² I − o oᵀ) plus the
+// tubes' own rotary inertia, in the section frame. Per station, by d'Alembert on p:
+//     f = m ẍ + R_c (Ω̇ × s + Ω × (Ω × s)) − m g,
+//     τ = s × R_cᵀ (ẍ − g) + J Ω̇ + Ω × J Ω,
+// projected by H_xᵀ f + H_Ωᵀ τ. Rigid motions carry the exact mass, first moment and inertia of
+// the tubes, and the inertial forces do no work (the exact kinetic energy of this interpolation).
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "cranesim/elements/timoshenko_beam.hpp"
+#include "cranesim/math/gauss_legendre.hpp"
+#include "cranesim/math/rotation.hpp"
+#include "cranesim/model/truss_geometry.hpp"
+
+namespace cranesim {
+
+struct CondensedTrussKernel {
+  static constexpr int kNodes = 2;
+  static constexpr int kNq = 12;
+  static constexpr int kNv = 12;
+  template <class S> using Q = Eigen::Matrix<S, kNq, 1>;
+  template <class S> using V = Eigen::Matrix<S, kNv, 1>;
+  using Mat12 = Eigen::Matrix<double, 12, 12>;
+
+  /// Material on the section at ξ, about the axis point, in the section frame.
+  struct MassStation {
+    double xi = 0.0;
+    double mass = 0.0;
+    Vec3 first_moment = Vec3::Zero();
+    Mat3 inertia = Mat3::Zero();
+  };
+
+  double length = 0.0;
+  TimoshenkoBeamKernel frame;  // co-rotation, section interpolation, damping η (its own section unused)
+  Mat12 stiffness = Mat12::Zero();  // K_red on [u¹, θ¹, u², θ²], truss axes
+  std::vector<MassStation> stations;
+
+  CondensedTrussKernel() = default;
+
+  /// `points_per_bay`: Gauss points of the mass stations in each bay; `damping`: Kelvin–Voigt
+  /// retardation time η of every tube, s.
+  explicit CondensedTrussKernel(const TrussGeometry& g, int points_per_bay = 3, double damping = 0.0) : length(g.length) {
+    frame.length = g.length;
+    frame.damping = damping;
+    stiffness = condensedStiffness(g);
+    stations = massStations(g, points_per_bay);
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // Kernel contract (element.hpp)
+
+  template <class S> Eigen::Matrix<S, kNv, kNv> massMatrix(const Q<S>& q, double = 0.0) const {
+    const auto e = frame.endFrames<S>(q);
+    Eigen::Matrix<S, kNv, kNv> M = Eigen::Matrix<S, kNv, kNv>::Zero();
+    for (const MassStation& st : stations) {
+      const auto m = frame.sectionMap<S>(e, st.xi);
+      Eigen::Matrix<S, 3, kNv> Hx = Eigen::Matrix<S, 3, kNv>::Zero(), Hw = Eigen::Matrix<S, 3, kNv>::Zero();
+      for (int n = 0; n < 2; ++n) {
+        Hx.template block<3, 3>(0, 6 * n).diagonal().setConstant(S(m.a[n]));
+        Hx.template block<3, 3>(0, 6 * n + 3) = m.X[n];
+        Hw.template block<3, 3>(0, 6 * n + 3) = m.W[n];
+      }
+      // Σ dm H_pᵀ H_p with H_p = H_x − R_c õ H_Ω.
+      const Eigen::Matrix<S, kNv, kNv> coupling = Hx.transpose() * (m.Rc * skew<S>(Vec3T<S>(st.first_moment.cast<S>()))) * Hw;
+      M.noalias() += S(st.mass) * (Hx.transpose() * Hx) - coupling - coupling.transpose() +
+                     Hw.transpose() * (st.inertia.cast<S>() * Hw);
+    }
+    return M;
+  }
+
+  template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
+    return inertiaAndGravity<S>(q, v, nullptr, gravity) + elasticForce<S>(q, v);
+  }
+
+  /// M a + F in one pass over the stations (element.hpp: fused residual).
+  template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
+    return inertiaAndGravity<S>(q, v, &a, gravity) + elasticForce<S>(q, v);
+  }
+
+  /// J_dᵀ K_red (d + η J_d dq): elastic and damping forces.
+  template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
+    return frame.elasticForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                                 q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
+                                 stiffness);
+  }
+
+  double strainEnergy(const Q<double>& q) const {
+    const Eigen::Matrix<double, 12, 1> d = frame.localDeformation<double>(q);
+    return 0.5 * d.dot(stiffness * d);
+  }
+
+  double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
+    return 0.5 * v.dot(massMatrix<double>(q) * v);
+  }
+
+  /// −Σ g·(m x + R_c s) + strain energy.
+  double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const {
+    const auto e = frame.endFrames<double>(q);
+    double V = strainEnergy(q);
+    for (const MassStation& st : stations) {
+      const auto m = frame.sectionMap<double>(e, st.xi);
+      V -= gravity.dot(st.mass * m.x + m.Rc * st.first_moment);
+    }
+    return V;
+  }
+
+  double mass() const {
+    double m = 0.0;
+    for (const MassStation& st : stations) m += st.mass;
+    return m;
+  }
+
+ private:
+  /// Inertial (and, with `a`, M a) and gravity forces of the mass stations.
+  template <class S> V<S> inertiaAndGravity(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity) const {
+    const auto e = frame.endFramesAlongMotion<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                                                 q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v);
+    const Eigen::Matrix<Dual<S, 1>, 12, 1> vp = v.template cast<Dual<S, 1>>();
+    const Vec3T<S> g = gravity.cast<S>();
+    V<S> F = V<S>::Zero();
+    for (const MassStation& st : stations) {
+      const auto m = frame.sectionMotion<S>(e, st.xi, vp);
+      Vec3T<S> xdd = m.ax, wd = m.aw;  // ẍ, Ω̇
+      if (a) xdd += m.map.velocity(*a), wd += m.map.angularVelocity(*a);
+      const Vec3T<S> s = st.first_moment.cast<S>();
+      const Mat3T<S> J = st.inertia.cast<S>();
+      const Vec3T<S> f = S(st.mass) * (xdd - g) + m.map.Rc * Vec3T<S>(wd.cross(s) + m.omega.cross(m.omega.cross(s)));
+      const Vec3T<S> tau = s.cross(Vec3T<S>(m.map.Rc.transpose() * (xdd - g))) + J * wd + m.omega.cross(Vec3T<S>(J * m.omega));
+      F += m.map.project(f, tau);
+    }
+    return F;
+  }
+
+  /// K_red of the linear full-member model (see the file comment).
+  static Mat12 condensedStiffness(const TrussGeometry& g) {
+    std::vector<int> column(g.nodes.size(), -1);  // first DOF of each internal node
+    int n = 12;
+    for (std::size_t k = 0; k < g.nodes.size(); ++k)
+      if (g.nodes[k].end_section < 0) column[k] = n, n += 6;
+    // A node's displacement and rotation [u; θ] (truss axes) from all DOF.
+    const auto nodeMap = [&](int k) {
+      Eigen::MatrixXd E = Eigen::MatrixXd::Zero(6, n);
+      const TrussNode& node = g.nodes[k];
+      if (node.end_section < 0) {
+        E.block<6, 6>(0, column[k]).setIdentity();
+      } else {
+        const int s = node.end_section;
+        const Vec3 p = node.position - (s * g.length) * Vec3::UnitX();
+        E.block<6, 6>(0, 6 * s).setIdentity();
+        E.block<3, 3>(0, 6 * s + 3) = -skew<double>(p);
+      }
+      return E;
+    };
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+    for (const TrussMember& tube : g.members) {
+      const TrussNode &a = g.nodes[tube.node1], &b = g.nodes[tube.node2];
+      if (a.end_section >= 0 && a.end_section == b.end_section) continue;  // rigid with its section
+      const Vec3 axis = b.position - a.position;
+      TimoshenkoBeamKernel beam;
+      beam.length = axis.norm();
+      beam.section = tube.section;
+      beam.material = g.material;
+      const Mat3 Rt = tubeAxes(axis, tube.z_axis).transpose();  // truss axes → tube axes
+      Eigen::MatrixXd A(12, n);
+      A.topRows<6>() = nodeMap(tube.node1);
+      A.bottomRows<6>() = nodeMap(tube.node2);
+      for (int blk = 0; blk < 4; ++blk) A.middleRows<3>(3 * blk) = Rt * A.middleRows<3>(3 * blk);
+      K.noalias() += A.transpose() * beam.localStiffness() * A;
+    }
+    const int ni = n - 12;
+    Mat12 reduced = K.topLeftCorner<12, 12>();
+    if (ni > 0) {
+      const Eigen::LDLT<Eigen::MatrixXd> Kii(K.bottomRightCorner(ni, ni));
+      if (Kii.info() != Eigen::Success || !(Kii.vectorD().array() > 0.0).all())
+        throw std::invalid_argument("condensed truss: the internal nodes are not held by the tubes (singular stiffness)");
+      reduced -= K.bottomLeftCorner(ni, 12).transpose() * Kii.solve(K.bottomLeftCorner(ni, 12));
+    }
+    return 0.5 * (reduced + reduced.transpose());
+  }
+
+  /// The tubes' material as mass stations (see the file comment).
+  static std::vector<MassStation> massStations(const TrussGeometry& g, int points_per_bay) {
+    std::vector<double> breaks;  // bay boundaries: the distinct stations of the nodes
+    for (const TrussNode& node : g.nodes) breaks.push_back(node.position.x() / g.length);
+    std::sort(breaks.begin(), breaks.end());
+    breaks.erase(std::unique(breaks.begin(), breaks.end(), [](double x, double y) { return std::abs(x - y) < 1e-12; }),
+                 breaks.end());
+    const GaussRule rule = gaussLegendre(points_per_bay);
+    std::vector<MassStation> bay_points;
+    for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
+      for (int p = 0; p < rule.points; ++p) {
+        MassStation st;
+        st.xi = breaks[k] + rule.xi[p] * (breaks[k + 1] - breaks[k]);
+        bay_points.push_back(st);
+      }
+    std::vector<MassStation> points;  // tubes across the axis
+    const auto pointAt = [&](double xi) -> MassStation& {
+      for (MassStation& st : points)
+        if (std::abs(st.xi - xi) < 1e-12) return st;
+      points.push_back(MassStation{xi});
+      return points.back();
+    };
+    const double rho = g.material.density;
+    for (const TrussMember& tube : g.members) {
+      const Vec3 a = g.nodes[tube.node1].position, b = g.nodes[tube.node2].position;
+      const double l = (b - a).norm(), m = rho * tube.section.area * l;
+      const Mat3 Rt = tubeAxes(b - a, tube.z_axis);
+      // Rotary inertia of the tube's cross-sections per unit length, truss axes.
+      const Mat3 rotary = Rt * Vec3(rho * (tube.section.Iy + tube.section.Iz), rho * tube.section.Iy, rho * tube.section.Iz).asDiagonal() *
+                          Rt.transpose();
+      const double xa = a.x() / g.length, xb = b.x() / g.length;
+      if (std::abs(xb - xa) < 1e-12) {
+        const Vec3 c = 0.5 * (a + b) - a.x() * Vec3::UnitX(), e = (b - a) / l;
+        MassStation& st = pointAt(xa);
+        st.mass += m;
+        st.first_moment += m * c;
+        st.inertia += m * (c.squaredNorm() * Mat3::Identity() - c * c.transpose()) +
+                      m * l * l / 12.0 * (Mat3::Identity() - e * e.transpose()) + l * rotary;
+        continue;
+      }
+      const double lo = std::min(xa, xb), hi = std::max(xa, xb);
+      for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+        if (breaks[k] < lo - 1e-12 || breaks[k + 1] > hi + 1e-12) continue;
+        const double bay = breaks[k + 1] - breaks[k];
+        for (int p = 0; p < rule.points; ++p) {
+          MassStation& st = bay_points[k * rule.points + p];
+          const double share = rule.weight[p] * bay / (hi - lo), dm = m * share;
+          const Vec3 o = a + ((st.xi - xa) / (xb - xa)) * (b - a) - (st.xi * g.length) * Vec3::UnitX();
+          st.mass += dm;
+          st.first_moment += dm * o;
+          st.inertia += dm * (o.squaredNorm() * Mat3::Identity() - o * o.transpose()) + (l * share) * rotary;
+        }
+      }
+    }
+    std::vector<MassStation> all;
+    for (const auto* group : {&points, &bay_points})
+      for (const MassStation& st : *group)
+        if (st.mass > 0.0) all.push_back(st);
+    return all;
+  }
+};
+
+}  // namespace cranesim
