@@ -213,7 +213,10 @@ int main(int argc, char** argv) {
 
   const Scene members = test::loadScene("truss_type2_cantilever.yaml");
   const std::vector<Fidelity> fidelities = {
-      {"members", members}, {"super_truss", test::loadScene("truss_type2_super.yaml")}, {"beam", equivalentBeam(members, 6)}};
+      {"members", members},
+      {"super_truss", test::loadScene("truss_type2_super.yaml")},
+      {"condensed", test::loadScene("truss_type2_condensed.yaml")},
+      {"beam", equivalentBeam(members, 6)}};
   Csv csv(o.out);
   std::map<std::string, double> reference;  // the full-member model's value of each quantity
   const auto record = [&](const std::string& fidelity, const std::string& quantity, double value) {
