@@ -12,6 +12,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.colors import to_rgba
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
 from cranesim_results import Results, ResultsError
@@ -136,8 +137,16 @@ class MechanismDrawing:
         self.axes = axes
         self.geometry = geometry
         self.title = title
-        colours = plt.get_cmap("tab10")(geometry.segment_ends[:, 0] % 10)
-        self.segments = Line3DCollection([], colors=colours, linewidths=2.5, label="body → joint")
+        # Rigid segments coloured by body, flexible members grey (segments() orders them so).
+        colours = np.concatenate(
+            [
+                plt.get_cmap("tab10")(geometry.segment_ends[:, 0] % 10).reshape(-1, 4),
+                np.tile(to_rgba("dimgray"), (len(geometry.member_segments), 1)),
+            ]
+        )
+        self.segments = Line3DCollection(
+            [], colors=colours if len(colours) else "dimgray", linewidths=2.5, label="body → joint"
+        )
         axes.add_collection3d(self.segments)
         (self.joints,) = axes.plot([], [], [], "o", color="black", markersize=4, label="joint")
         (self.ground,) = axes.plot(
