@@ -142,11 +142,30 @@ const TrussGeometry& type2Geometry() {
   return g;
 }
 
-/// The kernel on the type 2 section with its default quadrature and Kelvin–Voigt time η.
-template <class Kernel> Kernel type2Kernel(double damping = 0.0) {
-  if constexpr (std::is_same_v<Kernel, SuperTrussKernel>) return Kernel(type2Geometry(), 4, damping);
-  else return Kernel(type2Geometry(), 3, damping);
+/// The thesis' type 1 transition piece (Table D-3): 2 nodes at end section 1, 4 at end section 2,
+/// inclined chords, triangular faces (lacing tp_type1).
+const TrussGeometry& transitionGeometry() {
+  static const TrussGeometry g = [] {
+    TrussDescription d = type2();
+    d.name = "type1";
+    d.length = 5.0;
+    d.order = 3;
+    d.sections[0].nodes = {{1.5, 0.0}, {-1.5, 0.0}};
+    d.sections[0].cross_beams = {pair(0, 1)};
+    d.main_beams = {pair(0, 0), pair(1, 1), pair(1, 2), pair(0, 3)};
+    d.lacing = LacingForm::TPType1;
+    return buildTrussGeometry(d);
+  }();
+  return g;
 }
+
+/// The kernel on a truss with its default quadrature and Kelvin–Voigt time η.
+template <class Kernel> Kernel kernelOn(const TrussGeometry& g, double damping = 0.0) {
+  if constexpr (std::is_same_v<Kernel, SuperTrussKernel>) return Kernel(g, 4, damping);
+  else return Kernel(g, 3, damping);
+}
+
+template <class Kernel> Kernel type2Kernel(double damping = 0.0) { return kernelOn<Kernel>(type2Geometry(), damping); }
 
 }  // namespace
 
@@ -168,10 +187,12 @@ TEST_CASE("Super truss: node velocity maps are the derivatives of the node frame
   }
 }
 
-TEMPLATE_TEST_CASE("Truss elements: mass matrix SPD with the tubes' exact rigid-body mass properties", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
-  const TrussGeometry& g = type2Geometry();
-  const TestType k = type2Kernel<TestType>();
+TEMPLATE_TEST_CASE("Truss elements: mass matrix SPD with the tubes' exact rigid-body mass properties (type 2, transition piece)", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
+  const bool transition = GENERATE(false, true);  // type 2, or the type 1 transition piece
+  const TrussGeometry& g = transition ? transitionGeometry() : type2Geometry();
+  const TestType k = kernelOn<TestType>(g);
   const MassProperties p = tubeMassProperties(g);
+  INFO((transition ? "transition piece" : "type 2"));
   CHECK(k.mass() == Approx(p.mass).epsilon(1e-12));
   Rng rng(7);
   for (int trial = 0; trial < 3; ++trial) {
