@@ -118,18 +118,6 @@ struct Fidelity {
   Scene scene;
 };
 
-Vec3 tipOffset(const Model& model, const VecX& q, const char* joint = "boom.end") {
-  const int tip = model.findJoint(joint);
-  return model.jointFrame(q.data(), tip).r - model.jointFrame(model.q0.data(), tip).r;
-}
-
-Vec3 tipRotation(const Model& model, const VecX& q) {
-  const int tip = model.findJoint("boom.end");
-  const Mat3 R = model.jointFrame(model.q0.data(), tip).R.transpose() * model.jointFrame(q.data(), tip).R;
-  const Eigen::AngleAxisd aa(R);
-  return aa.angle() * aa.axis();
-}
-
 Scene withTipLoad(Scene scene, const Vec3& force, const Vec3& torque) {
   scene.gravity = Vec3::Zero();
   LoadSpec load;
@@ -310,15 +298,15 @@ int main(int argc, char** argv) {
     record(f.name, "coordinates", model.nv);
     const StaticResult gravity = solveStatics(model, model.q0, 0.0);
     if (!gravity.converged) throw std::runtime_error(f.name + ": " + gravity.message);
-    record(f.name, "gravity_tip_z_m", tipOffset(model, gravity.q).z());
+    record(f.name, "gravity_tip_z_m", test::jointOffset(model, gravity.q, "boom.end").z());
     for (const EndLoad& load : loads) {
       const Model loaded = compileModel(withTipLoad(f.scene, load.force, load.torque));
       const StaticResult eq = solveStatics(loaded, loaded.q0, 0.0);
       if (!eq.converged) throw std::runtime_error(f.name + " " + load.name + ": " + eq.message);
-      const double response = load.component < 3 ? tipOffset(loaded, eq.q)(load.component) : tipRotation(loaded, eq.q)(load.component - 3);
+      const double response = load.component < 3 ? test::jointOffset(loaded, eq.q, "boom.end")(load.component) : test::jointTurn(loaded, eq.q, "boom.end")(load.component - 3);
       const double magnitude = load.component < 3 ? load.force(load.component) : load.torque(load.component - 3);
       record(f.name, load.name, magnitude / response);
-      if (load.component == 3) record(f.name, "torsion_axial_coupling_m_per_rad", tipOffset(loaded, eq.q).x() / response);
+      if (load.component == 3) record(f.name, "torsion_axial_coupling_m_per_rad", test::jointOffset(loaded, eq.q, "boom.end").x() / response);
     }
     record(f.name, "free_mass_x_kg", freeEquivalentMass(f.scene, Vec3(1e5, 0, 0), Vec3::Zero(), o.free_t_end));
     record(f.name, "free_mass_y_kg", freeEquivalentMass(f.scene, Vec3(0, 1e5, 0), Vec3::Zero(), o.free_t_end));

@@ -15,6 +15,19 @@ inline Scene loadScene(const std::string& name) { return readScene(configPath(na
 
 inline Model loadYaml(const std::string& yaml) { return compileModel(parseScene(yaml, "<test>")); }
 
+/// Displacement of a joint from its place in the model's initial state q0 to its place in q.
+inline Vec3 jointOffset(const Model& model, const VecX& q, const std::string& joint) {
+  const int j = model.findJoint(joint);
+  return model.jointFrame(q.data(), j).r - model.jointFrame(model.q0.data(), j).r;
+}
+
+/// Rotation vector turning a joint's frame in q0 into its frame in q, in the q0 frame's axes.
+inline Vec3 jointTurn(const Model& model, const VecX& q, const std::string& joint) {
+  const int j = model.findJoint(joint);
+  const Eigen::AngleAxisd turn(Mat3(model.jointFrame(model.q0.data(), j).R.transpose() * model.jointFrame(q.data(), j).R));
+  return turn.angle() * turn.axis();
+}
+
 /// A scene simulated from its consistent initial state, with every sample recorded.
 struct SimulationRun {
   explicit SimulationRun(const Scene& scene)

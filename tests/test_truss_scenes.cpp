@@ -15,9 +15,9 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
 
 #include "cranesim/assembly/assembler.hpp"
-#include "cranesim/math/rotation.hpp"
 #include "cranesim/solvers/statics.hpp"
 #include "scene_fixtures.hpp"
 
@@ -29,22 +29,16 @@ const char* const kFullMembers = "truss_type2_cantilever.yaml";
 const char* const kSuperTruss = "truss_type2_super.yaml";
 const char* const kCondensed = "truss_type2_condensed.yaml";
 
-/// Static displacement of the free end section (joint boom.end).
-Vec3 tipDisplacement(const Scene& scene) {
-  const Model model = compileModel(scene);
-  const StaticResult eq = solveStatics(model, model.q0, 0.0);
-  REQUIRE(eq.converged);
-  const int tip = model.findJoint("boom.end");
-  return model.jointFrame(eq.q.data(), tip).r - model.jointFrame(model.q0.data(), tip).r;
-}
+/// Static displacement and turn of the free end section (joint boom.end).
+struct TipMotion {
+  Vec3 offset, turn;
+};
 
-/// Static rotation vector of the free end section.
-Vec3 tipRotation(const Scene& scene) {
+TipMotion tipMotion(const Scene& scene) {
   const Model model = compileModel(scene);
   const StaticResult eq = solveStatics(model, model.q0, 0.0);
   REQUIRE(eq.converged);
-  const int tip = model.findJoint("boom.end");
-  return rotationVector(Mat3(model.jointFrame(eq.q.data(), tip).R * model.jointFrame(model.q0.data(), tip).R.transpose()));
+  return {test::jointOffset(model, eq.q, "boom.end"), test::jointTurn(model, eq.q, "boom.end")};
 }
 
 Scene withEndForce(Scene scene, const Vec3& force, const Vec3& torque = Vec3::Zero()) {
@@ -84,12 +78,22 @@ Eigen::VectorXd lowestFrequencies(Scene scene, int count) {
   return eig.eigenvalues().head(count).cwiseSqrt() / (2.0 * std::numbers::pi);
 }
 
+/// The three lowest frequencies of the full-member model and of a reduced one, printed side by side.
+std::pair<Eigen::VectorXd, Eigen::VectorXd> frequencies(const char* reduced, const char* label) {
+  const Eigen::VectorXd a = lowestFrequencies(test::loadScene(kFullMembers), 3);
+  const Eigen::VectorXd b = lowestFrequencies(test::loadScene(reduced), 3);
+  for (int k = 0; k < 3; ++k)
+    std::printf("type 2 cantilever mode %d: full-member %.4f Hz, %s %.4f Hz, relative difference %.2f %%\n", k + 1, a(k), label, b(k),
+                100.0 * (b(k) - a(k)) / a(k));
+  return {a, b};
+}
+
 }  // namespace
 
 TEST_CASE("Super truss vs full-member model: static cantilever deflection", "[super_truss][scenes][statics]") {
   const Scene full = test::loadScene(kFullMembers), reduced = test::loadScene(kSuperTruss);
   SECTION("self-gravity") {
-    const Vec3 a = tipDisplacement(full), b = tipDisplacement(reduced);
+    const Vec3 a = tipMotion(full).offset, b = tipMotion(reduced).offset;
     std::printf("type 2 cantilever, self-gravity: tip z full-member %.5e m, super truss %.5e m, relative difference %.2f %%\n", a.z(),
                 b.z(), 100.0 * (b.z() - a.z()) / a.z());
     CHECK(std::abs(b.z()) <= std::abs(a.z()) * (1.0 + 1e-6));
@@ -97,7 +101,7 @@ TEST_CASE("Super truss vs full-member model: static cantilever deflection", "[su
   }
   SECTION("end force, vertical and lateral") {
     for (const Vec3& force : {Vec3(0.0, 0.0, -1e5), Vec3(0.0, 1e5, 0.0)}) {
-      const Vec3 a = tipDisplacement(withEndForce(full, force)), b = tipDisplacement(withEndForce(reduced, force));
+      const Vec3 a = tipMotion(withEndForce(full, force)).offset, b = tipMotion(withEndForce(reduced, force)).offset;
       const int k = force.z() != 0.0 ? 2 : 1;
       std::printf("type 2 cantilever, end force along %c: tip full-member %.5e m, super truss %.5e m, relative difference %.2f %%\n",
                   "xyz"[k], a(k), b(k), 100.0 * (b(k) - a(k)) / a(k));
@@ -108,11 +112,7 @@ TEST_CASE("Super truss vs full-member model: static cantilever deflection", "[su
 }
 
 TEST_CASE("Super truss vs full-member model: first eigenfrequencies", "[super_truss][scenes]") {
-  const Eigen::VectorXd a = lowestFrequencies(test::loadScene(kFullMembers), 3);
-  const Eigen::VectorXd b = lowestFrequencies(test::loadScene(kSuperTruss), 3);
-  for (int k = 0; k < 3; ++k)
-    std::printf("type 2 cantilever mode %d: full-member %.4f Hz, super truss %.4f Hz, relative difference %.2f %%\n", k + 1, a(k), b(k),
-                100.0 * (b(k) - a(k)) / a(k));
+  const auto [a, b] = frequencies(kSuperTruss, "super truss");
   for (int k = 0; k < 3; ++k) {
     CHECK(b(k) >= a(k) * (1.0 - 1e-6));
     CHECK(b(k) <= 1.5 * a(k));
@@ -153,14 +153,14 @@ TEST_CASE("Super truss vs full-member model: cost per DAE evaluation and of a re
 TEST_CASE("Condensed truss vs full-member model: static end-section response", "[condensed_truss][scenes][statics]") {
   const Scene full = test::loadScene(kFullMembers), reduced = test::loadScene(kCondensed);
   SECTION("self-gravity") {
-    const Vec3 a = tipDisplacement(full), b = tipDisplacement(reduced);
+    const Vec3 a = tipMotion(full).offset, b = tipMotion(reduced).offset;
     std::printf("type 2 cantilever, self-gravity: tip z full-member %.5e m, condensed %.5e m, relative difference %.3f %%\n", a.z(), b.z(),
                 100.0 * (b.z() - a.z()) / a.z());
     CHECK(b.z() == Approx(a.z()).epsilon(1e-3));
   }
   SECTION("end forces along and across the axis") {
     for (const Vec3& force : {Vec3(1e5, 0.0, 0.0), Vec3(0.0, 1e4, 0.0), Vec3(0.0, 0.0, -1e4)}) {
-      const Vec3 a = tipDisplacement(withEndForce(full, force)), b = tipDisplacement(withEndForce(reduced, force));
+      const Vec3 a = tipMotion(withEndForce(full, force)).offset, b = tipMotion(withEndForce(reduced, force)).offset;
       const int k = force.x() != 0.0 ? 0 : force.y() != 0.0 ? 1 : 2;
       std::printf("type 2 cantilever, end force along %c: tip full-member %.6e m, condensed %.6e m\n", "xyz"[k], a(k), b(k));
       CHECK(b(k) == Approx(a(k)).epsilon(1e-4));
@@ -168,8 +168,8 @@ TEST_CASE("Condensed truss vs full-member model: static end-section response", "
   }
   SECTION("end torque about the axis") {
     const Vec3 torque(1e5, 0.0, 0.0);
-    const double a = tipRotation(withEndForce(full, Vec3::Zero(), torque)).x();
-    const double b = tipRotation(withEndForce(reduced, Vec3::Zero(), torque)).x();
+    const double a = tipMotion(withEndForce(full, Vec3::Zero(), torque)).turn.x();
+    const double b = tipMotion(withEndForce(reduced, Vec3::Zero(), torque)).turn.x();
     std::printf("type 2 cantilever, end torque: twist full-member %.6e rad, condensed %.6e rad\n", a, b);
     CHECK(b == Approx(a).epsilon(1e-4));
   }
@@ -180,11 +180,7 @@ TEST_CASE("Condensed truss vs full-member model: static end-section response", "
 // section the full-member box distorts in its torsion mode, which no reduction onto the end
 // sections represents (the Guyan-consistent mass gives +8.4 %: docs/truss.md).
 TEST_CASE("Condensed truss vs full-member model: first eigenfrequencies", "[condensed_truss][scenes]") {
-  const Eigen::VectorXd a = lowestFrequencies(test::loadScene(kFullMembers), 3);
-  const Eigen::VectorXd b = lowestFrequencies(test::loadScene(kCondensed), 3);
-  for (int k = 0; k < 3; ++k)
-    std::printf("type 2 cantilever mode %d: full-member %.4f Hz, condensed %.4f Hz, relative difference %.2f %%\n", k + 1, a(k), b(k),
-                100.0 * (b(k) - a(k)) / a(k));
+  const auto [a, b] = frequencies(kCondensed, "condensed");
   for (int k = 0; k < 2; ++k) {
     CHECK(b(k) >= 0.99 * a(k));
     CHECK(b(k) <= 1.025 * a(k));
