@@ -118,17 +118,6 @@ struct Fidelity {
   Scene scene;
 };
 
-Scene withTipLoad(Scene scene, const Vec3& force, const Vec3& torque) {
-  scene.gravity = Vec3::Zero();
-  LoadSpec load;
-  load.name = "tip";
-  load.joint = "boom.end";
-  load.force = force;
-  load.torque = torque;
-  scene.loads.push_back(load);
-  return scene;
-}
-
 struct Csv {
   std::ofstream file;
   explicit Csv(const std::string& path) : file(path) {
@@ -300,7 +289,7 @@ int main(int argc, char** argv) {
     if (!gravity.converged) throw std::runtime_error(f.name + ": " + gravity.message);
     record(f.name, "gravity_tip_z_m", test::jointOffset(model, gravity.q, "boom.end").z());
     for (const EndLoad& load : loads) {
-      const Model loaded = compileModel(withTipLoad(f.scene, load.force, load.torque));
+      const Model loaded = compileModel(test::withEndLoad(f.scene, load.force, load.torque));
       const StaticResult eq = solveStatics(loaded, loaded.q0, 0.0);
       if (!eq.converged) throw std::runtime_error(f.name + " " + load.name + ": " + eq.message);
       const double response = load.component < 3 ? test::jointOffset(loaded, eq.q, "boom.end")(load.component) : test::jointTurn(loaded, eq.q, "boom.end")(load.component - 3);

@@ -15,6 +15,18 @@ inline Scene loadScene(const std::string& name) { return readScene(configPath(na
 
 inline Model loadYaml(const std::string& yaml) { return compileModel(parseScene(yaml, "<test>")); }
 
+/// The scene without gravity, with a force and a torque (inertial axes) on the joint boom.end.
+inline Scene withEndLoad(Scene scene, const Vec3& force, const Vec3& torque = Vec3::Zero()) {
+  scene.gravity = Vec3::Zero();
+  LoadSpec load;
+  load.name = "tip";
+  load.joint = "boom.end";
+  load.force = force;
+  load.torque = torque;
+  scene.loads.push_back(load);
+  return scene;
+}
+
 /// Displacement of a joint from its place in the model's initial state q0 to its place in q.
 inline Vec3 jointOffset(const Model& model, const VecX& q, const std::string& joint) {
   const int j = model.findJoint(joint);

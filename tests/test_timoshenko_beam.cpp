@@ -7,10 +7,10 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <random>
 
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/model/element.hpp"
+#include "random_states.hpp"
 #include "cantilever_theory.hpp"
 
 using namespace cranesim;
@@ -85,15 +85,7 @@ Q12 coordinateRates(const Q12& q, const Q12& v) {
   return qdot;
 }
 
-struct Rng {
-  std::mt19937 gen;
-  std::uniform_real_distribution<double> u{-1.0, 1.0};
-  explicit Rng(unsigned seed) : gen(seed) {}
-  double operator()() { return u(gen); }
-  Vec3 vec(double scale = 1.0) { return scale * Vec3((*this)(), (*this)(), (*this)()); }
-  /// A rotation of angle up to `max_angle` about a random axis.
-  Mat3 rotation(double max_angle) { return axisAngle(vec().normalized(), max_angle * std::abs((*this)())); }
-};
+using test::Rng;
 
 /// A randomly placed, moderately deformed element: end rotations and stretch of order `strain`.
 Q12 deformedState(Rng& rng, const TimoshenkoBeamKernel& k, double strain) {

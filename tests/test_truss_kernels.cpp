@@ -10,12 +10,12 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <random>
 #include <type_traits>
 
 #include "cranesim/elements/condensed_truss.hpp"
 #include "cranesim/elements/super_truss.hpp"
 #include "cranesim/model/element.hpp"
+#include "random_states.hpp"
 
 using namespace cranesim;
 
@@ -63,14 +63,7 @@ std::vector<int> range(int n) {
   return v;
 }
 
-struct Rng {
-  std::mt19937 gen;
-  std::uniform_real_distribution<double> u{-1.0, 1.0};
-  explicit Rng(unsigned seed) : gen(seed) {}
-  double operator()() { return u(gen); }
-  Vec3 vec(double scale = 1.0) { return scale * Vec3((*this)(), (*this)(), (*this)()); }
-  Mat3 rotation(double max_angle) { return axisAngle(vec().normalized(), max_angle * std::abs((*this)())); }
-};
+using test::Rng;
 
 Q12 coordinates(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2) {
   Q12 q;

@@ -41,17 +41,6 @@ TipMotion tipMotion(const Scene& scene) {
   return {test::jointOffset(model, eq.q, "boom.end"), test::jointTurn(model, eq.q, "boom.end")};
 }
 
-Scene withEndForce(Scene scene, const Vec3& force, const Vec3& torque = Vec3::Zero()) {
-  scene.gravity = Vec3::Zero();
-  LoadSpec load;
-  load.name = "tip";
-  load.joint = "boom.end";
-  load.force = force;
-  load.torque = torque;
-  scene.loads.push_back(load);
-  return scene;
-}
-
 /// The lowest eigenfrequencies (Hz) of the scene linearised about its undeformed initial state
 /// (all node rotation vectors zero there, so ∂F/∂q is the stiffness along dq), gravity off:
 /// K and M restricted to the null space of the constraint Jacobian.
@@ -101,7 +90,7 @@ TEST_CASE("Super truss vs full-member model: static cantilever deflection", "[su
   }
   SECTION("end force, vertical and lateral") {
     for (const Vec3& force : {Vec3(0.0, 0.0, -1e5), Vec3(0.0, 1e5, 0.0)}) {
-      const Vec3 a = tipMotion(withEndForce(full, force)).offset, b = tipMotion(withEndForce(reduced, force)).offset;
+      const Vec3 a = tipMotion(test::withEndLoad(full, force)).offset, b = tipMotion(test::withEndLoad(reduced, force)).offset;
       const int k = force.z() != 0.0 ? 2 : 1;
       std::printf("type 2 cantilever, end force along %c: tip full-member %.5e m, super truss %.5e m, relative difference %.2f %%\n",
                   "xyz"[k], a(k), b(k), 100.0 * (b(k) - a(k)) / a(k));
@@ -160,7 +149,7 @@ TEST_CASE("Condensed truss vs full-member model: static end-section response", "
   }
   SECTION("end forces along and across the axis") {
     for (const Vec3& force : {Vec3(1e5, 0.0, 0.0), Vec3(0.0, 1e4, 0.0), Vec3(0.0, 0.0, -1e4)}) {
-      const Vec3 a = tipMotion(withEndForce(full, force)).offset, b = tipMotion(withEndForce(reduced, force)).offset;
+      const Vec3 a = tipMotion(test::withEndLoad(full, force)).offset, b = tipMotion(test::withEndLoad(reduced, force)).offset;
       const int k = force.x() != 0.0 ? 0 : force.y() != 0.0 ? 1 : 2;
       std::printf("type 2 cantilever, end force along %c: tip full-member %.6e m, condensed %.6e m\n", "xyz"[k], a(k), b(k));
       CHECK(b(k) == Approx(a(k)).epsilon(1e-4));
@@ -168,8 +157,8 @@ TEST_CASE("Condensed truss vs full-member model: static end-section response", "
   }
   SECTION("end torque about the axis") {
     const Vec3 torque(1e5, 0.0, 0.0);
-    const double a = tipMotion(withEndForce(full, Vec3::Zero(), torque)).turn.x();
-    const double b = tipMotion(withEndForce(reduced, Vec3::Zero(), torque)).turn.x();
+    const double a = tipMotion(test::withEndLoad(full, Vec3::Zero(), torque)).turn.x();
+    const double b = tipMotion(test::withEndLoad(reduced, Vec3::Zero(), torque)).turn.x();
     std::printf("type 2 cantilever, end torque: twist full-member %.6e rad, condensed %.6e rad\n", a, b);
     CHECK(b == Approx(a).epsilon(1e-4));
   }
