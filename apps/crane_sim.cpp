@@ -23,6 +23,7 @@
 #include "cranesim/model/compile.hpp"
 #include "cranesim/model/summary.hpp"
 #include "cranesim/solvers/modes.hpp"
+#include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/relaxation.hpp"
 #include "cranesim/solvers/statics.hpp"
 #include "cranesim/version.hpp"
@@ -58,10 +59,13 @@ class ProgressLine {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
 
-/// Static equilibrium near the scene's initial state by the scene's method (solver.statics);
-/// throws when it is not found.
-StaticResult equilibrium(const Scene& scene, const Model& model, const DynamicState& given, bool quiet) {
+/// Static equilibrium of the scene at its start time by the scene's method (solver.statics):
+/// Newton along the path from the drawn controls, or relaxation from the drawn state. Throws
+/// when it is not found.
+StaticResult equilibrium(const Scene& scene, const Model& model, const Assembler& assembler, bool quiet) {
   if (model.solver.static_method == StaticMethod::Relaxation) {
+    const DynamicState given =
+        assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
     RelaxationOptions options;
     options.damping = model.solver.relaxation_damping;
     options.duration = model.solver.relaxation_duration;
@@ -72,14 +76,14 @@ StaticResult equilibrium(const Scene& scene, const Model& model, const DynamicSt
     if (!r.equilibrium.converged) throw std::runtime_error(r.equilibrium.message);
     return r.equilibrium;
   }
-  StaticResult eq = solveStatics(model, given.q, model.solver.t_start);
+  StaticResult eq = solveEquilibrium(scene, model, model.solver.t_start);
   if (!eq.converged) throw std::runtime_error(eq.message);
   return eq;
 }
 
 void printEquilibrium(const StaticResult& eq) {
-  fmt::print(stderr, "static equilibrium: {} Newton iterations in {} load steps; max |F + Gᵀλ| {:.3g}, max |Φ| {:.3g}\n",
-             eq.iterations, eq.load_steps, eq.force_residual, eq.constraint_residual);
+  fmt::print(stderr, "static equilibrium: {} Newton iterations in {} load steps and {} path steps; max |F + Gᵀλ| {:.3g}, max |Φ| {:.3g}\n",
+             eq.iterations, eq.load_steps, eq.path_steps, eq.force_residual, eq.constraint_residual);
 }
 
 /// The equilibrium as an engineer reads it: where the bodies are, and what each joint carries
@@ -108,13 +112,14 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  DynamicState initial =
-      consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
   out = outputPath(scene_path, out, ".h5");
+  DynamicState initial;
   if (model.solver.start_from_equilibrium) {
-    const StaticResult eq = equilibrium(scene, model, initial, quiet);
+    const StaticResult eq = equilibrium(scene, model, assembler, quiet);
     if (!quiet) printEquilibrium(eq);
     initial = consistentInitialState(assembler, model.solver.t_start, eq.q, VecX::Zero(model.nv), model.solver.initial_tolerance);
+  } else {
+    initial = assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
   }
 
   ResultsRecorder recorder(assembler);
@@ -158,9 +163,7 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
 /// The equilibrium `static` and `modes` start from, solved from the scene's consistent initial
 /// state and reported.
 StaticResult reportedEquilibrium(const Scene& scene, const Model& model, const Assembler& assembler) {
-  const DynamicState given =
-      consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
-  const StaticResult eq = equilibrium(scene, model, given, false);
+  const StaticResult eq = equilibrium(scene, model, assembler, false);
   printEquilibrium(eq);
   printEquilibriumReport(model, eq);
   return eq;
@@ -212,7 +215,7 @@ int check(const std::string& scene_path) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+  assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
   fmt::print("{}", modelSummary(assembler));
   fmt::print("initial state: consistent (within solver.initial_tolerance = {:g})\n", model.solver.initial_tolerance);
   return 0;

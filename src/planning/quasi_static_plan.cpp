@@ -10,7 +10,7 @@
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/planning/control_trajectory.hpp"
-#include "cranesim/solvers/statics.hpp"
+#include "cranesim/solvers/equilibrium_path.hpp"
 
 namespace cranesim {
 namespace {
@@ -23,27 +23,13 @@ GridData grid(const StaticMap& map, const Eigen::MatrixXd& values) {
   return {map.boom_angles_deg, map.hoist_changes, values};
 }
 
-/// The crane's equilibrium under the controls of `c`, in two continuation steps from the
-/// nearest map point: the map's bordered system at c's boom angle and hoist rope (where the
-/// luffing rope is the map's own), then Newton with c's luffing rope (the fitted one).
-StaticResult equilibriumUnder(const Model& model, double t, const TargetSpec& target, const StaticMap& map,
-                              const ControlPoint& c) {
-  const auto nearest = [](const std::vector<double>& axis, double value) {
-    return static_cast<int>(std::min_element(axis.begin(), axis.end(), [&](double a, double b) {
-                              return std::abs(a - value) < std::abs(b - value);
-                            }) - axis.begin());
-  };
-  const int i = nearest(map.boom_angles_deg, c.boom_angle_deg), j = nearest(map.hoist_changes, c.hoist_change);
-  MapPoint near;
-  near.x = map.equilibria[static_cast<std::size_t>(i) * map.columns() + j];
-  near.luffing_length = map.luffing_length(i, j);
-  const MapPoint on_map = solveMapPoint(target.scene, target.controls, c.hoist_length, c.boom_angle_deg, near,
-                                        map.boom_angles_deg[i], target.map);
-  if (!on_map.converged)
-    throw std::runtime_error(fmt::format("no equilibrium at boom angle {:.4g}°, hoist rope {:.6g} m: {}", c.boom_angle_deg,
-                                         c.hoist_length, on_map.why));
-  StaticResult eq = solveStatics(model, on_map.x.head(model.nq), t);
-  if (!eq.converged) throw std::runtime_error("equilibrium under the fitted controls: " + eq.message);
+/// The crane's equilibrium under the scene's controls at t (solvers/equilibrium_path.hpp: the
+/// same statics as crane-sim's).
+StaticResult equilibriumUnder(const Scene& scene, const Model& model, double t, const ControlPoint& c) {
+  StaticResult eq = solveEquilibrium(scene, model, t);
+  if (!eq.converged)
+    throw std::runtime_error(fmt::format("no equilibrium at boom angle {:.4g}°, hoist rope {:.6g} m (luffing rope {:.6g} m): {}",
+                                         c.boom_angle_deg, c.hoist_length, c.luffing_length, eq.message));
   return eq;
 }
 
@@ -147,7 +133,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
     const Scene scene = withControls(target.scene, target.controls, Profile(ConstantProfile{c.luffing_length}),
                                      Profile(ConstantProfile{c.hoist_length}));
     const Model model = compileModel(scene);
-    const StaticResult eq = equilibriumUnder(model, scene.solver.t_start, target, plan.map, c);
+    const StaticResult eq = equilibriumUnder(scene, model, scene.solver.t_start, c);
     const Vec3 reached = model.jointFrame(eq.q.data(), model.findJoint(target.controls.end_point)).r;
     InversionCheck check;
     check.t = plan.trajectory.t[k];
@@ -177,7 +163,7 @@ void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::stri
   const Scene scene = verificationScene(target, plan);
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  const StaticResult eq = equilibriumUnder(model, 0.0, target, plan.map, plan.controls.front());
+  const StaticResult eq = equilibriumUnder(scene, model, 0.0, plan.controls.front());
   const DynamicState initial =
       consistentInitialState(assembler, 0.0, eq.q, VecX::Zero(model.nv), model.solver.initial_tolerance);
   ResultsRecorder recorder(assembler);

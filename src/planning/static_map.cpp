@@ -19,6 +19,7 @@
 #include <optional>
 
 #include "cranesim/model/compile.hpp"
+#include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/equilibrium_system.hpp"
 #include "cranesim/solvers/statics.hpp"
 
@@ -100,26 +101,11 @@ struct PointOutcome {
   std::string why;
 };
 
-/// Factorises J, shifting its coordinate block's diagonal when it is singular: a body free to
-/// spin about its hanging rope (the load about the vertical) has no stiffness in that direction,
-/// and its residual there stays zero. The shift changes the steps, not the equations solved.
-bool factorise(Eigen::SparseMatrix<double> J, int coordinates, Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu) {
-  lu.compute(J);
-  const double magnitude = J.coeffs().cwiseAbs().maxCoeff();
-  for (double shift = 1e-12 * magnitude, applied = 0.0; lu.info() != Eigen::Success && shift < 1e-4 * magnitude;
-       shift *= 100.0) {
-    for (int k = 0; k < coordinates; ++k) J.coeffRef(k, k) += shift - applied;
-    applied = shift;
-    lu.compute(J);
-  }
-  return lu.info() == Eigen::Success;
-}
-
 /// J and ∂R/∂L at the state s, factorised.
 bool refreshJacobian(EquilibriumSystem& system, const PointState& s, ChordJacobian& jacobian) {
   system.setTime(s.luffing_length);
   const VecX r = system.residual(s.x);
-  if (!factorise(system.jacobian(s.x), system.model().nv, jacobian.lu)) return false;
+  if (!factoriseShifted(system.jacobian(s.x), system.model().nv, jacobian.lu)) return false;
   const double h = 1e-7 * s.luffing_length;
   system.setTime(s.luffing_length + h);
   jacobian.residual_by_length = (system.residual(s.x) - r) / h;
@@ -240,18 +226,6 @@ Model mapModel(const Scene& scene, const CraneControls& controls, double hoist_l
   return compileModel(driven);
 }
 
-MapPoint solveMapPoint(const Scene& scene, const CraneControls& controls, double hoist_length, double boom_angle_deg,
-                       const MapPoint& near, double near_angle_deg, const StaticMapSpec& spec) {
-  const Model model = mapModel(scene, controls, hoist_length, near.luffing_length);
-  EquilibriumSystem system(model, near.luffing_length);
-  const CraneGeometry geometry(model, controls);
-  ChordJacobian jacobian;
-  PointState s{near.x, near.luffing_length};
-  const PointOutcome outcome =
-      solveAngleStep(system, geometry, s, near_angle_deg * kDegree, boom_angle_deg * kDegree, jacobian, spec);
-  return {outcome.converged, s.x, s.luffing_length, geometry.endPoint(s.x), outcome.why};
-}
-
 StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, const StaticMapSpec& spec,
                            const std::function<void(const std::string&)>& log) {
   using Clock = std::chrono::steady_clock;
@@ -271,25 +245,27 @@ StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, co
   map.iterations.setZero(rows, columns);
   map.equilibria.resize(static_cast<std::size_t>(rows) * columns);
 
-  // The scene's own equilibrium: where the continuation starts.
+  // The spine column: the hoist change closest to the scene's own hoist rope.
   const auto t0 = Clock::now();
-  const Scene frozen = freezeScene(scene);
   const double start_luffing = ropeLengthAtStart(scene, controls.luffing_rope);
   const double scene_hoist = ropeLengthAtStart(scene, controls.hoist_rope);
   map.hoist_length = spec.hoist_length > 0.0 ? spec.hoist_length : scene_hoist;
-  const Model start_model = compileModel(frozen);
-  const StaticResult start = solveStatics(start_model, start_model.q0, frozen.solver.t_start);
-  map.start_iterations = start.iterations;
-  map.start_time_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  if (!start.converged) throw std::runtime_error("the scene's own equilibrium, where the map starts: " + start.message);
-  say(fmt::format("scene equilibrium: {} Newton iterations, {:.1f} s", start.iterations, map.start_time_s));
-
-  // The spine column: the hoist change closest to the scene's own hoist rope.
   int spine_column = 0;
   for (int j = 1; j < columns; ++j)
     if (std::abs(map.hoist_length - map.hoist_changes[j] - scene_hoist) <
         std::abs(map.hoist_length - map.hoist_changes[spine_column] - scene_hoist))
       spine_column = j;
+
+  // Where the continuation starts: the scene's equilibrium with its hoist rope at the spine
+  // column's length (a hoist rope paid out from a solved state would start slack).
+  const Scene start_scene = withControls(scene, controls, Profile(ConstantProfile{start_luffing}),
+                                         Profile(ConstantProfile{map.hoist_length - map.hoist_changes[spine_column]}));
+  const Model start_model = compileModel(start_scene);
+  const StaticResult start = solveEquilibrium(start_scene, start_model, start_scene.solver.t_start);
+  map.start_iterations = start.iterations;
+  map.start_time_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (!start.converged) throw std::runtime_error("the scene's equilibrium, where the map starts: " + start.message);
+  say(fmt::format("scene equilibrium: {} Newton iterations, {:.1f} s", start.iterations, map.start_time_s));
 
   std::vector<Model> models;
   for (double change : spec.hoist_changes) {

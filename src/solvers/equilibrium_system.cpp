@@ -54,6 +54,18 @@ void EquilibriumSystem::load(const VecX& x) {
   y_.segment(assembler_.lambdaOffset(), model_.m) = x.tail(model_.m);
 }
 
+bool factoriseShifted(Eigen::SparseMatrix<double> J, int coordinates, Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu) {
+  lu.compute(J);
+  const double magnitude = J.coeffs().cwiseAbs().maxCoeff();
+  for (double shift = 1e-12 * magnitude, applied = 0.0; lu.info() != Eigen::Success && shift < 1e-4 * magnitude;
+       shift *= 100.0) {
+    for (int k = 0; k < coordinates; ++k) J.coeffRef(k, k) += shift - applied;
+    applied = shift;
+    lu.compute(J);
+  }
+  return lu.info() == Eigen::Success;
+}
+
 void reparameteriseRotations(const Model& model, VecX& x) {
   for (const Node& n : model.nodes) {
     if (!n.hasRotation()) continue;

@@ -4,6 +4,8 @@
 
 #include <Eigen/SparseLU>
 
+#include "cranesim/solvers/drive_posing.hpp"
+
 namespace cranesim {
 namespace {
 
@@ -106,6 +108,11 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
   s.v = std::move(v);
   solveAccelerations(assembler, s, Limit::Right);
   return s;
+}
+
+DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance) {
+  poseAtDrives(assembler.model(), t, q, &v);
+  return consistentInitialState(assembler, t, std::move(q), std::move(v), tolerance);
 }
 
 }  // namespace cranesim

@@ -22,12 +22,25 @@ double rotationStepLimit(const Model& model, const VecX& dx) {
   return limit;
 }
 
-/// Damped Newton; returns the iterations used, or −(iterations + 1) on
-/// failure.
-int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why) {
+/// Whether the residual is as small as rounding lets it be: the forces to force_tolerance of
+/// the largest constraint force (≥ 1 N), the constraints to 1e-14 of the coordinates. The
+/// Newton step need not be small then: along a direction without stiffness (a light load free
+/// to spin about its rope) it is rounding noise amplified, and no line search improves on it.
+bool atRoundingFloor(const Model& model, const VecX& x, const VecX& r, const StaticOptions& options) {
+  const double force_scale = std::max(1.0, model.m > 0 ? x.tail(model.m).cwiseAbs().maxCoeff() : 0.0);
+  const double length_scale = 1.0 + x.head(model.nq).cwiseAbs().maxCoeff();
+  return r.head(model.nv).cwiseAbs().maxCoeff() <= options.force_tolerance * force_scale &&
+         (model.m == 0 || r.tail(model.m).cwiseAbs().maxCoeff() <= 1e-14 * length_scale);
+}
+
+}  // namespace
+
+int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why) {
+  const Model& model = system.model();
   VecX r = system.residual(x);
   int short_steps = 0;
   for (int it = 1; it <= options.max_iterations; ++it) {
+    if (atRoundingFloor(model, x, r, options)) return it - 1;
     // Directions without stiffness (a slack rope, a body free to turn about its joint) make
     // the Jacobian singular: the coordinate block's diagonal is shifted as in
     // Levenberg–Marquardt. The shift changes the step, not the equations being solved.
@@ -103,8 +116,6 @@ int newton(const Model& model, EquilibriumSystem& system, VecX& x, const StaticO
   return -(options.max_iterations + 1);
 }
 
-}  // namespace
-
 StaticResult solveStatics(const Model& model, const VecX& q_start, double t, const StaticOptions& options) {
   StaticResult result;
   result.t = t;
@@ -119,7 +130,7 @@ StaticResult solveStatics(const Model& model, const VecX& q_start, double t, con
     system.setLoadFactor(target);
     VecX trial = x;
     std::string why;
-    const int used = newton(model, system, trial, options, why);
+    const int used = dampedNewton(system, trial, options, why);
     if (used < 0) {
       result.iterations += -used - 1;
       if (++halvings > options.max_load_halvings) {

@@ -53,11 +53,17 @@ void constraintEquations(const ConstraintLaw& law, const FrameT<S>& j1, const Fr
       phi[3] = j1.R.col(i).dot(j2.R.col(p));
       phi[4] = j1.R.col(i).dot(j2.R.col(q));
       if (law.drive) {
-        // Angle ψ of J2 about e_i relative to J1: cos ψ = e_p¹·e_p², sin ψ = e_q¹·e_p².
-        // sin(ψ − ψ_d(t)) = 0, regular wherever the joint is near its prescribed angle.
+        // Angle ψ of J2 about e_i relative to J1: cos ψ = e_p¹·e_p², sin ψ = e_q¹·e_p². With the
+        // angle error e = ψ − ψ_d(t) the equation is 2 tan(e/2) = 2 sin e / (1 + cos e) = 0: one
+        // root per turn, slope 1 there, and Newton on it maps e to e − sin e, into the root from
+        // anywhere within half a turn. (sin e = 0 alone has a false root at e = π and no slope
+        // at e = ±π/2.)
         using std::cos, std::sin;
         const S angle = (*law.drive)(t, law.limit);
-        phi[5] = j1.R.col(q).dot(j2.R.col(p)) * cos(angle) - j1.R.col(p).dot(j2.R.col(p)) * sin(angle);
+        const S cos_psi = j1.R.col(p).dot(j2.R.col(p)), sin_psi = j1.R.col(q).dot(j2.R.col(p));
+        const S sin_e = sin_psi * cos(angle) - cos_psi * sin(angle);
+        const S cos_e = cos_psi * cos(angle) + sin_psi * sin(angle);
+        phi[5] = 2.0 * sin_e / (1.0 + cos_e);
       }
       return;
     }
@@ -74,6 +80,19 @@ void constraintEquations(const ConstraintLaw& law, const FrameT<S>& j1, const Fr
       phi[0] = sqrt(d.squaredNorm()) - (*law.drive)(t, law.limit);
       return;
     }
+  }
+}
+
+/// The coordinate a constraint's drive prescribes, measured between its two joint frames: the
+/// revolute's angle ψ in (−π, π], the prismatic's displacement along e_i¹, the distance.
+inline double drivenCoordinate(const ConstraintLaw& law, const Frame& j1, const Frame& j2) {
+  const int i = law.axis, p = (law.axis + 1) % 3, q = (law.axis + 2) % 3;
+  switch (law.type) {
+    case ConstraintType::Revolute:
+      return std::atan2(j1.R.col(q).dot(j2.R.col(p)), j1.R.col(p).dot(j2.R.col(p)));
+    case ConstraintType::Prismatic: return (j2.r - j1.r).dot(j1.R.col(i));
+    case ConstraintType::Distance: return (j1.r - j2.r).norm();
+    default: return 0.0;
   }
 }
 

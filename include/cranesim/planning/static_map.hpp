@@ -69,20 +69,6 @@ void checkControls(const Scene& scene, const CraneControls& controls, const Sour
 /// equilibrium system at time L is the crane with luffing rope L), starting at `luffing_length`.
 Model mapModel(const Scene& scene, const CraneControls& controls, double hoist_length, double luffing_length);
 
-/// An equilibrium of the map's bordered system.
-struct MapPoint {
-  bool converged = false;
-  VecX x;                       // [q, λ]
-  double luffing_length = 0.0;  // unstretched
-  Vec3 end_point = Vec3::Zero();
-  std::string why;              // when not converged
-};
-
-/// The equilibrium with the boom at `boom_angle_deg` and the hoist rope at `hoist_length`,
-/// continued from a nearby one (`near`, at boom angle `near_angle_deg`).
-MapPoint solveMapPoint(const Scene& scene, const CraneControls& controls, double hoist_length, double boom_angle_deg,
-                       const MapPoint& near, double near_angle_deg, const StaticMapSpec& spec);
-
 /// Sweeps the grid. `log` receives one progress line per finished row (may be empty).
 StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, const StaticMapSpec& spec,
                            const std::function<void(const std::string&)>& log = {});

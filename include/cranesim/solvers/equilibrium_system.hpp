@@ -6,6 +6,7 @@
 // static map of crane-opt). Not thread-safe: one system per thread; the model is shared.
 
 #include <Eigen/Sparse>
+#include <Eigen/SparseLU>
 
 #include <vector>
 
@@ -36,6 +37,12 @@ class EquilibriumSystem {
   VecX y_, yp_;
   std::vector<double> values_;
 };
+
+/// Factorises J, shifting the diagonal of its first `coordinates` rows when it is singular: a
+/// body free to spin about its hanging rope (the load about the vertical) has no stiffness in
+/// that direction, and its residual there stays zero. The shift changes the steps, not the
+/// equations solved. False when even a shift of 1e-4 of J's largest entry does not help.
+bool factoriseShifted(Eigen::SparseMatrix<double> J, int coordinates, Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu);
 
 /// Maps every node's rotation vector of x = [q, …] back into the first turn (|φ| ≤ π).
 void reparameteriseRotations(const Model& model, VecX& x);

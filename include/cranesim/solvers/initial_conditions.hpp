@@ -20,6 +20,10 @@ void requireIndependentConstraints(const Assembler& assembler, const VecX& q, do
 /// naming the constraint when the initial violation exceeds `tolerance`.
 DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance);
 
+/// The scene's drawn state (q, v) at time t: posed at its drives' values (solvers/drive_posing.hpp),
+/// then made consistent as by consistentInitialState.
+DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance);
+
 /// Recomputes a, λ and q̇ for a state whose q and v are already consistent. `limit`: Right
 /// when restarting from a breakpoint, so the accelerations are those of the coming segment.
 void solveAccelerations(const Assembler& assembler, DynamicState& state, Limit limit = Limit::Left);

@@ -9,12 +9,16 @@
 #include <string>
 
 #include "cranesim/assembly/assembler.hpp"
+#include "cranesim/solvers/equilibrium_system.hpp"
 
 namespace cranesim {
 
 struct StaticOptions {
   int max_iterations = 50;       // per load step
   double tolerance = 1e-10;      // on the Newton step, relative to 1 + max|q|
+  /// Converged also when every force residual is below this fraction of the largest constraint
+  /// force (rounding floor of the forces; see dampedNewton).
+  double force_tolerance = 1e-11;
   int initial_load_steps = 1;    // first try: the full load at once
   int max_load_halvings = 16;
   /// A load step is abandoned (and halved) when the line search cuts the Newton step below
@@ -31,10 +35,17 @@ struct StaticResult {
   VecX q, lambda;
   int iterations = 0;     // Newton iterations in total
   int load_steps = 0;     // load increments taken
+  int path_steps = 0;     // steps along the path of the controls (solveEquilibrium)
+  double path_reached = 0.0;  // how far along that path the solution got, 0…1
   double force_residual = 0.0;       // max |F + Gᵀλ| at the solution
   double constraint_residual = 0.0;  // max |Φ|
   std::string message;    // why it failed
 };
+
+/// Damped Newton on `system` from x = [q, λ] at the system's time and load factor: x is the
+/// solution on success. Returns the iterations used, or −(iterations + 1) on failure with the
+/// reason in `why`.
+int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why);
 
 /// Equilibrium near `q_start` at time t (drives and profiles evaluated at t).
 StaticResult solveStatics(const Model& model, const VecX& q_start, double t, const StaticOptions& options = {});

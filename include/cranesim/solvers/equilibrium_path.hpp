@@ -1,0 +1,59 @@
+#pragma once
+// The static equilibrium of a scene for its controls at time t, reached along a path from the
+// drawn geometry. This is the statics every tool uses: `crane-sim static`,
+// `initial_state: equilibrium`, and the start of crane-opt's map.
+//
+// Newton from the drawn geometry straight to controls far from the drawing fails: a luffing
+// rope longer than drawn leaves the boom unsupported at the start (a slack rope has no
+// stiffness), a hoist rope paid out leaves the load hanging in the air, a slewing drive at 45°
+// starts with the joint 45° off. Ramping gravity from zero (load stepping) does not help a crane:
+// without gravity nothing tensions its ropes and the structure is a mechanism. Instead the
+// controls — every rope's unstretched length and every drive's value — start where the drawing
+// has them (the rope's chord, the joint's measured angle, displacement or distance; driven
+// joints that can be posed rigidly are posed first, solvers/drive_posing.hpp), where the
+// drawn state is nearly in equilibrium under full gravity, and move along a straight line in a
+// path parameter τ ∈ [0, 1] to their values at t:
+//   c(τ) = c_drawn + τ (c(t) − c_drawn).
+// Each path step is predicted along the tangent dx/dτ = −J⁻¹ ∂R/∂τ and corrected by damped
+// Newton; a step whose Newton fails is halved, a quick one lets the next one double. Gravity and
+// loads act in full all along (load stepping remains the fallback at τ = 0 only).
+
+#include <string>
+#include <vector>
+
+#include "cranesim/model/scene.hpp"
+#include "cranesim/solvers/statics.hpp"
+
+namespace cranesim {
+
+/// A control moved along the path, for reports and messages.
+struct PathControl {
+  std::string name;   // "member <rope> length" or "constraint <name> drive"
+  double drawn = 0.0;   // value in the drawn geometry (m or rad)
+  double target = 0.0;  // value at t
+  bool angle = false;   // a revolute's angle (reported in degrees)
+};
+
+struct PathOptions {
+  StaticOptions newton;           // for the start at τ = 0 (with its load stepping) and each step
+  int step_iterations = 12;       // Newton iterations allowed per path step before it is halved
+  double min_step = 1.0 / 4096;   // the smallest path step tried before giving up
+  /// A step moves no revolute by more than this (rad): the angle equation's region of
+  /// convergence is half a turn, and the structure behind it swings along.
+  double max_angle_step = 0.5;
+};
+
+/// The path's controls: ropes whose unstretched length differs from their drawn one, drives
+/// whose value at t differs from the one in the drawn state q_drawn (to 1e-12 relative).
+/// `model` is compileModel(scene).
+std::vector<PathControl> pathControls(const Scene& scene, const Model& model, const VecX& q_drawn, double t);
+
+/// The equilibrium of `model` (compiled from `scene`) at time t, solved along the path from
+/// the drawn controls. result.load_steps counts the Newton stage at τ = 0 (its load steps);
+/// result.path_steps the path's steps. On failure the message names the controls and how far
+/// along the path the solution got. The drawn state must satisfy the constraints to
+/// scene.solver.initial_tolerance (with the drives at their drawn values, it does wherever the
+/// drawing closes).
+StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, const PathOptions& options = {});
+
+}  // namespace cranesim

@@ -1,0 +1,158 @@
+#include "cranesim/solvers/equilibrium_path.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "cranesim/model/compile.hpp"
+#include "cranesim/solvers/drive_posing.hpp"
+#include "cranesim/solvers/equilibrium_system.hpp"
+#include "cranesim/solvers/initial_conditions.hpp"
+
+namespace cranesim {
+namespace {
+
+/// A rope's unstretched length in the drawing: its chord, less a strain of 1e-6 so that it starts
+/// taut. At the chord itself every Gauss point sits on the kink of the tension-only law, where
+/// the rope has no stiffness, and Newton's first step lets the boom fall.
+double drawnRopeLength(const MemberSpec& m) { return (1.0 - 1e-6) * (m.end - m.start).norm(); }
+
+bool differs(double a, double b) { return std::abs(a - b) > 1e-12 * std::max({1.0, std::abs(a), std::abs(b)}); }
+
+/// The scene with every control following its path in τ (the model's time): c(τ) = c_drawn +
+/// τ (c(t) − c_drawn). Everything else is frozen at t.
+Scene pathScene(const Scene& scene, const Model& model, const VecX& q_drawn, double t) {
+  Scene path = scene;
+  path.solver.t_start = 0.0;
+  const auto line = [](double from, double to) { return Profile(RampProfile{from, to - from, 0.0}); };
+  for (MemberSpec& m : path.members)
+    if (m.length) m.length = line(drawnRopeLength(m), (*m.length)(t));
+  for (ConstraintSpec& c : path.constraints) {
+    if (!c.drive) continue;
+    const auto it = std::find_if(model.constraints.begin(), model.constraints.end(),
+                                 [&](const Constraint& k) { return k.name == c.name; });
+    const Frame j1 = model.jointFrame(q_drawn.data(), it->joint1), j2 = model.jointFrame(q_drawn.data(), it->joint2);
+    c.drive = line(drivenCoordinate(it->law(), j1, j2), (*c.drive)(t));
+  }
+  for (LoadSpec& l : path.loads) l.scale = Profile(ConstantProfile{l.scale(t)});
+  return path;
+}
+
+std::string describe(const PathControl& c, double tau) {
+  const double scale = c.angle ? 180.0 / std::numbers::pi : 1.0;
+  const char* unit = c.angle ? "°" : " m";
+  return fmt::format("{} {:.6g}{} → {:.6g}{} (reached {:.6g}{})", c.name, scale * c.drawn, unit, scale * c.target, unit,
+                     scale * (c.drawn + tau * (c.target - c.drawn)), unit);
+}
+
+/// dx/dτ = −J⁻¹ ∂R/∂τ at a solution x(τ); ∂R/∂τ by a forward difference (R is smooth in the
+/// controls, and the step only predicts). Empty when J is singular beyond repair.
+VecX pathTangent(EquilibriumSystem& system, const VecX& x, double tau) {
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  if (!factoriseShifted(system.jacobian(x), system.model().nv, lu)) return {};
+  const VecX r = system.residual(x);
+  const double h = 1e-7;
+  system.setTime(tau + h);
+  const VecX dr = (system.residual(x) - r) / h;
+  system.setTime(tau);
+  return -lu.solve(dr);
+}
+
+}  // namespace
+
+std::vector<PathControl> pathControls(const Scene& scene, const Model& model, const VecX& q_drawn, double t) {
+  std::vector<PathControl> controls;
+  for (const MemberSpec& m : scene.members)
+    if (m.length && differs(drawnRopeLength(m), (*m.length)(t)))
+      controls.push_back({fmt::format("{} length", m.name), drawnRopeLength(m), (*m.length)(t), false});
+  for (const Constraint& c : model.constraints) {
+    if (!c.drive) continue;
+    const double drawn = drivenCoordinate(c.law(), model.jointFrame(q_drawn.data(), c.joint1),
+                                          model.jointFrame(q_drawn.data(), c.joint2));
+    const double target = (*c.drive)(t);
+    if (differs(drawn, target)) controls.push_back({fmt::format("{} drive", c.name), drawn, target, c.type == ConstraintType::Revolute});
+  }
+  return controls;
+}
+
+StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, const PathOptions& options) {
+  // The drives' drawn values are measured on the posed drawing; the path model's own drawing
+  // (its ropes' slopes at their drawn lengths) is posed alike.
+  VecX q_posed = model.q0;
+  poseAtDrives(model, t, q_posed);
+  const std::vector<PathControl> controls = pathControls(scene, model, q_posed, t);
+  const Model path = compileModel(pathScene(scene, model, q_posed, t));
+  VecX q_drawn = path.q0;
+  poseAtDrives(path, 0.0, q_drawn);
+  const DynamicState drawn =
+      consistentInitialState(Assembler(path), 0.0, q_drawn, VecX::Zero(path.nv), model.solver.initial_tolerance);
+
+  StaticResult result = solveStatics(path, drawn.q, 0.0, options.newton);
+  result.t = t;
+  if (!result.converged) {
+    result.message = "at the drawn controls: " + result.message;
+    return result;
+  }
+
+  // The largest revolute turn bounds the step.
+  double turn = 0.0;
+  for (const PathControl& c : controls)
+    if (c.angle) turn = std::max(turn, std::abs(c.target - c.drawn));
+  const double max_step = turn > 0.0 ? std::min(1.0, options.max_angle_step / turn) : 1.0;
+
+  EquilibriumSystem system(path, 0.0);
+  StaticOptions step_newton = options.newton;
+  step_newton.max_iterations = options.step_iterations;
+  VecX x(system.size());
+  x << result.q, result.lambda;
+  double tau = 0.0, step = max_step;
+  while (tau < 1.0 && !controls.empty()) {
+    system.setTime(tau);
+    const VecX tangent = pathTangent(system, x, tau);
+    ++result.iterations;  // the tangent's Jacobian costs as much as a Newton iteration
+    for (;;) {
+      const double next = std::min(1.0, tau + step);
+      VecX trial = x;
+      if (tangent.size() > 0) trial += (next - tau) * tangent;
+      reparameteriseRotations(path, trial);
+      system.setTime(next);
+      std::string why;
+      const int used = dampedNewton(system, trial, step_newton, why);
+      result.iterations += used >= 0 ? used : -used - 1;
+      if (used >= 0) {
+        ++result.path_steps;
+        x = trial;
+        tau = next;
+        if (used <= 3) step = std::min(max_step, 2.0 * step);
+        break;
+      }
+      step *= 0.5;
+      if (step < options.min_step) {
+        std::string moved;
+        for (const PathControl& c : controls) moved += (moved.empty() ? "" : ", ") + describe(c, tau);
+        result.converged = false;
+        result.path_reached = tau;
+        result.q = x.head(model.nq);
+        result.lambda = x.tail(model.m);
+        result.message = fmt::format("static equilibrium not found: the path from the drawn controls stopped at "
+                                     "{:.1f} % ({}): {}", 100.0 * tau, moved, why);
+        return result;
+      }
+    }
+  }
+
+  // The path's equations at τ = 1 are the model's at t; checked on the model itself.
+  result.path_reached = 1.0;
+  result.q = x.head(model.nq);
+  result.lambda = x.tail(model.m);
+  EquilibriumSystem own(model, t);
+  const VecX r = own.residual(x);
+  result.force_residual = r.head(model.nv).cwiseAbs().maxCoeff();
+  result.constraint_residual = model.m > 0 ? r.tail(model.m).cwiseAbs().maxCoeff() : 0.0;
+  return result;
+}
+
+}  // namespace cranesim
+
