@@ -82,8 +82,9 @@ StaticResult equilibrium(const Scene& scene, const Model& model, const Assembler
 }
 
 void printEquilibrium(const StaticResult& eq) {
-  fmt::print(stderr, "static equilibrium: {} Newton iterations in {} load steps and {} path steps; max |F + Gᵀλ| {:.3g}, max |Φ| {:.3g}\n",
-             eq.iterations, eq.load_steps, eq.path_steps, eq.force_residual, eq.constraint_residual);
+  fmt::print(stderr, "static equilibrium: {} Newton iterations in {} load steps and {} path steps; max |F + Gᵀλ| {:.3g}, "
+                     "max |Φ| {:.3g}; in {:.3g} s\n",
+             eq.iterations, eq.load_steps, eq.path_steps, eq.force_residual, eq.constraint_residual, eq.seconds);
 }
 
 /// The equilibrium as an engineer reads it: where the bodies are, and what each joint carries

@@ -1,6 +1,8 @@
 // bench_kernels: Google Benchmark timings of the DAE kernels, Assembler::residual and
 // Assembler::jacobian, for pendulum chains of 8 and 64 links (chain_scene.hpp) in both
-// formulations, at the consistent initial state.
+// formulations, at the consistent initial state; and for the thesis crane in both 12-DOF
+// lattice fidelities (configs/crane.yaml, crane_condensed.yaml) at its drawn state: the DAE
+// residual and Jacobian, and the statics' Jacobian (EquilibriumSystem: ∂/∂q and ∂/∂λ only).
 
 #include <benchmark/benchmark.h>
 
@@ -12,6 +14,7 @@
 #include "cranesim/assembly/assembler.hpp"
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/model/compile.hpp"
+#include "cranesim/solvers/equilibrium_system.hpp"
 #include "cranesim/solvers/initial_conditions.hpp"
 
 namespace {
@@ -73,6 +76,69 @@ void BM_Jacobian(benchmark::State& state) {
   state.counters["nonzeros"] = static_cast<double>(f.values.size());
   state.SetLabel(state.range(1) ? "ggl" : "baumgarte");
 }
+
+/// The thesis crane at its drawn state (dq = 0) with a multiplier guess of 1 MN.
+struct CraneFixture {
+  cranesim::Model model;
+  std::unique_ptr<cranesim::Assembler> assembler;
+  std::unique_ptr<cranesim::EquilibriumSystem> statics;
+  std::vector<double> y, yp, res, values;
+  cranesim::VecX x;
+
+  explicit CraneFixture(const std::string& scene) {
+    model = cranesim::compileModel(cranesim::readScene(std::string(CRANESIM_SOURCE_DIR) + "/configs/" + scene));
+    assembler = std::make_unique<cranesim::Assembler>(model);
+    statics = std::make_unique<cranesim::EquilibriumSystem>(model, 0.0);
+    const auto& a = *assembler;
+    y.assign(a.size(), 0.0);
+    yp.assign(a.size(), 0.0);
+    for (int i = 0; i < model.nq; ++i) y[i] = model.q0[i];
+    for (int i = 0; i < model.m; ++i) y[a.lambdaOffset() + i] = 1e6;
+    res.assign(a.size(), 0.0);
+    values.assign(a.pattern().nonZeros(), 0.0);
+    x.resize(statics->size());
+    x << model.q0, cranesim::VecX::Constant(model.m, 1e6);
+  }
+};
+
+CraneFixture& crane(bool condensed) {
+  static std::unique_ptr<CraneFixture> cache[2];
+  auto& f = cache[condensed];
+  if (!f) f = std::make_unique<CraneFixture>(condensed ? "crane_condensed.yaml" : "crane.yaml");
+  return *f;
+}
+
+const char* fidelity(const benchmark::State& state) { return state.range(0) ? "condensed" : "super_truss"; }
+
+void BM_CraneResidual(benchmark::State& state) {
+  CraneFixture& f = crane(state.range(0) != 0);
+  for (auto _ : state) {
+    f.assembler->residual(0.0, f.y.data(), f.yp.data(), f.res.data());
+    benchmark::DoNotOptimize(f.res.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetLabel(fidelity(state));
+}
+
+void BM_CraneJacobian(benchmark::State& state) {
+  CraneFixture& f = crane(state.range(0) != 0);
+  for (auto _ : state) {
+    f.assembler->jacobian(0.0, 1e3, f.y.data(), f.yp.data(), f.values.data());
+    benchmark::DoNotOptimize(f.values.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetLabel(fidelity(state));
+}
+
+void BM_CraneStaticJacobian(benchmark::State& state) {
+  CraneFixture& f = crane(state.range(0) != 0);
+  for (auto _ : state) benchmark::DoNotOptimize(f.statics->jacobian(f.x));
+  state.SetLabel(fidelity(state));
+}
+
+BENCHMARK(BM_CraneResidual)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CraneJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CraneStaticJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 
 // Args: {links, ggl (1) or baumgarte (0)}.
 BENCHMARK(BM_Residual)->ArgsProduct({{8, 64}, {1, 0}})->ArgNames({"N", "ggl"})->Unit(benchmark::kMicrosecond);

@@ -238,8 +238,14 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
   const ElementInput in{q, v, a, t, gravity(), mass_damping_};
   jacobian_loop_.run(model_.elements.size(), [&](std::size_t e) {
     const auto& el = *model_.elements[e];
-    element_scratch_[e].resize(el.size() * (el.coordinateIndices().size() + el.size()));
-    el.jacobian(in, cj, element_scratch_[e].data());
+    const std::size_t coordinates = el.size() * el.coordinateIndices().size();
+    element_scratch_[e].resize(coordinates + el.size() * el.size());
+    if (!coordinate_jacobian_only_) {
+      el.jacobian(in, cj, element_scratch_[e].data());
+      return;
+    }
+    el.coordinateJacobian(in, element_scratch_[e].data());
+    std::fill(element_scratch_[e].begin() + coordinates, element_scratch_[e].end(), 0.0);
   });
   for (std::size_t e = 0; e < model_.elements.size(); ++e) scatter(element_blocks_[e], element_scratch_[e].data());
 

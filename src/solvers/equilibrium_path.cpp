@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -78,6 +79,11 @@ std::vector<PathControl> pathControls(const Scene& scene, const Model& model, co
 }
 
 StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, const PathOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto finish = [&](StaticResult& result) -> StaticResult& {
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  };
   // The drives' drawn values are measured on the posed drawing; the path model's own drawing
   // (its ropes' slopes at their drawn lengths) is posed alike.
   VecX q_posed = model.q0;
@@ -93,7 +99,7 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
   result.t = t;
   if (!result.converged) {
     result.message = "at the drawn controls: " + result.message;
-    return result;
+    return finish(result);
   }
 
   // The largest revolute turn bounds the step.
@@ -138,7 +144,7 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
         result.lambda = x.tail(model.m);
         result.message = fmt::format("static equilibrium not found: the path from the drawn controls stopped at "
                                      "{:.1f} % ({}): {}", 100.0 * tau, moved, why);
-        return result;
+        return finish(result);
       }
     }
   }
@@ -151,7 +157,7 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
   const VecX r = own.residual(x);
   result.force_residual = r.head(model.nv).cwiseAbs().maxCoeff();
   result.constraint_residual = model.m > 0 ? r.tail(model.m).cwiseAbs().maxCoeff() : 0.0;
-  return result;
+  return finish(result);
 }
 
 }  // namespace cranesim

@@ -9,6 +9,7 @@ EquilibriumSystem::EquilibriumSystem(const Model& model, double t)
   y_ = VecX::Zero(assembler_.size());
   yp_ = VecX::Zero(assembler_.size());
   values_.resize(assembler_.pattern().nonZeros());
+  assembler_.setCoordinateJacobianOnly(true);
 }
 
 VecX EquilibriumSystem::residual(const VecX& x) {

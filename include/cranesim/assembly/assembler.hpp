@@ -40,6 +40,10 @@ class Assembler {
   double loadFactor() const { return load_factor_; }
   /// Adds α M(q) dq to the equations of motion: the artificial damping of static relaxation.
   void setMassDamping(double alpha) { mass_damping_ = alpha; }
+  /// jacobian() then computes the elements' ∂r/∂q only and leaves their velocity columns zero:
+  /// all that statics reads (the equilibrium system's unknowns are q and λ), at the cost of
+  /// nq_local instead of nq_local + nv_local AD directions.
+  void setCoordinateJacobianOnly(bool only) { coordinate_jacobian_only_ = only; }
   /// Size of y and offsets of its parts.
   int size() const { return size_; }
   int vOffset() const { return model_.nq; }
@@ -90,6 +94,7 @@ class Assembler {
   Formulation formulation_;
   double load_factor_ = 1.0;
   double mass_damping_ = 0.0;
+  bool coordinate_jacobian_only_ = false;
   int size_ = 0;
   SparsityPattern pattern_;
   std::vector<NodeBlocks> node_blocks_;

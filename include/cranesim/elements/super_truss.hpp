@@ -291,19 +291,25 @@ struct SuperTrussKernel {
 
   /// F_e = Σ T_kᵀ (F_k + M_k Ṫ_k dq_e) + the rigid parts' inertial and gravity forces.
   template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
-    return forces<S>(q, v, nullptr, gravity, true);
+    return forces<S>(q, v, nullptr, gravity, Terms::All);
   }
 
   /// M_e a + F_e = Σ T_kᵀ (F_k + M_k (T_k a + Ṫ_k dq_e)) + the rigid parts' terms, in one pass over
   /// the members (element.hpp: a kernel's optional fused residual). Cheaper than massMatrix and
   /// force apart, which would evaluate every member's mass matrix twice.
   template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
-    return forces<S>(q, v, &a, gravity, true);
+    return forces<S>(q, v, &a, gravity, Terms::All);
   }
 
   /// Elastic and damping forces alone (zero for rigid placements and rigid velocities).
   template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
-    return forces<S>(q, v, nullptr, Vec3::Zero(), false);
+    return forces<S>(q, v, nullptr, Vec3::Zero(), Terms::Elastic);
+  }
+
+  /// F(q, 0, t): elastic forces and gravity, without the velocity path of the inertial terms
+  /// (the statics' Jacobian differentiates this).
+  template <class S> V<S> staticForce(const Q<S>& q, double, const Vec3& gravity) const {
+    return forces<S>(q, V<S>(V<S>::Zero()), nullptr, gravity, Terms::AtRest);
   }
 
   double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
@@ -387,9 +393,12 @@ struct SuperTrussKernel {
     Vec6T<S> v, a0;
   };
 
-  /// F_e (+ M_e a when `a` is given); without inertia and gravity: the elastic and damping forces.
-  template <class S>
-  V<S> forces(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity, bool inertia_and_gravity) const {
+  /// Which terms forces() computes: all of F_e (+ M_e a), F_e at rest (dq = 0: elastic forces and
+  /// gravity, no velocity path), or the elastic and damping forces alone.
+  enum class Terms { All, AtRest, Elastic };
+
+  /// F_e (+ M_e a when `a` is given), or the part of it that `terms` names.
+  template <class S> V<S> forces(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity, Terms terms) const {
     using P = Dual<S, 1>;
     // Section frames along the path r(τ) = r + τṙ, R(τ) = R(I + τω̃) (first order).
     const SectionFrames<S> s = sectionFrames<S>(q);
@@ -405,7 +414,7 @@ struct SuperTrussKernel {
     std::vector<NodeMotion<S>>& motion = scratch<NodeMotion<S>>();
     const auto nodeMotion = [&](std::size_t n) {
       NodeMotion<S>& out = motion[n];
-      if (!inertia_and_gravity) {
+      if (terms != Terms::All) {
         out.state = nodeState<S>(s, nodes[n]);
         out.v = out.state.map * v;
         return;
@@ -425,7 +434,7 @@ struct SuperTrussKernel {
     };
 
     V<S> F = V<S>::Zero();
-    if (inertia_and_gravity) {
+    if (terms != Terms::Elastic) {
       const Vec3T<S> g = gravity.cast<S>();
       for (int i = 0; i < 2; ++i) {
         const RigidPart& p = rigid[i];
@@ -448,7 +457,8 @@ struct SuperTrussKernel {
         vk.template segment<3>(6 * k + 3) = m.relative[k].transpose().cast<S>() * end[k]->v.template tail<3>();
       }
       Eigen::Matrix<S, 12, 1> Fk = m.beam.template elasticForce<S>(e.r1, e.R1, e.r2, e.R2, vk, m.stiffness);
-      if (inertia_and_gravity) {
+      if (terms == Terms::AtRest) Fk += m.beam.template gravityForce<S>(e, gravity);
+      if (terms == Terms::All) {
         for (int k = 0; k < 2; ++k) {
           ak.template segment<3>(6 * k) = end[k]->a0.template head<3>();
           ak.template segment<3>(6 * k + 3) = m.relative[k].transpose().cast<S>() * end[k]->a0.template tail<3>();

@@ -446,6 +446,23 @@ struct TimoshenkoBeamKernel {
     return inertialAndGravityForce<S>(q, v, gravity) + elasticForce<S>(q, v);
   }
 
+  /// −∫ H_xᵀ ρA g ds: inertialAndGravityForce at rest (dq = 0, d(dq)/dt = 0).
+  template <class S> V<S> gravityForce(const EndFrames<S>& e, const Vec3& gravity) const {
+    const double rhoA = material.density * section.area;
+    const GaussRule rule = gaussLegendre(mass_points);
+    V<S> F = V<S>::Zero();
+    for (int gp = 0; gp < rule.points; ++gp) {
+      const SectionMap<S> m = sectionMap<S>(e, rule.xi[gp]);
+      F += m.project(Vec3T<S>(S(-rule.weight[gp] * length * rhoA) * gravity.cast<S>()), Vec3T<S>::Zero());
+    }
+    return F;
+  }
+
+  /// F(q, 0, t): elastic forces and gravity (the statics' Jacobian differentiates this).
+  template <class S> V<S> staticForce(const Q<S>& q, double, const Vec3& gravity) const {
+    return gravityForce<S>(endFrames<S>(q), gravity) + elasticForce<S>(q, V<S>(V<S>::Zero()));
+  }
+
   double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
     return 0.5 * v.dot(massMatrix<double>(q) * v);
   }

@@ -15,7 +15,10 @@
 // (3-26, 3-51). q_e and dq_e are the concatenated coordinates of the element's nodes, in order.
 // Optionally, a kernel whose mass matrix is costly provides the fused residual
 //   template <class S> Matrix<S, kNv, 1> residual(q, dq, a, t, gravity) const;   M(q) a + F
-// which KernelElement then uses for the residual and its Jacobian.
+// which KernelElement then uses for the residual and its Jacobian, and a kernel whose inertial
+// terms are costly provides the force at rest
+//   template <class S> Matrix<S, kNv, 1> staticForce(q, t, gravity) const;       F(q, 0, t)
+// which the statics' Jacobian (coordinateJacobian at dq = 0, d(dq)/dt = 0) then differentiates.
 // The templated functions must not branch on derivative parts and must not allocate.
 
 #include <array>
@@ -52,6 +55,9 @@ class Element {
   virtual void residual(const ElementInput& in, double* r) const = 0;
   /// J = [∂r/∂q | ∂r/∂v + cj M], column-major, size() × (nq_local + size()).
   virtual void jacobian(const ElementInput& in, double cj, double* J) const = 0;
+  /// ∂r/∂q alone, column-major, size() × nq_local (v and a held): the statics' Jacobian, by
+  /// forward AD in the nq_local coordinate directions only.
+  virtual void coordinateJacobian(const ElementInput& in, double* J) const = 0;
   /// Local mass matrix M(q), column-major, size() × size().
   virtual void mass(const ElementInput& in, double* M) const = 0;
   virtual double kineticEnergy(const ElementInput& in) const = 0;
@@ -63,6 +69,12 @@ template <class K>
 concept FusedResidualKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
                                        const Eigen::Matrix<double, K::kNv, 1>& v, const Vec3& g) {
   { k.template residual<double>(q, v, v, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
+};
+
+/// A kernel that computes F(q, 0, t) without the inertial terms' velocity machinery.
+template <class K>
+concept StaticForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q, const Vec3& g) {
+  { k.template staticForce<double>(q, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
 };
 
 template <class Kernel> class KernelElement final : public Element {
@@ -113,6 +125,28 @@ template <class Kernel> class KernelElement final : public Element {
     Jm.template rightCols<kNv>() += cj * kernel_.template massMatrix<double>(qd, in.t);
   }
 
+  void coordinateJacobian(const ElementInput& in, double* J) const override {
+    using D = Dual<double, kNq>;
+    const Qd qd = gatherQ(in.q);
+    const Vd vd = gatherV(in.v), ad = gatherV(in.a) + in.mass_damping * vd;
+    Eigen::Matrix<D, kNq, 1> q;
+    for (int k = 0; k < kNq; ++k) q(k) = seeded<double, kNq>(qd(k), k);
+    Eigen::Matrix<D, kNv, 1> r;
+    if constexpr (StaticForceKernel<Kernel>) {
+      if (vd.isZero(0.0) && ad.isZero(0.0)) {
+        r = kernel_.template staticForce<D>(q, in.t, in.gravity);
+        storeDerivatives(r, J);
+        return;
+      }
+    }
+    const Eigen::Matrix<D, kNv, 1> v = vd.template cast<D>(), a = ad.template cast<D>();
+    if constexpr (FusedResidualKernel<Kernel>)
+      r = kernel_.template residual<D>(q, v, a, in.t, in.gravity);
+    else
+      r = kernel_.template massMatrix<D>(q, in.t) * a + kernel_.template force<D>(q, v, in.t, in.gravity);
+    storeDerivatives(r, J);
+  }
+
   void mass(const ElementInput& in, double* M) const override {
     Eigen::Map<Eigen::Matrix<double, kNv, kNv>> out(M);
     out = kernel_.template massMatrix<double>(gatherQ(in.q), in.t);
@@ -126,6 +160,10 @@ template <class Kernel> class KernelElement final : public Element {
   }
 
  private:
+  template <class R> static void storeDerivatives(const R& r, double* J) {
+    Eigen::Map<Eigen::Matrix<double, kNv, kNq>> Jm(J);
+    for (int i = 0; i < kNv; ++i) Jm.row(i) = r(i).derivatives().transpose();
+  }
   Qd gatherQ(const double* x) const {
     Qd out;
     for (int k = 0; k < kNq; ++k) out(k) = x[q_[k]];

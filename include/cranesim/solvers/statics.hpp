@@ -37,6 +37,7 @@ struct StaticResult {
   int load_steps = 0;     // load increments taken
   int path_steps = 0;     // steps along the path of the controls (solveEquilibrium)
   double path_reached = 0.0;  // how far along that path the solution got, 0…1
+  double seconds = 0.0;       // wall time of the solve
   double force_residual = 0.0;       // max |F + Gᵀλ| at the solution
   double constraint_residual = 0.0;  // max |Φ|
   std::string message;    // why it failed
