@@ -118,7 +118,7 @@ def main() -> None:
         writer.writeheader()
         for fidelity in fidelities:
             cases = [("controls", float(l), float(h), THESIS_LOAD) for l in grid(args.luffing) for h in grid(args.hoist)]
-            cases += [("load", THESIS_LUFFING, THESIS_HOIST, 1e3 * float(m)) for m in args.loads.split(",")]
+            cases += [("load", THESIS_LUFFING, THESIS_HOIST, round(1e3 * float(m), 3)) for m in args.loads.split(",")]
             for kind, luffing, hoist, load in cases:
                 row = {"kind": kind, **solve(args.bin, fidelity, round(luffing, 6), round(hoist, 6), load, Path(tmp))}
                 writer.writerow(row)

@@ -48,11 +48,11 @@ std::string describe(const PathControl& c, double tau) {
                      scale * (c.drawn + tau * (c.target - c.drawn)), unit);
 }
 
-/// dx/dτ = −J⁻¹ ∂R/∂τ at a solution x(τ); ∂R/∂τ by a forward difference (R is smooth in the
-/// controls, and the step only predicts). Empty when J is singular beyond repair.
-VecX pathTangent(EquilibriumSystem& system, const VecX& x, double tau) {
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  if (!factoriseShifted(system.jacobian(x), system.model().nv, lu)) return {};
+/// dx/dτ = −J⁻¹ ∂R/∂τ at a solution x(τ), with J factorised in `lu` (Newton's last, from the
+/// iterate before x: the step only predicts); ∂R/∂τ by a forward difference (R is smooth in
+/// the controls).
+VecX pathTangent(EquilibriumSystem& system, const Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu, const VecX& x,
+                 double tau) {
   const VecX r = system.residual(x);
   const double h = 1e-7;
   system.setTime(tau + h);
@@ -95,11 +95,30 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
   const DynamicState drawn =
       consistentInitialState(Assembler(path), 0.0, q_drawn, VecX::Zero(path.nv), model.solver.initial_tolerance);
 
-  StaticResult result = solveStatics(path, drawn.q, 0.0, options.newton);
+  // The start: Newton at the drawn controls under the full load, load stepping if that fails.
+  EquilibriumSystem system(path, 0.0);
+  StaticOptions start_newton = options.newton;
+  if (!controls.empty()) start_newton.tolerance = std::max(start_newton.tolerance, options.intermediate_tolerance);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  VecX x(system.size());
+  x << drawn.q, VecX::Zero(path.m);
+  std::string why;
+  int used = dampedNewton(system, x, start_newton, why, &lu);
+  StaticResult result;
   result.t = t;
-  if (!result.converged) {
-    result.message = "at the drawn controls: " + result.message;
-    return finish(result);
+  if (used >= 0) {
+    result.iterations = used;
+    result.load_steps = 1;
+  } else {
+    result = solveStatics(path, drawn.q, 0.0, start_newton);
+    result.iterations += -used - 1;
+    result.t = t;
+    if (!result.converged) {
+      result.message = "at the drawn controls: " + result.message;
+      return finish(result);
+    }
+    x << result.q, result.lambda;
+    used = 0;  // no factorisation at hand
   }
 
   // The largest revolute turn bounds the step.
@@ -108,24 +127,32 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
     if (c.angle) turn = std::max(turn, std::abs(c.target - c.drawn));
   const double max_step = turn > 0.0 ? std::min(1.0, options.max_angle_step / turn) : 1.0;
 
-  EquilibriumSystem system(path, 0.0);
   StaticOptions step_newton = options.newton;
   step_newton.max_iterations = options.step_iterations;
-  VecX x(system.size());
-  x << result.q, result.lambda;
   double tau = 0.0, step = max_step;
   while (tau < 1.0 && !controls.empty()) {
     system.setTime(tau);
-    const VecX tangent = pathTangent(system, x, tau);
-    ++result.iterations;  // the tangent's Jacobian costs as much as a Newton iteration
+    if (used == 0) {  // no Jacobian of this point yet: one more, counted as an iteration
+      ++result.iterations;
+      if (!factoriseShifted(system.jacobian(x), path.nv, lu)) {
+        result.q = x.head(model.nq);
+        result.lambda = x.tail(model.m);
+        result.path_reached = tau;
+        result.message = fmt::format("static equilibrium not found: singular equilibrium Jacobian at {:.1f} % of the path "
+                                     "from the drawn controls", 100.0 * tau);
+        return finish(result);
+      }
+    }
+    const VecX tangent = pathTangent(system, lu, x, tau);
     for (;;) {
       const double next = std::min(1.0, tau + step);
       VecX trial = x;
-      if (tangent.size() > 0) trial += (next - tau) * tangent;
+      trial += (next - tau) * tangent;
       reparameteriseRotations(path, trial);
       system.setTime(next);
-      std::string why;
-      const int used = dampedNewton(system, trial, step_newton, why);
+      step_newton.tolerance = next < 1.0 ? std::max(options.newton.tolerance, options.intermediate_tolerance)
+                                         : options.newton.tolerance;
+      used = dampedNewton(system, trial, step_newton, why, &lu);
       result.iterations += used >= 0 ? used : -used - 1;
       if (used >= 0) {
         ++result.path_steps;
@@ -150,6 +177,7 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
   }
 
   // The path's equations at τ = 1 are the model's at t; checked on the model itself.
+  result.converged = true;
   result.path_reached = 1.0;
   result.q = x.head(model.nq);
   result.lambda = x.tail(model.m);

@@ -35,8 +35,11 @@ bool atRoundingFloor(const Model& model, const VecX& x, const VecX& r, const Sta
 
 }  // namespace
 
-int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why) {
+int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why,
+                 Eigen::SparseLU<Eigen::SparseMatrix<double>>* factorisation) {
   const Model& model = system.model();
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> own;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu = factorisation ? *factorisation : own;
   VecX r = system.residual(x);
   int short_steps = 0;
   for (int it = 1; it <= options.max_iterations; ++it) {
@@ -45,7 +48,6 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
     // the Jacobian singular: the coordinate block's diagonal is shifted as in
     // Levenberg–Marquardt. The shift changes the step, not the equations being solved.
     const Eigen::SparseMatrix<double> J = system.jacobian(x);
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
     lu.compute(J);
     VecX dx;
     if (lu.info() == Eigen::Success) dx = -lu.solve(r);

@@ -37,6 +37,9 @@ struct PathControl {
 struct PathOptions {
   StaticOptions newton;           // for the start at τ = 0 (with its load stepping) and each step
   int step_iterations = 12;       // Newton iterations allowed per path step before it is halved
+  /// Newton's step tolerance (relative, as StaticOptions::tolerance) at the start and at the
+  /// path's intermediate points: they only start the next step, whose predictor errs far more.
+  double intermediate_tolerance = 1e-6;
   double min_step = 1.0 / 4096;   // the smallest path step tried before giving up
   /// A step moves no revolute by more than this (rad): the angle equation's region of
   /// convergence is half a turn, and the structure behind it swings along.

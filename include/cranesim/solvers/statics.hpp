@@ -45,8 +45,10 @@ struct StaticResult {
 
 /// Damped Newton on `system` from x = [q, λ] at the system's time and load factor: x is the
 /// solution on success. Returns the iterations used, or −(iterations + 1) on failure with the
-/// reason in `why`.
-int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why);
+/// reason in `why`. `factorisation`, when given, holds the last Jacobian factorised (that of
+/// the last iterate but one; possibly shifted, see statics.cpp) when iterations were used.
+int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why,
+                 Eigen::SparseLU<Eigen::SparseMatrix<double>>* factorisation = nullptr);
 
 /// Equilibrium near `q_start` at time t (drives and profiles evaluated at t).
 StaticResult solveStatics(const Model& model, const VecX& q_start, double t, const StaticOptions& options = {});
