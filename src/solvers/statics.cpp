@@ -12,13 +12,18 @@
 namespace cranesim {
 namespace {
 
-/// The largest step fraction (≤ 1) that turns no node by more than π/2: a rotation vector is
-/// meaningful within a turn, and a mechanism far from its rest position would otherwise spin
-/// its rotation vectors by millions of radians.
-double rotationStepLimit(const Model& model, const VecX& dx) {
+/// The largest step fraction (≤ 1) that turns no node by more than π/2 and moves none by more
+/// than a tenth of the scene's size (1 + max |q|): a rotation vector is meaningful within a
+/// turn, and a mechanism far from its rest position (a body hanging on an unloaded joint, two
+/// strut ties meeting in line at zero tension) would otherwise spin or fling its nodes by
+/// thousands of turns or kilometres.
+double stepLimit(const Model& model, const VecX& x, const VecX& dx) {
+  const double reach = 0.1 * (1.0 + x.head(model.nq).cwiseAbs().maxCoeff());
   double limit = 1.0;
-  for (const Node& n : model.nodes)
+  for (const Node& n : model.nodes) {
+    limit = std::min(limit, reach / std::max(dx.segment<3>(n.q).norm(), 1e-300));
     if (n.hasRotation()) limit = std::min(limit, 0.5 * std::numbers::pi / std::max(dx.segment<3>(n.q + 3).norm(), 1e-300));
+  }
   return limit;
 }
 
@@ -54,10 +59,10 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
     // A Jacobian that factorises but would turn a node by thousands of turns is singular to
     // rounding (a body hanging on its joint before the joint carries load). A shift barely
     // above rounding leaves the stiffness-free directions to rounding too: the shift grows
-    // until the step turns no node by more than the cap of rotationStepLimit.
+    // until the step turns or moves no node by more than the caps of stepLimit.
     const double magnitude = J.coeffs().cwiseAbs().maxCoeff();
     bool shifted_step = false;
-    const auto wild = [&](double limit) { return lu.info() != Eigen::Success || rotationStepLimit(model, dx) < limit; };
+    const auto wild = [&](double limit) { return lu.info() != Eigen::Success || stepLimit(model, x, dx) < limit; };
     for (double shift = 1e-10 * magnitude; wild(shifted_step ? 1.0 : 1e-3) && shift < magnitude; shift *= 100.0) {
       Eigen::SparseMatrix<double> shifted = J;
       for (int k = 0; k < model.nv; ++k) shifted.coeffRef(k, k) += shift;
@@ -88,7 +93,7 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
       return it;
     }
     const double merit = r.squaredNorm(), correction = dx.head(model.nq).norm();
-    double step = rotationStepLimit(model, dx);
+    double step = stepLimit(model, x, dx);
     VecX trial;
     VecX r_trial;
     for (int k = 0; k < 30; ++k, step *= 0.5) {

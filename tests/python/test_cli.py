@@ -307,3 +307,20 @@ def test_static_reports_bodies_and_joint_forces(tmp_path: Path):
     assert float(rows["hinge"][0]) == pytest.approx(9.81, rel=1e-6)
     assert float(rows["rod"][2]) < 0.0  # hangs below the pivot
     assert out.is_file()
+
+
+@pytest.mark.parametrize("slewing_deg", [0, 180])
+def test_static_slews_the_crane_by_its_drive(slewing_deg: int, tmp_path: Path):
+    """The slewing drive's value turns the whole crane: at 180° the load hangs on the other side
+    (the old angle equation had a false root there and left the crane unturned)."""
+    scene = tmp_path / "slewed.yaml"
+    scene.write_text(f"base: {SOURCE_DIR / 'configs' / 'crane_condensed.yaml'}\nmodify:\n"
+                     f"  members.luffing_rope.length: 7.0608\n  members.hoist_rope.length: 53.9937\n"
+                     f"  constraints.slewing.drive: {{type: constant, value: {slewing_deg}, unit: deg}}\n",
+                     encoding="utf-8")
+    result = crane_sim("static", scene, "-o", tmp_path / "slewed.h5", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    load = [float(v) for v in next(line.split()[1:] for line in result.stdout.splitlines() if line.startswith("load "))]
+    sign = 1 if slewing_deg == 180 else -1
+    assert load[0] == pytest.approx(sign * 10.0434, abs=1e-3)
+    assert "path steps" in result.stderr

@@ -41,8 +41,8 @@ struct PathOptions {
   /// path's intermediate points: they only start the next step, whose predictor errs far more.
   double intermediate_tolerance = 1e-6;
   double min_step = 1.0 / 4096;   // the smallest path step tried before giving up
-  /// A step moves no revolute by more than this (rad): the angle equation's region of
-  /// convergence is half a turn, and the structure behind it swings along.
+  /// The predictor turns no node by more than this (rad): its error grows like the square of
+  /// the turn, and a revolute drive's equation converges within half a turn.
   double max_angle_step = 0.5;
 };
 
