@@ -324,3 +324,27 @@ def test_static_slews_the_crane_by_its_drive(slewing_deg: int, tmp_path: Path):
     sign = 1 if slewing_deg == 180 else -1
     assert load[0] == pytest.approx(sign * 10.0434, abs=1e-3)
     assert "path steps" in result.stderr
+
+
+@pytest.mark.parametrize("method,code", [("newton", EXIT_SOLVER_FAILURE), ("relaxation", 0)])
+def test_static_refuses_an_unstable_equilibrium(method: str, code: int, tmp_path: Path):
+    """The pendulum drawn 170° up: Newton finds the inverted equilibrium, which is unstable and
+    is reported as a failure (results kept, incomplete); relaxation settles into the hanging one."""
+    scene = tmp_path / "upright.yaml"
+    scene.write_text(f"base: {PENDULUM}\nmodify:\n"
+                     "  bodies.rod.position: [-0.0868241, 0, 0.4924039]\n"   # −R_y(170°)·(0, 0, 0.5)
+                     "  bodies.rod.rotation: {axis: [0, 1, 0], angle_deg: 170}\n"
+                     f"  solver.statics: {{method: {method}, damping: 3.0}}\n", encoding="utf-8")
+    out = tmp_path / "upright.h5"
+    result = crane_sim("static", scene, "-o", out, cwd=tmp_path)
+    assert result.returncode == code, result.stderr
+    assert out.is_file()
+    with h5py.File(out, "r") as f:
+        status = f.attrs["status"]
+        status = status.decode() if isinstance(status, bytes) else status
+    if code:
+        assert "unstable" in result.stderr
+        assert status == "incomplete"
+    else:
+        assert "stability: stable" in result.stderr
+        assert status == "complete"
