@@ -108,3 +108,31 @@ def test_map_only(tmp_path: Path):
         assert f["map"].attrs["threads"] == 1
         assert "trajectory" not in f
         assert np.all(np.isfinite(f["map/end_z"][...]))
+
+
+CRANE_TARGET = SOURCE_DIR / "configs" / "target.yaml"
+
+
+@pytest.mark.parametrize("target", [(-15, 5), (-20, 10), (-25, 5), (-30, 5), (-30, 15), (-35, 10)],
+                         ids=lambda t: f"x{t[0]}_z{t[1]}")
+def test_plan_reaches_targets_across_the_map(target: tuple, tmp_path: Path):
+    """Table 8-2's problem on the condensed crane with targets spread over the mapped region.
+    The four inner ones ended at the inversion with exit 1 when the inversion solved its own
+    bordered system from the nearest map point; with the statics of crane-sim they plan."""
+    text = CRANE_TARGET.read_text(encoding="utf-8")
+    text = text.replace("scene: crane.yaml", f"scene: {SOURCE_DIR / 'configs' / 'crane_condensed.yaml'}", 1)
+    text = text.replace("target: [-35, 10, 0, 0]", f"target: [{target[0]}, {target[1]}, 0, 0]", 1)
+    assert str(target[0]) in text and "crane_condensed" in text
+    path = tmp_path / "target.yaml"
+    path.write_text(text, encoding="utf-8")
+    out = tmp_path / "plan.h5"
+    result = crane_opt("plan", path, "-o", out, "--quiet", cwd=tmp_path, timeout=600)
+    assert result.returncode == 0, result.stderr
+    with h5py.File(out, "r") as f:
+        assert np.allclose(f["trajectory/state"][-1][:2], target, atol=0.02)
+        assert np.max(f["inversion/error"][...]) < 1e-4
+        v = f["verification"]
+        assert v.attrs["status"] == "complete"
+        # The quasi-static plan leaves the load swaying (±0.4…3.4 m, issue 20) about a mean
+        # that ends within a metre of the target.
+        assert v.attrs["final_error"] < 1.0
