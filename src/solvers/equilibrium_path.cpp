@@ -122,7 +122,6 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
     used = 0;  // no factorisation at hand
   }
 
-
   StaticOptions step_newton = options.newton;
   step_newton.max_iterations = options.step_iterations;
   double tau = 0.0, step = 1.0;
