@@ -21,6 +21,12 @@ namespace {
 /// the boom fall.
 double drawnRopeLength(const MemberSpec& m) { return (1.0 - 1e-3) * (m.end - m.start).norm(); }
 
+/// The value a constraint's drive stands at in the state q (its joints' measured angle,
+/// displacement or distance).
+double driveValueAt(const Model& model, const Constraint& c, const VecX& q) {
+  return drivenCoordinate(c.law(), model.jointFrame(q.data(), c.joint1), model.jointFrame(q.data(), c.joint2));
+}
+
 bool differs(double a, double b) { return std::abs(a - b) > 1e-12 * std::max({1.0, std::abs(a), std::abs(b)}); }
 
 /// The scene with every control following its path in τ (the model's time): c(τ) = c_drawn +
@@ -35,8 +41,7 @@ Scene pathScene(const Scene& scene, const Model& model, const VecX& q_drawn, dou
     if (!c.drive) continue;
     const auto it = std::find_if(model.constraints.begin(), model.constraints.end(),
                                  [&](const Constraint& k) { return k.name == c.name; });
-    const Frame j1 = model.jointFrame(q_drawn.data(), it->joint1), j2 = model.jointFrame(q_drawn.data(), it->joint2);
-    c.drive = line(drivenCoordinate(it->law(), j1, j2), (*c.drive)(t));
+    c.drive = line(driveValueAt(model, *it, q_drawn), (*c.drive)(t));
   }
   for (LoadSpec& l : path.loads) l.scale = Profile(ConstantProfile{l.scale(t)});
   return path;
@@ -71,8 +76,7 @@ std::vector<PathControl> pathControls(const Scene& scene, const Model& model, co
       controls.push_back({fmt::format("{} length", m.name), drawnRopeLength(m), (*m.length)(t), false});
   for (const Constraint& c : model.constraints) {
     if (!c.drive) continue;
-    const double drawn = drivenCoordinate(c.law(), model.jointFrame(q_drawn.data(), c.joint1),
-                                          model.jointFrame(q_drawn.data(), c.joint2));
+    const double drawn = driveValueAt(model, c, q_drawn);
     const double target = (*c.drive)(t);
     if (differs(drawn, target)) controls.push_back({fmt::format("{} drive", c.name), drawn, target, c.type == ConstraintType::Revolute});
   }
