@@ -10,7 +10,7 @@
 #include <random>
 
 #include "cranesim/elements/spline_beam.hpp"
-#include "cranesim/model/element.hpp"
+#include "cranesim/model/kernel_elements.hpp"
 
 using namespace cranesim;
 
@@ -171,18 +171,19 @@ TEST_CASE("Spline beam elastic and gravity forces are twist gradients of the pot
 }
 
 TEST_CASE("Spline beam Jacobian matches finite differences of the residual", "[spline_beam]") {
-  const KernelElement<Kernel> element(testKernel(0.02), {0, 1}, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13},
-                                      {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13});
+  const Kernel kernel = testKernel(0.02);
+  const std::unique_ptr<Element> element = makeElement(kernel, {0, 1}, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13},
+                                                       {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13});
   std::mt19937 rng(4);
   for (int trial = 0; trial < 3; ++trial) {
-    const Q14 q = randomConfiguration(element.kernel(), rng, 1.0);
+    const Q14 q = randomConfiguration(kernel, rng, 1.0);
     Q14 v, a;
     v << randomVector(rng, 1.0), randomVector(rng, 2.0), 0.1, randomVector(rng, 1.0), randomVector(rng, 2.0), -0.1;
     a << randomVector(rng, 3.0), randomVector(rng, 3.0), 0.5, randomVector(rng, 3.0), randomVector(rng, 3.0), -0.3;
     const double cj = 37.0;
     const Vec3 g(0.0, 0.0, -9.81);
     Eigen::Matrix<double, 14, 28> J;
-    element.jacobian({q.data(), v.data(), a.data(), 0.0, g}, cj, J.data());
+    element->jacobian({q.data(), v.data(), a.data(), 0.0, g}, cj, J.data());
     Eigen::Matrix<double, 14, 28> Jfd;
     for (int c = 0; c < 28; ++c) {
       const double h = c < 14 ? 1e-6 : 1e-5;
@@ -193,8 +194,8 @@ TEST_CASE("Spline beam Jacobian matches finite differences of the residual", "[s
         v1(c - 14) += h, v2(c - 14) -= h, a1(c - 14) += cj * h, a2(c - 14) -= cj * h;
       }
       Q14 r1, r2;
-      element.residual({q1.data(), v1.data(), a1.data(), 0.0, g}, r1.data());
-      element.residual({q2.data(), v2.data(), a2.data(), 0.0, g}, r2.data());
+      element->residual({q1.data(), v1.data(), a1.data(), 0.0, g}, r1.data());
+      element->residual({q2.data(), v2.data(), a2.data(), 0.0, g}, r2.data());
       Jfd.col(c) = (r1 - r2) / (2 * h);
     }
     for (int c = 0; c < 28; ++c) {
@@ -248,7 +249,7 @@ struct Cantilever {
   static constexpr double L = 15.0, radius = 0.15, E = 2.06e11, nu = 0.25, rho = 7850.0;
   int n;
   Kernel kernel;
-  std::vector<KernelElement<Kernel>> elements;
+  std::vector<std::unique_ptr<Element>> elements;
   int size;
 
   explicit Cantilever(int segments) : n(segments), size(7 * (segments + 1)) {
@@ -258,7 +259,7 @@ struct Cantilever {
     for (int e = 0; e < n; ++e) {
       std::vector<int> idx(14);
       for (int k = 0; k < 14; ++k) idx[k] = 7 * e + k;
-      elements.emplace_back(kernel, std::vector<int>{e, e + 1}, idx, idx);
+      elements.push_back(makeElement(kernel, {e, e + 1}, idx, idx));
     }
   }
   VecX reference() const {
@@ -276,9 +277,9 @@ struct Cantilever {
       Eigen::Matrix<double, 14, 28> J;
       Eigen::Matrix<double, 14, 14> Me;
       Eigen::Matrix<double, 14, 1> r;
-      elements[e].jacobian(in, 0.0, J.data());
-      elements[e].mass(in, Me.data());
-      elements[e].residual(in, r.data());
+      elements[e]->jacobian(in, 0.0, J.data());
+      elements[e]->mass(in, Me.data());
+      elements[e]->residual(in, r.data());
       Kf.block<14, 14>(7 * e, 7 * e) += J.leftCols<14>();
       Mf.block<14, 14>(7 * e, 7 * e) += Me;
       Ff.segment<14>(7 * e) += r;

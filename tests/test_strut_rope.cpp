@@ -11,7 +11,7 @@
 
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/elements/strut_tie.hpp"
-#include "cranesim/model/element.hpp"
+#include "cranesim/model/kernel_elements.hpp"
 #include "cranesim/solvers/statics.hpp"
 #include "elastic_catenary.hpp"
 #include "scene_fixtures.hpp"
@@ -50,11 +50,11 @@ template <class Kernel> double jacobianDeviation(const Kernel& kernel, const Vq<
   constexpr int n = Kernel::kNq;
   std::vector<int> idx(n);
   for (int k = 0; k < n; ++k) idx[k] = k;
-  const KernelElement<Kernel> element(kernel, {}, idx, idx);
+  const std::unique_ptr<Element> element = makeElement(kernel, {}, idx, idx);
   const Vec3 g(0, 0, -9.81);
   const double cj = 7.0, t = 0.3;
   Eigen::Matrix<double, n, 2 * n> J;
-  element.jacobian({q.data(), v.data(), a.data(), t, g}, cj, J.data());
+  element->jacobian({q.data(), v.data(), a.data(), t, g}, cj, J.data());
   double worst = 0.0, scale = J.cwiseAbs().maxCoeff();
   for (int c = 0; c < 2 * n; ++c) {
     const double h = 1e-7 * (1.0 + (c < n ? std::abs(q(c)) : std::abs(v(c - n))));
@@ -62,12 +62,12 @@ template <class Kernel> double jacobianDeviation(const Kernel& kernel, const Vq<
     if (c < n) qp(c) += h, qm(c) -= h;
     else vp(c - n) += h, vm(c - n) -= h;
     Vq<Kernel> rp, rm;
-    element.residual({qp.data(), vp.data(), a.data(), t, g}, rp.data());
-    element.residual({qm.data(), vm.data(), a.data(), t, g}, rm.data());
+    element->residual({qp.data(), vp.data(), a.data(), t, g}, rp.data());
+    element->residual({qm.data(), vm.data(), a.data(), t, g}, rm.data());
     Vq<Kernel> fd = (rp - rm) / (2 * h);
     if (c >= n) {  // ∂/∂v + cj ∂/∂a: a enters through M
       Eigen::Matrix<double, n, n> M;
-      element.mass({q.data(), v.data(), a.data(), t, g}, M.data());
+      element->mass({q.data(), v.data(), a.data(), t, g}, M.data());
       fd += cj * M.col(c - n);
     }
     worst = std::max(worst, (J.col(c) - fd).cwiseAbs().maxCoeff());

@@ -14,7 +14,7 @@
 
 #include "cranesim/elements/condensed_truss.hpp"
 #include "cranesim/elements/super_truss.hpp"
-#include "cranesim/model/element.hpp"
+#include "cranesim/model/kernel_elements.hpp"
 #include "random_states.hpp"
 
 using namespace cranesim;
@@ -244,18 +244,18 @@ TEMPLATE_TEST_CASE("Truss elements: AD Jacobian matches finite differences", "[s
   const Q12 q = deformedState(rng, k.length, 0.05);
   const Q12 v = rng.vec(1.0).replicate<4, 1>() + Q12::Random();
   const Q12 a = Q12::Random();
-  const KernelElement<TestType> el(k, {0, 1}, range(12), range(12));
+  const std::unique_ptr<Element> el = makeElement(k, {0, 1}, range(12), range(12));
   const Vec3 gravity(0.0, 0.0, -9.81);
   const double cj = 3.0;
   auto residual = [&](const Q12& qq, const Q12& vv) {
     Q12 r;
     const ElementInput in{qq.data(), vv.data(), a.data(), 0.0, gravity};
-    el.residual(in, r.data());
+    el->residual(in, r.data());
     return r;
   };
   const ElementInput in{q.data(), v.data(), a.data(), 0.0, gravity};
   Eigen::Matrix<double, 12, 24> J;
-  el.jacobian(in, cj, J.data());
+  el->jacobian(in, cj, J.data());
   Eigen::Matrix<double, 12, 24> fd;
   for (int j = 0; j < 12; ++j) {
     const double h = 1e-6;
@@ -264,7 +264,7 @@ TEMPLATE_TEST_CASE("Truss elements: AD Jacobian matches finite differences", "[s
     fd.col(12 + j) = (residual(q, v + h * e) - residual(q, v - h * e)) / (2.0 * h);
   }
   M12 M;
-  el.mass(in, M.data());
+  el->mass(in, M.data());
   fd.rightCols<12>() += cj * M;
   for (int j = 0; j < 24; ++j) {
     INFO("column " << j);
@@ -306,16 +306,16 @@ TEMPLATE_TEST_CASE("Truss elements: cost of force and Jacobian per call", "[supe
   const TestType k = type2Kernel<TestType>();
   Rng rng(23);
   const Q12 q = deformedState(rng, k.length, 0.05), v = Q12::Random(), a = Q12::Random();
-  const KernelElement<TestType> el(k, {0, 1}, range(12), range(12));
+  const std::unique_ptr<Element> el = makeElement(k, {0, 1}, range(12), range(12));
   const ElementInput in{q.data(), v.data(), a.data(), 0.0, Vec3(0.0, 0.0, -9.81)};
   Q12 r;
   Eigen::Matrix<double, 12, 24> J;
   using Clock = std::chrono::steady_clock;
   const int n = 1000;
   auto t0 = Clock::now();
-  for (int i = 0; i < n; ++i) el.residual(in, r.data());
+  for (int i = 0; i < n; ++i) el->residual(in, r.data());
   auto t1 = Clock::now();
-  for (int i = 0; i < n / 10; ++i) el.jacobian(in, 1.0, J.data());
+  for (int i = 0; i < n / 10; ++i) el->jacobian(in, 1.0, J.data());
   auto t2 = Clock::now();
   std::printf("%s, type 2: residual %.1f us, jacobian %.1f us per call\n",
               std::is_same_v<TestType, SuperTrussKernel> ? "super truss" : "condensed truss",

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "cranesim/model/kernel_elements.hpp"
 #include "cranesim/model/model.hpp"
 
 namespace cranesim {
@@ -31,7 +32,7 @@ void addElement(Model& model, Kernel kernel, const std::vector<int>& nodes) {
     const Node& node = model.nodes[n];
     for (int k = 0; k < node.size(); ++k) q.push_back(node.q + k), v.push_back(node.v + k);
   }
-  model.elements.push_back(std::make_unique<KernelElement<Kernel>>(std::move(kernel), nodes, q, v));
+  model.elements.push_back(makeElement(std::move(kernel), nodes, std::move(q), std::move(v)));
 }
 
 inline std::vector<std::string> constraintRowLabels(const Constraint& c) {
