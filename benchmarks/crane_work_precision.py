@@ -1,0 +1,191 @@
+"""Work-precision of the thesis crane's combined motion (8.3.2) for each integrator setting.
+
+For the super truss and the condensed crane (configs/crane_combined.yaml, and the same scene
+with the eight lattice sections `fidelity: condensed`), runs crane-sim at every integrator
+setting of the grid (IDAS' BDF maximum order × rtol, atol = rtol · --atol-ratio), `--reps`
+times (fewer when the runs so far took over --rep-budget seconds), and records the median integration wall time (results' solver/wall_time_s: the
+equilibrium excluded) against the maximum hook-position error over the whole motion, measured
+against the same model at --ref-rtol (order --ref-order). Also records how much sway the
+integrator damps away: the load's sway amplitude after the drives stop (half the peak-to-peak
+horizontal excursion about its mean over [--settle, t_end]) relative to the reference's.
+
+Writes a CSV (default benchmarks/results/crane_work_precision.csv, flushed after every row)
+and a plot of wall time against error (same name, .png).
+
+    python3 benchmarks/crane_work_precision.py                                # ≈ 1.5 h on 2 cores
+    python3 benchmarks/crane_work_precision.py --fidelities condensed --orders 2 --rtols 1e-4 --reps 1
+    python3 benchmarks/crane_work_precision.py --merge a.csv b.csv --out all.csv   # one table and plot
+"""
+
+import argparse
+import csv
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import h5py
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+SECTIONS = ["boom1", "boom2", "boom3", "boom4", "boom5", "derrick1", "derrick2", "derrick3"]
+FIDELITIES = {"super_truss": [], "condensed": [f"  members.{s}.fidelity: condensed" for s in SECTIONS]}
+DRIVES_STOP = 40.0  # s: the last drive of crane_combined.yaml stops here
+
+
+def parse_arguments() -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--bin", default=str(ROOT / "build" / "crane-sim"), help="crane-sim binary")
+    parser.add_argument("--fidelities", default=",".join(FIDELITIES), help="comma-separated subset of " + ",".join(FIDELITIES))
+    parser.add_argument("--orders", default="5,2", help="IDAS maximum BDF orders")
+    parser.add_argument("--rtols", default="1e-3,1e-4,1e-5", help="relative tolerances")
+    parser.add_argument("--atol-ratio", type=float, default=0.1, help="atol = rtol × this (coordinates and velocities)")
+    parser.add_argument("--ref-rtol", type=float, default=1e-8, help="tolerance of the reference run")
+    parser.add_argument("--ref-order", type=int, default=5, help="maximum order of the reference run")
+    parser.add_argument("--reps", type=int, default=3, help="runs per setting; the median wall time is reported")
+    parser.add_argument("--rep-budget", type=float, default=120.0,
+                        help="repeat a setting only while its runs so far took less than this many seconds (0: always --reps)")
+    parser.add_argument("--t-end", type=float, default=60.0, help="end of every run, s")
+    parser.add_argument("--settle", type=float, default=45.0, help="start of the sway-amplitude window, s")
+    parser.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "crane_work_precision.csv"))
+    parser.add_argument("--merge", nargs="+", metavar="CSV",
+                        help="run nothing: merge these CSVs of earlier runs into --out and plot them")
+    return parser.parse_args()
+
+
+def scene_text(fidelity: str, order: int, rtol: float, atol: float, t_end: float) -> str:
+    lines = [f"base: {ROOT / 'configs' / 'crane_combined.yaml'}", "modify:", *FIDELITIES[fidelity],
+             f"  solver.max_order: {order}", f"  solver.rtol: {rtol:g}", f"  solver.atol: {atol:g}", f"  solver.t_end: {t_end:g}"]
+    return "\n".join(lines) + "\n"
+
+
+def run(binary: str, scene: str, workdir: Path, name: str) -> tuple[np.ndarray, np.ndarray, dict, float]:
+    """Runs a scene; returns times, load positions, solver statistics and the process wall time."""
+    path = workdir / f"{name}.yaml"
+    path.write_text(scene, encoding="utf-8")
+    out = workdir / f"{name}.h5"
+    start = time.perf_counter()
+    done = subprocess.run([binary, "run", str(path), "-o", str(out), "--quiet"], capture_output=True, text=True)
+    process = time.perf_counter() - start
+    if done.returncode != 0:
+        raise RuntimeError(f"{name}: crane-sim exited with {done.returncode}: {done.stderr.strip()}")
+    with h5py.File(out, "r") as f:
+        stats = {k: f["solver"].attrs[k] for k in f["solver"].attrs}
+        t, p = f["time"][()], f["bodies/load/position"][()]
+    out.unlink()
+    return t, p, stats, process
+
+
+def sway_amplitude(t: np.ndarray, p: np.ndarray, start: float) -> float:
+    """Half the peak-to-peak horizontal excursion of the load about its mean after `start`."""
+    horizontal = p[t >= start, :2]
+    centred = horizontal - horizontal.mean(axis=0)
+    _, _, axes = np.linalg.svd(centred, full_matrices=False)
+    component = centred @ axes[0]
+    return 0.5 * float(component.max() - component.min())
+
+
+def plot(rows: list[dict], path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    colours = {"super_truss": "tab:blue", "condensed": "tab:orange"}
+    markers = {1: "v", 2: "o", 3: "s", 4: "D", 5: "^"}
+    for fidelity in dict.fromkeys(r["fidelity"] for r in rows):
+        for order in sorted({r["max_order"] for r in rows if r["fidelity"] == fidelity}):
+            sel = sorted((r for r in rows if r["fidelity"] == fidelity and r["max_order"] == order), key=lambda r: r["rtol"])
+            ax.loglog([max(r["hook_error_max_m"], 1e-7) for r in sel], [r["wall_median_s"] for r in sel], "-",
+                      marker=markers.get(order, "x"), color=colours.get(fidelity), label=f"{fidelity.replace('_', ' ')}, BDF order ≤ {order}")
+            for r in sel:
+                ax.annotate(f"{r['rtol']:g}", (max(r["hook_error_max_m"], 1e-7), r["wall_median_s"]), fontsize=7,
+                            textcoords="offset points", xytext=(4, 3))
+    t_end = rows[0]["t_end_s"]
+    for factor, style in ((1, ":"), (10, "--"), (100, "-.")):
+        ax.axhline(t_end / factor, color="grey", linestyle=style, linewidth=0.8)
+        ax.text(ax.get_xlim()[0], t_end / factor, f" {factor}× real time", fontsize=7, va="bottom", color="grey")
+    ax.axvline(0.01, color="red", linestyle=":", linewidth=0.8)
+    ax.text(0.01, ax.get_ylim()[1], " 1 cm", fontsize=7, va="top", color="red")
+    ax.set_xlabel("max hook-position error over the motion [m] (vs same model at tight rtol)")
+    ax.set_ylabel("integration wall time [s], median")
+    ax.set_title(f"Thesis crane, combined motion 8.3.2 ({t_end:g} s simulated): work against precision", fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+
+
+COLUMNS = ["fidelity", "max_order", "rtol", "atol", "t_end_s", "wall_median_s", "process_median_s", "realtime_factor",
+           "steps", "residuals", "jacobians", "hook_error_max_m", "hook_error_end_m", "sway_amplitude_ratio", "reps"]
+
+
+def merge(paths: list[str], out: Path) -> None:
+    rows = []
+    for path in paths:
+        with open(path, newline="", encoding="utf-8") as handle:
+            for row in csv.DictReader(handle):
+                rows.append({k: (row[k] if k == "fidelity" else int(row[k]) if k in ("max_order", "steps", "residuals", "jacobians", "reps")
+                                 else float(row[k])) for k in COLUMNS})
+    with out.open("w", newline="", encoding="utf-8") as handle:
+        writer = csv.DictWriter(handle, fieldnames=COLUMNS)
+        writer.writeheader()
+        writer.writerows({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in row.items()} for row in rows)
+    plot(rows, out.with_suffix(".png"))
+
+
+def main() -> None:
+    args = parse_arguments()
+    if args.merge:
+        merge(args.merge, Path(args.out))
+        return
+    fidelities = [f for f in args.fidelities.split(",") if f]
+    for f in fidelities:
+        if f not in FIDELITIES:
+            sys.exit(f"unknown fidelity '{f}' (known: {', '.join(FIDELITIES)})")
+    orders = [int(o) for o in args.orders.split(",")]
+    rtols = [float(r) for r in args.rtols.split(",")]
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    rows = []
+    with out.open("w", newline="", encoding="utf-8") as handle, tempfile.TemporaryDirectory() as tmp:
+        writer = csv.DictWriter(handle, fieldnames=COLUMNS)
+        writer.writeheader()
+        for fidelity in fidelities:
+            ref_atol = args.ref_rtol * args.atol_ratio
+            start = time.perf_counter()
+            t_ref, p_ref, _, _ = run(args.bin, scene_text(fidelity, args.ref_order, args.ref_rtol, ref_atol, args.t_end), Path(tmp), "reference")
+            print(f"{fidelity}: reference (order {args.ref_order}, rtol {args.ref_rtol:g}) in {time.perf_counter() - start:.0f} s",
+                  file=sys.stderr)
+            amplitude_ref = sway_amplitude(t_ref, p_ref, args.settle)
+            for order in orders:
+                for rtol in rtols:
+                    walls, processes = [], []
+                    while len(walls) < args.reps and (not walls or args.rep_budget <= 0 or sum(processes) < args.rep_budget):
+                        t, p, stats, process = run(args.bin, scene_text(fidelity, order, rtol, rtol * args.atol_ratio, args.t_end), Path(tmp), "case")
+                        walls.append(float(stats["wall_time_s"]))
+                        processes.append(process)
+                    if t.shape != t_ref.shape or np.max(np.abs(t - t_ref)) > 1e-9:
+                        raise RuntimeError(f"{fidelity}: output times differ from the reference's")
+                    error = np.linalg.norm(p - p_ref, axis=1)
+                    wall = statistics.median(walls)
+                    row = {"fidelity": fidelity, "max_order": order, "rtol": rtol, "atol": rtol * args.atol_ratio, "t_end_s": float(t[-1]),
+                           "wall_median_s": wall, "process_median_s": statistics.median(processes), "realtime_factor": t[-1] / wall,
+                           "steps": int(stats["steps"]), "residuals": int(stats["residual_evaluations"]),
+                           "jacobians": int(stats["jacobian_evaluations"]), "hook_error_max_m": float(error.max()),
+                           "hook_error_end_m": float(error[-1]),
+                           "sway_amplitude_ratio": sway_amplitude(t, p, args.settle) / amplitude_ref, "reps": len(walls)}
+                    rows.append(row)
+                    writer.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in row.items()})
+                    handle.flush()
+                    print(f"{fidelity} order {order} rtol {rtol:g}: wall {wall:.2f} s ({t[-1] / wall:.2f}× real time), "
+                          f"{row['steps']} steps, {row['jacobians']} Jacobians, hook error {row['hook_error_max_m']:.2e} m, "
+                          f"sway amplitude {row['sway_amplitude_ratio']:.4f} of the reference's", file=sys.stderr)
+    plot(rows, out.with_suffix(".png"))
+
+
+if __name__ == "__main__":
+    main()
