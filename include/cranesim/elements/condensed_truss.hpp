@@ -215,7 +215,7 @@ struct CondensedTrussKernel {
     std::sort(breaks.begin(), breaks.end());
     breaks.erase(std::unique(breaks.begin(), breaks.end(), [](double x, double y) { return std::abs(x - y) < 1e-12; }),
                  breaks.end());
-    const GaussRule rule = gaussLegendre(points_per_bay);
+    const GaussRule& rule = gaussLegendre(points_per_bay);
     std::vector<MassStation> bay_points;
     for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
       for (int p = 0; p < rule.points; ++p) {

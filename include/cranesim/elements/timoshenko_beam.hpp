@@ -178,7 +178,7 @@ struct TimoshenkoBeamKernel {
     Eigen::Matrix<double, 6, 1> D;
     D << E * A, G * section.J, E * section.Iy, E * section.Iz, section.shear_factor * G * A,
         section.shear_factor * G * A;
-    const GaussRule rule = gaussLegendre(stiffness_points);
+    const GaussRule& rule = gaussLegendre(stiffness_points);
     Mat12 K = Mat12::Zero();
     for (int g = 0; g < rule.points; ++g) {
       const Mat6x12 B = strainMatrix(rule.xi[g]);
@@ -346,7 +346,7 @@ struct TimoshenkoBeamKernel {
   template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const EndFrames<S>& e) const {
     const double rhoA = material.density * section.area;
     const Vec3T<S> J = rotaryInertia().template cast<S>();
-    const GaussRule rule = gaussLegendre(mass_points);
+    const GaussRule& rule = gaussLegendre(mass_points);
     Eigen::Matrix<S, 12, 12> M = Eigen::Matrix<S, 12, 12>::Zero();
     for (int g = 0; g < rule.points; ++g) {
       const SectionMap<S> m = sectionMap<S>(e, rule.xi[g]);
@@ -383,7 +383,7 @@ struct TimoshenkoBeamKernel {
     const double rhoA = material.density * section.area;
     const Vec3T<S> J = rotaryInertia().template cast<S>();
     const Vec3T<S> g = gravity.cast<S>();
-    const GaussRule rule = gaussLegendre(mass_points);
+    const GaussRule& rule = gaussLegendre(mass_points);
     V<S> F = V<S>::Zero();
     for (int gp = 0; gp < rule.points; ++gp) {
       const SectionMotion<S> m = sectionMotion<S>(e, rule.xi[gp], vp);
@@ -449,7 +449,7 @@ struct TimoshenkoBeamKernel {
   /// −∫ H_xᵀ ρA g ds: inertialAndGravityForce at rest (dq = 0, d(dq)/dt = 0).
   template <class S> V<S> gravityForce(const EndFrames<S>& e, const Vec3& gravity) const {
     const double rhoA = material.density * section.area;
-    const GaussRule rule = gaussLegendre(mass_points);
+    const GaussRule& rule = gaussLegendre(mass_points);
     V<S> F = V<S>::Zero();
     for (int gp = 0; gp < rule.points; ++gp) {
       const SectionMap<S> m = sectionMap<S>(e, rule.xi[gp]);
@@ -473,7 +473,7 @@ struct TimoshenkoBeamKernel {
   }
 
   double gravityPotential(const EndFrames<double>& e, const Vec3& gravity) const {
-    const GaussRule rule = gaussLegendre(mass_points);
+    const GaussRule& rule = gaussLegendre(mass_points);
     double V = 0.0;
     for (int g = 0; g < rule.points; ++g)
       V -= rule.weight[g] * length * material.density * section.area * gravity.dot(sectionMap<double>(e, rule.xi[g]).x);

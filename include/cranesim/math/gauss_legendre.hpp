@@ -16,10 +16,11 @@ struct GaussRule {
   std::array<double, kMaxGaussPoints> xi{}, weight{};
 };
 
-/// The n-point rule on [0, 1], 1 ≤ n ≤ kMaxGaussPoints: Newton iteration on the Legendre
-/// polynomial P_n from the Chebyshev-like initial guesses.
-inline GaussRule gaussLegendre(int n) {
-  if (n < 1 || n > kMaxGaussPoints) throw std::invalid_argument("Gauss rule order must be 1…10");
+namespace detail {
+
+/// The n-point rule on [0, 1]: Newton iteration on the Legendre polynomial P_n from the
+/// Chebyshev-like initial guesses.
+inline GaussRule computeGaussLegendre(int n) {
   GaussRule rule;
   rule.points = n;
   for (int i = 0; i < n; ++i) {
@@ -43,6 +44,20 @@ inline GaussRule gaussLegendre(int n) {
     rule.weight[i] = 1.0 / ((1.0 - x * x) * dp * dp);  // 2/((1−x²)P'²) on [−1, 1], halved
   }
   return rule;
+}
+
+}  // namespace detail
+
+/// The n-point rule on [0, 1], 1 ≤ n ≤ kMaxGaussPoints, computed once per program: element
+/// kernels ask for their rule at every evaluation.
+inline const GaussRule& gaussLegendre(int n) {
+  static const std::array<GaussRule, kMaxGaussPoints> rules = [] {
+    std::array<GaussRule, kMaxGaussPoints> all;
+    for (int k = 1; k <= kMaxGaussPoints; ++k) all[k - 1] = detail::computeGaussLegendre(k);
+    return all;
+  }();
+  if (n < 1 || n > kMaxGaussPoints) throw std::invalid_argument("Gauss rule order must be 1…10");
+  return rules[n - 1];
 }
 
 }  // namespace cranesim
