@@ -3,8 +3,8 @@
 For the super truss and the condensed crane (configs/crane_combined.yaml, and the same scene
 with the eight lattice sections `fidelity: condensed`), runs crane-sim at every integrator
 setting of the grid (IDAS' BDF maximum order × rtol, atol = rtol · --atol-ratio), `--reps`
-times (fewer when the runs so far took over --rep-budget seconds), and records the median integration wall time (results' solver/wall_time_s: the
-equilibrium excluded) against the maximum hook-position error over the whole motion, measured
+times (fewer when the runs so far took over --rep-budget seconds), and records the median
+integration wall time (results' solver/wall_time_s: the equilibrium excluded) against the maximum hook-position error over the whole motion, measured
 against the same model at --ref-rtol (order --ref-order). Also records how much sway the
 integrator damps away: the load's sway amplitude after the drives stop (half the peak-to-peak
 horizontal excursion about its mean over [--settle, t_end]) relative to the reference's.
@@ -48,7 +48,7 @@ def parse_arguments() -> argparse.Namespace:
     parser.add_argument("--rep-budget", type=float, default=120.0,
                         help="repeat a setting only while its runs so far took less than this many seconds (0: always --reps)")
     parser.add_argument("--t-end", type=float, default=60.0, help="end of every run, s")
-    parser.add_argument("--settle", type=float, default=45.0, help="start of the sway-amplitude window, s")
+    parser.add_argument("--settle", type=float, default=DRIVES_STOP + 5.0, help="start of the sway-amplitude window, s")
     parser.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "crane_work_precision.csv"))
     parser.add_argument("--merge", nargs="+", metavar="CSV",
                         help="run nothing: merge these CSVs of earlier runs into --out and plot them")
@@ -123,6 +123,11 @@ COLUMNS = ["fidelity", "max_order", "rtol", "atol", "t_end_s", "wall_median_s", 
            "steps", "residuals", "jacobians", "hook_error_max_m", "hook_error_end_m", "sway_amplitude_ratio", "reps"]
 
 
+def formatted(row: dict) -> dict:
+    """A row as the CSV writes it: floats to 4 significant digits."""
+    return {k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in row.items()}
+
+
 def merge(paths: list[str], out: Path) -> None:
     rows = []
     for path in paths:
@@ -133,7 +138,7 @@ def merge(paths: list[str], out: Path) -> None:
     with out.open("w", newline="", encoding="utf-8") as handle:
         writer = csv.DictWriter(handle, fieldnames=COLUMNS)
         writer.writeheader()
-        writer.writerows({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in row.items()} for row in rows)
+        writer.writerows(formatted(row) for row in rows)
     plot(rows, out.with_suffix(".png"))
 
 
@@ -179,7 +184,7 @@ def main() -> None:
                            "hook_error_end_m": float(error[-1]),
                            "sway_amplitude_ratio": sway_amplitude(t, p, args.settle) / amplitude_ref, "reps": len(walls)}
                     rows.append(row)
-                    writer.writerow({k: (f"{v:.4g}" if isinstance(v, float) else v) for k, v in row.items()})
+                    writer.writerow(formatted(row))
                     handle.flush()
                     print(f"{fidelity} order {order} rtol {rtol:g}: wall {wall:.2f} s ({t[-1] / wall:.2f}× real time), "
                           f"{row['steps']} steps, {row['jacobians']} Jacobians, hook error {row['hook_error_max_m']:.2e} m, "
