@@ -2,13 +2,21 @@
 // Assembler::jacobian, for pendulum chains of 8 and 64 links (chain_scene.hpp) in both
 // formulations, at the consistent initial state; and for the thesis crane in both 12-DOF
 // lattice fidelities (configs/crane.yaml, crane_condensed.yaml) at its drawn state: the DAE
-// residual and Jacobian, and the statics' Jacobian (EquilibriumSystem: ∂/∂q and ∂/∂λ only).
+// residual and Jacobian, and the statics' Jacobian (EquilibriumSystem: ∂/∂q and ∂/∂λ only);
+// and the crane's elements by kind (BM_CraneElements/<kind>: one residual and one DAE Jacobian
+// of every element of that kind, single-threaded), the breakdown of the crane's kernel time.
 
 #include <benchmark/benchmark.h>
 
+#include <cxxabi.h>
+
+#include <map>
 #include <memory>
+#include <typeinfo>
 #include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "chain_scene.hpp"
 #include "cranesim/assembly/assembler.hpp"
@@ -136,6 +144,58 @@ void BM_CraneStaticJacobian(benchmark::State& state) {
   state.SetLabel(fidelity(state));
 }
 
+/// The element's kernel type, e.g. "CondensedTrussKernel" (or the element class's name).
+std::string elementKind(const cranesim::Element& e) {
+  int status = 0;
+  char* raw = abi::__cxa_demangle(typeid(e).name(), nullptr, nullptr, &status);
+  std::string name = status == 0 ? raw : typeid(e).name();
+  std::free(raw);
+  const auto open = name.find('<'), close = name.rfind('>');
+  if (open != std::string::npos && close != std::string::npos) name = name.substr(open + 1, close - open - 1);
+  const auto scope = name.rfind("::");
+  return scope == std::string::npos ? name : name.substr(scope + 2);
+}
+
+/// One residual or DAE Jacobian of every crane element of one kind, serially, at the fixture's state.
+void craneElements(benchmark::State& state, bool condensed, const std::string& kind, bool jacobian) {
+  CraneFixture& f = crane(condensed);
+  const auto& a = *f.assembler;
+  const cranesim::ElementInput in{f.y.data(), f.y.data() + a.vOffset(), f.yp.data() + a.vOffset(), 0.0,
+                                  f.model.gravity};
+  std::vector<const cranesim::Element*> group;
+  for (const auto& e : f.model.elements)
+    if (elementKind(*e) == kind) group.push_back(e.get());
+  std::vector<double> out(24 * 48);
+  for (auto _ : state) {
+    for (const cranesim::Element* e : group) {
+      out.resize(static_cast<std::size_t>(e->size()) * (e->coordinateIndices().size() + e->size()));
+      if (jacobian)
+        e->jacobian(in, 1e3, out.data());
+      else
+        e->residual(in, out.data());
+      benchmark::DoNotOptimize(out.data());
+    }
+    benchmark::ClobberMemory();
+  }
+  state.counters["elements"] = static_cast<double>(group.size());
+}
+
+/// BM_CraneElements/<fidelity>/<kind>/<residual|jacobian> for every kind of element in each crane.
+void registerCraneElementBenchmarks() {
+  for (const bool condensed : {false, true}) {
+    std::map<std::string, int> kinds;
+    for (const auto& e : crane(condensed).model.elements) ++kinds[elementKind(*e)];
+    for (const auto& [kind, count] : kinds)
+      for (const bool jacobian : {false, true})
+        benchmark::RegisterBenchmark(
+            fmt::format("BM_CraneElements/{}/{}/{}", condensed ? "condensed" : "super_truss", kind,
+                        jacobian ? "jacobian" : "residual")
+                .c_str(),
+            craneElements, condensed, kind, jacobian)
+            ->Unit(benchmark::kMillisecond);
+  }
+}
+
 BENCHMARK(BM_CraneResidual)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CraneJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CraneStaticJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
@@ -146,4 +206,11 @@ BENCHMARK(BM_Jacobian)->ArgsProduct({{8, 64}, {1, 0}})->ArgNames({"N", "ggl"})->
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  registerCraneElementBenchmarks();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

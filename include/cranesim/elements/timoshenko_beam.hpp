@@ -27,7 +27,7 @@
 //   section.hpp: I_y = ∫z² dA (bending about y, with ψ_y), I_z = ∫y² dA; the thesis pairs ψ with
 //   EI_z and writes the rotary inertia diag(I_y + I_z, I_z, I_y) (C-56), i.e. names them the
 //   other way round.
-// - Elastic forces F_int = J_dᵀ K d with J_d = ∂d/∂(twist) by forward AD inside the kernel; the
+// - Elastic forces F_int = J_dᵀ K d with J_d = ∂d/∂(twist) in closed form (coRotation); the
 //   Kelvin–Voigt damping (σ = E(ε + η ε̇), τ = G(γ + η γ̇)) adds η J_dᵀ K ḋ with ḋ = J_d dq.
 //
 // Inertia and gravity: the section motion is interpolated between the end frames independently
@@ -47,12 +47,14 @@
 // linear rotations. Quadrature: `mass_points` = 4 (exact for the cubic centre line at rest),
 // `stiffness_points` = 2 (exact strain energy; no reduced integration is needed).
 //
-// Every templated function uses one AD level on top of S, so KernelElement's Jacobian (S itself
-// a dual number) stays at two levels of nesting, the most Eigen's AutoDiffScalar supports with
-// the double literals of rotation.hpp.
+// The elastic forces need no AD (J_d in closed form); the inertial forces use one forward-AD
+// direction on top of S, so KernelElement's Jacobian (S itself a dual number) stays at two
+// levels of nesting, the most Eigen's AutoDiffScalar supports with the double literals of
+// rotation.hpp.
 
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include "cranesim/elements/section.hpp"
 #include "cranesim/math/autodiff.hpp"
@@ -67,16 +69,6 @@ namespace beam_detail {
 /// A scalar of type Dual<S, N> with the given value and derivative vector.
 template <class S, int N> Dual<S, N> withDerivatives(const S& value, const Eigen::Matrix<S, N, 1>& d) {
   return Dual<S, N>(value, d);
-}
-
-/// R (I + δθ̃) for a matrix R and a perturbation δθ, in a wider scalar type D.
-template <class D, class S> Mat3T<D> perturbed(const Mat3T<S>& R, const Vec3T<D>& dtheta) {
-  return R.template cast<D>() * (Mat3T<D>::Identity() + skew<D>(dtheta));
-}
-
-/// Vee of the skew-symmetric part of a 3×3 matrix.
-template <class S> Vec3T<S> skewVee(const Mat3T<S>& A) {
-  return Vec3T<S>(0.5 * (A(2, 1) - A(1, 2)), 0.5 * (A(0, 2) - A(2, 0)), 0.5 * (A(1, 0) - A(0, 1)));
 }
 
 }  // namespace beam_detail
@@ -194,26 +186,20 @@ struct TimoshenkoBeamKernel {
     Mat3T<S> R;               // R_B, body → inertial; x axis along the chord
     Eigen::Matrix<S, 12, 1> d;  // [u¹, ψ¹, u², ψ²] in R_B axes
   };
+  /// The same with J_d = ∂d/∂(twist): d's derivatives along r + δr, R (I + δθ̃) of both ends.
+  template <class S> struct CoRotatedTangent : CoRotated<S> {
+    Eigen::Matrix<S, 12, 12> Jd;
+  };
 
   template <class S>
   CoRotated<S> coRotate(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2, const Mat3T<S>& R2) const {
-    using std::sqrt;
-    const Vec3T<S> phi = rotationLog<S>(Mat3T<S>(R1.transpose() * R2));
-    const Mat3T<S> Rm = R1 * rotationMatrix<S>(Vec3T<S>(S(0.5) * phi));
-    const Vec3T<S> chord = r2 - r1;
-    const Vec3T<S> b = chord / sqrt(chord.squaredNorm());
-    const Vec3T<S> a = Rm.col(0);
-    const Mat3T<S> K = skew<S>(Vec3T<S>(a.cross(b)));
-    // Smallest rotation taking a onto b: I + k̃ + k̃²/(1 + a·b), k = a × b.
-    const Mat3T<S> align = Mat3T<S>::Identity() + K + (K * K) / S(1.0 + a.dot(b));
-    CoRotated<S> c;
-    c.R = align * Rm;
-    c.d.setZero();
-    c.d.template segment<3>(3) = rotationLog<S>(Mat3T<S>(c.R.transpose() * R1));
-    c.d.template segment<3>(6) = c.R.transpose() * chord;
-    c.d(6) -= length;
-    c.d.template segment<3>(9) = rotationLog<S>(Mat3T<S>(c.R.transpose() * R2));
-    return c;
+    return coRotation<S, false>(r1, R1, r2, R2);
+  }
+
+  template <class S>
+  CoRotatedTangent<S> coRotateWithTangent(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2,
+                                          const Mat3T<S>& R2) const {
+    return coRotation<S, true>(r1, R1, r2, R2);
   }
 
   /// Local deformations d(q).
@@ -228,7 +214,7 @@ struct TimoshenkoBeamKernel {
     return 0.5 * d.dot(localStiffness() * d);
   }
 
-  /// Elastic and damping forces along dq: J_dᵀ K (d + η J_d dq), J_d = ∂d/∂(twist) by AD.
+  /// Elastic and damping forces along dq: J_dᵀ K (d + η J_d dq).
   template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
     return elasticForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
                            q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
@@ -238,26 +224,77 @@ struct TimoshenkoBeamKernel {
   /// The same from the end frames and a precomputed K = localStiffness() (for callers that
   /// know the frames as matrices, e.g. the super truss element).
   template <class S>
-  V<S> elasticForce(const Vec3T<S>& r1s, const Mat3T<S>& R1, const Vec3T<S>& r2s, const Mat3T<S>& R2, const V<S>& v,
+  V<S> elasticForce(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2, const Mat3T<S>& R2, const V<S>& v,
                     const Mat12& K) const {
-    using D = Dual<S, 12>;
-    Eigen::Matrix<D, 12, 1> delta;
-    for (int k = 0; k < 12; ++k) delta(k) = seeded<S, 12>(S(0.0), k);
-    const Vec3T<D> r1 = r1s.template cast<D>() + delta.template segment<3>(0);
-    const Vec3T<D> r2 = r2s.template cast<D>() + delta.template segment<3>(6);
-    const CoRotated<D> c = coRotate<D>(r1, beam_detail::perturbed<D, S>(R1, Vec3T<D>(delta.template segment<3>(3))), r2,
-                                       beam_detail::perturbed<D, S>(R2, Vec3T<D>(delta.template segment<3>(9))));
-    Eigen::Matrix<S, 12, 1> d;
-    Eigen::Matrix<S, 12, 12> Jd;
-    for (int i = 0; i < 12; ++i) {
-      d(i) = c.d(i).value();
-      Jd.row(i) = c.d(i).derivatives().transpose();
-    }
-    Eigen::Matrix<S, 12, 1> strain = d;
-    if (damping > 0.0) strain += S(damping) * (Jd * v);
-    return Jd.transpose() * (K.template cast<S>() * strain);
+    const CoRotatedTangent<S> c = coRotateWithTangent<S>(r1, R1, r2, R2);
+    Eigen::Matrix<S, 12, 1> strain = c.d;
+    if (damping > 0.0) strain.noalias() += S(damping) * (c.Jd * v);
+    return c.Jd.transpose() * (K.template cast<S>() * strain);
   }
 
+ private:
+  /// R_B and d (3-34), and with kTangent J_d in closed form. With δω_B the variation of R_B in its
+  /// own axes (δR_B = R_B δω̃_B), c = r² − r¹, ℓ = ‖c‖, b = c/ℓ, a = R_m e_x, k = a × b:
+  /// - the chord direction turns the x axis: δω_B,y = −(R_B e_z)·δc/ℓ, δω_B,z = (R_B e_y)·δc/ℓ;
+  /// - the twist about it, from R_B = A(a, b) R_m with A the smallest rotation taking a onto b,
+  ///   whose spatial variation δα satisfies b·δα = −k·(δa + δb)/(1 + a·b):
+  ///     δω_B,x = ((a + b)·R_m δω_m − k·δc/ℓ) / (1 + a·b),
+  ///   δω_m = (Eᵀ − G R_relᵀ) δθ¹ + G δθ², G = ½ T(φ/2) T(φ)⁻¹, E = exp(φ̃/2), R_rel = R¹ᵀR² (B-8);
+  /// - ψᵉ = log(R_Bᵀ Rᵉ): δψᵉ = T(ψᵉ)⁻¹ (δθᵉ − (R_BᵀRᵉ)ᵀ δω_B);
+  /// - u² = R_Bᵀ c − L e_x: δu² = (b·δc, 0, 0), since R_B e_x = b exactly.
+  template <class S, bool kTangent>
+  std::conditional_t<kTangent, CoRotatedTangent<S>, CoRotated<S>> coRotation(const Vec3T<S>& r1, const Mat3T<S>& R1,
+                                                                              const Vec3T<S>& r2, const Mat3T<S>& R2) const {
+    using std::sqrt;
+    const Mat3T<S> Rrel = R1.transpose() * R2;
+    const Vec3T<S> phi = rotationLog<S>(Rrel);
+    const Mat3T<S> E = rotationMatrix<S>(Vec3T<S>(S(0.5) * phi));
+    const Mat3T<S> Rm = R1 * E;
+    const Vec3T<S> chord = r2 - r1;
+    const S ell = sqrt(chord.squaredNorm());
+    const Vec3T<S> b = chord / ell;
+    const Vec3T<S> a = Rm.col(0);
+    const Vec3T<S> k = a.cross(b);
+    const S one_plus_ab = S(1.0) + a.dot(b);
+    const Mat3T<S> K = skew<S>(k);
+    // Smallest rotation taking a onto b: I + k̃ + k̃²/(1 + a·b).
+    const Mat3T<S> align = Mat3T<S>::Identity() + K + (K * K) / one_plus_ab;
+    std::conditional_t<kTangent, CoRotatedTangent<S>, CoRotated<S>> c;
+    c.R = align * Rm;
+    const Mat3T<S> Q1 = c.R.transpose() * R1, Q2 = c.R.transpose() * R2;
+    c.d.setZero();
+    c.d.template segment<3>(3) = rotationLog<S>(Q1);
+    c.d.template segment<3>(6) = c.R.transpose() * chord;
+    c.d(6) -= length;
+    c.d.template segment<3>(9) = rotationLog<S>(Q2);
+    if constexpr (kTangent) {
+      // δω_B = W [δr¹, δθ¹, δr², δθ²].
+      Eigen::Matrix<S, 3, 12> W = Eigen::Matrix<S, 3, 12>::Zero();
+      const Mat3T<S> G = S(0.5) * angularVelocityMap<S>(Vec3T<S>(S(0.5) * phi)) * angularVelocityMapInverse<S>(phi);
+      const Eigen::Matrix<S, 1, 3> twist_of_mid = ((a + b).transpose() * Rm) / one_plus_ab;
+      const Eigen::Matrix<S, 1, 3> twist_of_chord = k.transpose() / (ell * one_plus_ab);
+      W.template block<1, 3>(0, 0) = twist_of_chord;
+      W.template block<1, 3>(0, 3) = twist_of_mid * (E.transpose() - G * Rrel.transpose());
+      W.template block<1, 3>(0, 6) = -twist_of_chord;
+      W.template block<1, 3>(0, 9) = twist_of_mid * G;
+      const Eigen::Matrix<S, 1, 3> ey = c.R.col(1).transpose() / ell, ez = c.R.col(2).transpose() / ell;
+      W.template block<1, 3>(1, 0) = ez, W.template block<1, 3>(1, 6) = -ez;
+      W.template block<1, 3>(2, 0) = -ey, W.template block<1, 3>(2, 6) = ey;
+      c.Jd.setZero();
+      for (int e = 0; e < 2; ++e) {
+        const Mat3T<S>& Qe = e == 0 ? Q1 : Q2;
+        const Mat3T<S> Tinv = angularVelocityMapInverse<S>(Vec3T<S>(c.d.template segment<3>(3 + 6 * e)));
+        Eigen::Matrix<S, 3, 12> dtheta = -(Qe.transpose() * W);
+        dtheta.template block<3, 3>(0, 3 + 6 * e) += Mat3T<S>::Identity();
+        c.Jd.template middleRows<3>(3 + 6 * e) = Tinv * dtheta;
+      }
+      c.Jd.template block<1, 3>(6, 0) = -b.transpose();
+      c.Jd.template block<1, 3>(6, 6) = b.transpose();
+    }
+    return c;
+  }
+
+ public:
   // ---------------------------------------------------------------------------------------------
   // Interpolated section motion (inertia, gravity, output)
 
