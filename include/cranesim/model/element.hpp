@@ -1,7 +1,8 @@
 #pragma once
 // The assembler's view of an element: equations of motion M(q) d(dq)/dt + F(q, dq, t) on a
 // few nodes, with their Jacobians. KernelElement adapts any header-only kernel to it and
-// obtains the Jacobians from the kernel's templated code by forward automatic differentiation.
+// obtains the Jacobians from the kernel's templated code: ∂/∂q by forward automatic
+// differentiation, ∂/∂dq by polarization of the quadratic in dq (exact, see jacobian).
 //
 // Kernel contract (DESIGN §3). A kernel is a small struct with
 //   static constexpr int kNq, kNv;                       local sizes of q_e and dq_e
@@ -19,9 +20,12 @@
 // terms are costly provides the force at rest
 //   template <class S> Matrix<S, kNv, 1> staticForce(q, t, gravity) const;       F(q, 0, t)
 // which the statics' Jacobian (coordinateJacobian at dq = 0, d(dq)/dt = 0) then differentiates.
-// The templated functions must not branch on derivative parts and must not allocate.
+// The templated functions must not branch on derivative parts and must not allocate, and F must
+// be a polynomial of degree ≤ 2 in dq (inertial terms quadratic, damping linear): a force
+// nonlinear in the velocities (drag, friction) would need its own ∂/∂dq.
 
 #include <array>
+#include <cmath>
 #include <concepts>
 #include <vector>
 
@@ -55,8 +59,8 @@ class Element {
   virtual void residual(const ElementInput& in, double* r) const = 0;
   /// J = [∂r/∂q | ∂r/∂v + cj M], column-major, size() × (nq_local + size()).
   virtual void jacobian(const ElementInput& in, double cj, double* J) const = 0;
-  /// ∂r/∂q alone, column-major, size() × nq_local (v and a held): the statics' Jacobian, by
-  /// forward AD in the nq_local coordinate directions only.
+  /// ∂r/∂q alone, column-major, size() × nq_local (v and a held): the statics' Jacobian and
+  /// the q columns of `jacobian`, by forward AD in the nq_local coordinate directions.
   virtual void coordinateJacobian(const ElementInput& in, double* J) const = 0;
   /// Local mass matrix M(q), column-major, size() × size().
   virtual void mass(const ElementInput& in, double* M) const = 0;
@@ -95,34 +99,26 @@ template <class Kernel> class KernelElement final : public Element {
   const std::vector<int>& coordinateIndices() const override { return q_; }
 
   void residual(const ElementInput& in, double* r) const override {
-    const Qd q = gatherQ(in.q);
     Eigen::Map<Vd> out(r);
-    const Vd v = gatherV(in.v);
-    const Vd a = gatherV(in.a) + in.mass_damping * v;
-    if constexpr (FusedResidualKernel<Kernel>)
-      out = kernel_.template residual<double>(q, v, a, in.t, in.gravity);
-    else
-      out = kernel_.template massMatrix<double>(q, in.t) * a + kernel_.template force<double>(q, v, in.t, in.gravity);
+    out = residualAt(gatherQ(in.q), gatherV(in.v), gatherV(in.a), in);
   }
 
+  /// ∂r/∂q by forward AD in the kNq coordinate directions (coordinateJacobian). ∂r/∂dq by
+  /// polarization: r is a polynomial of degree ≤ 2 in dq (kinetic energy is quadratic in the
+  /// velocities, material damping linear; the kernel contract), so the central difference
+  /// (r(dq + s e_j) − r(dq − s e_j)) / 2s is its exact derivative for any s, up to rounding.
   void jacobian(const ElementInput& in, double cj, double* J) const override {
-    using D = Dual<double, kNq + kNv>;
-    const Qd qd = gatherQ(in.q);
-    const Vd vd = gatherV(in.v), ad = gatherV(in.a);
-    Eigen::Matrix<D, kNq, 1> q;
-    Eigen::Matrix<D, kNv, 1> v;
-    for (int k = 0; k < kNq; ++k) q(k) = seeded<double, kNq + kNv>(qd(k), k);
-    for (int k = 0; k < kNv; ++k) v(k) = seeded<double, kNq + kNv>(vd(k), kNq + k);
-    Eigen::Matrix<D, kNv, 1> a = ad.template cast<D>();
-    if (in.mass_damping != 0.0) a += in.mass_damping * v;
-    Eigen::Matrix<D, kNv, 1> r;
-    if constexpr (FusedResidualKernel<Kernel>)
-      r = kernel_.template residual<D>(q, v, a, in.t, in.gravity);
-    else
-      r = kernel_.template massMatrix<D>(q, in.t) * a + kernel_.template force<D>(q, v, in.t, in.gravity);
-    Eigen::Map<Eigen::Matrix<double, kNv, kNq + kNv>> Jm(J);
-    for (int i = 0; i < kNv; ++i) Jm.row(i) = r(i).derivatives().transpose();
-    Jm.template rightCols<kNv>() += cj * kernel_.template massMatrix<double>(qd, in.t);
+    coordinateJacobian(in, J);
+    const Qd q = gatherQ(in.q);
+    const Vd v = gatherV(in.v), a = gatherV(in.a);
+    Eigen::Map<Eigen::Matrix<double, kNv, kNv>> Jv(J + kNv * kNq);
+    for (int j = 0; j < kNv; ++j) {
+      const double s = 1.0 + std::abs(v(j));
+      Vd vp = v, vm = v;
+      vp(j) += s, vm(j) -= s;
+      Jv.col(j) = (residualAt(q, vp, a, in) - residualAt(q, vm, a, in)) / (2.0 * s);
+    }
+    Jv += cj * kernel_.template massMatrix<double>(q, in.t);
   }
 
   void coordinateJacobian(const ElementInput& in, double* J) const override {
@@ -160,6 +156,15 @@ template <class Kernel> class KernelElement final : public Element {
   }
 
  private:
+  /// M(q) (a + α dq) + F(q, dq, t), α = in.mass_damping.
+  Vd residualAt(const Qd& q, const Vd& v, const Vd& a, const ElementInput& in) const {
+    const Vd acc = a + in.mass_damping * v;
+    if constexpr (FusedResidualKernel<Kernel>)
+      return kernel_.template residual<double>(q, v, acc, in.t, in.gravity);
+    else
+      return kernel_.template massMatrix<double>(q, in.t) * acc + kernel_.template force<double>(q, v, in.t, in.gravity);
+  }
+
   template <class R> static void storeDerivatives(const R& r, double* J) {
     Eigen::Map<Eigen::Matrix<double, kNv, kNq>> Jm(J);
     for (int i = 0; i < kNv; ++i) Jm.row(i) = r(i).derivatives().transpose();
