@@ -61,8 +61,8 @@
 //
 // All functions are templated on the scalar and use fixed-size types only (no allocation).
 // Cost: the kernel's own derivatives (∂e/∂δ, G_r, G_ω, the path accelerations) are closed-form
-// or second-order jets, so the forward AD of KernelElement (Dual<double, 28>) is the only AD
-// level. A first version with nested AD for ∂U/∂δ (Dual<Dual<double, 28>, 8>) and dual-scalar
+// or second-order jets, so the forward AD of KernelElement (Dual<double, 14> over q) is the only
+// AD level. A first version with nested AD for ∂U/∂δ (Dual<Dual<double, 28>, 8>) and dual-scalar
 // matrix products for M made the Jacobian ~7× slower; the mass matrix is accumulated with
 // double GEMMs on values and derivative directions (spline_beam_detail::GramAccumulator).
 

@@ -45,7 +45,7 @@
 // matrix), whose mass matrix is [[m I, −R s̃], [s̃ Rᵀ, J]] and whose forces are
 // [R(ω × (ω × s)) − m g; ω × Jω − s × Rᵀg].
 //
-// Scalars: templated on S; KernelElement's Jacobian runs everything on Dual<double, 24>. The node
+// Scalars: templated on S; KernelElement's Jacobian runs everything on Dual<double, 12>. The node
 // kinematics of a call are kept in the calling thread's scratch buffer (allocated on its first
 // call, reused afterwards). Forces evaluate the nodes and then the members in parallel (TBB,
 // in an isolated task arena, summed in a fixed order).
@@ -463,8 +463,7 @@ struct SuperTrussKernel {
           ak.template segment<3>(6 * k) = end[k]->a0.template head<3>();
           ak.template segment<3>(6 * k + 3) = m.relative[k].transpose().cast<S>() * end[k]->a0.template tail<3>();
         }
-        Fk += m.beam.template inertialAndGravityForce<S>(e.r1, e.R1, e.r2, e.R2, vk, gravity) +
-              m.beam.template massMatrix<S>(e) * ak;
+        Fk += m.beam.template inertialAndGravityForce<S>(e.r1, e.R1, e.r2, e.R2, vk, gravity, &ak);
       }
       // T_kᵀ F_k, node by node.
       for (int k = 0; k < 2; ++k) {

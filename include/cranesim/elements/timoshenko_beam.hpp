@@ -405,16 +405,19 @@ struct TimoshenkoBeamKernel {
   /// Quadratic-velocity inertial forces and gravity: ∫ H_xᵀ ρA (Ḣ_x dq − g)
   /// + H_Ωᵀ (ρJ Ḣ_Ω dq + Ω × ρJ Ω) ds. Ḣ dq is the derivative of H(q(t)) dq along the motion
   /// r(t) = r + t ṙ, R(t) = R (I + t ω̃) with dq held constant (one forward-AD direction).
-  template <class S> V<S> inertialAndGravityForce(const Q<S>& q, const V<S>& v, const Vec3& gravity) const {
+  /// With accelerations `a`, M a is added in the same pass (H a joins Ḣ dq), which is cheaper
+  /// than building M.
+  template <class S>
+  V<S> inertialAndGravityForce(const Q<S>& q, const V<S>& v, const Vec3& gravity, const V<S>* a = nullptr) const {
     return inertialAndGravityForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
                                       q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
-                                      gravity);
+                                      gravity, a);
   }
 
   /// The same from the end frames.
   template <class S>
   V<S> inertialAndGravityForce(const Vec3T<S>& r1s, const Mat3T<S>& R1, const Vec3T<S>& r2s, const Mat3T<S>& R2,
-                               const V<S>& v, const Vec3& gravity) const {
+                               const V<S>& v, const Vec3& gravity, const V<S>* a = nullptr) const {
     const EndFrames<Dual<S, 1>> e = endFramesAlongMotion<S>(r1s, R1, r2s, R2, v);
     const Eigen::Matrix<Dual<S, 1>, 12, 1> vp = v.template cast<Dual<S, 1>>();
     const double rhoA = material.density * section.area;
@@ -423,7 +426,8 @@ struct TimoshenkoBeamKernel {
     const GaussRule& rule = gaussLegendre(mass_points);
     V<S> F = V<S>::Zero();
     for (int gp = 0; gp < rule.points; ++gp) {
-      const SectionMotion<S> m = sectionMotion<S>(e, rule.xi[gp], vp);
+      SectionMotion<S> m = sectionMotion<S>(e, rule.xi[gp], vp);
+      if (a) m.ax += m.map.velocity(*a), m.aw += m.map.angularVelocity(*a);
       const double wl = rule.weight[gp] * length;
       const Vec3T<S> Jw = J.cwiseProduct(m.omega);
       F += m.map.project(Vec3T<S>(S(wl * rhoA) * (m.ax - g)), Vec3T<S>(S(wl) * (J.cwiseProduct(m.aw) + m.omega.cross(Jw))));
@@ -481,6 +485,11 @@ struct TimoshenkoBeamKernel {
 
   template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
     return inertialAndGravityForce<S>(q, v, gravity) + elasticForce<S>(q, v);
+  }
+
+  /// M a + F in one pass over the Gauss points (element.hpp: fused residual).
+  template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
+    return inertialAndGravityForce<S>(q, v, gravity, &a) + elasticForce<S>(q, v);
   }
 
   /// −∫ H_xᵀ ρA g ds: inertialAndGravityForce at rest (dq = 0, d(dq)/dt = 0).
