@@ -157,6 +157,15 @@ TEST_CASE("Spline rope: constant mass, tension only, energy gradient and Jacobia
   Vq<SplineRopeKernel> v, a;
   for (int i = 0; i < 12; ++i) v(i) = u(rng), a(i) = u(rng);
   CHECK(jacobianDeviation(k, qb, v, a) < 1e-6);
+  // Damped and 2e-5 from slack, stretching slowly (η ε̇ ≈ 3e-6): the tension's kink
+  // max(ε + η ε̇, 0) lies close, and the Jacobian's velocity columns must still be the taut
+  // branch's derivative, not a secant across the kink.
+  SplineRopeKernel damped = k;
+  damped.damping = 1e-3;
+  Vq<SplineRopeKernel> qs;
+  qs << 0, 0, 0, 1.00002, 0, 0, 3.00006, 0, 0, 1.00002, 0, 0;
+  const Vq<SplineRopeKernel> vs = 0.01 * v;
+  CHECK(jacobianDeviation(damped, qs, vs, a) < 1e-6);
   // Reeling: the mass follows the unstretched length.
   SplineRopeKernel reeled = k;
   reeled.total_length = Profile(RampProfile{3.0, -0.5, 0.0});

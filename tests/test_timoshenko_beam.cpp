@@ -337,7 +337,7 @@ TEST_CASE("Timoshenko beam: the velocity columns of the Jacobian (polarization) 
     worst = std::max(worst, (J.rightCols<12>() - Jad).norm() / Jad.norm());
   }
   std::printf("[timoshenko] ∂r/∂dq by polarization vs forward AD: rel. err %.3g\n", worst);
-  CHECK(worst < 1e-12);
+  CHECK(worst < 1e-10);
 }
 
 TEST_CASE("Timoshenko beam: free motion conserves kinetic + strain + gravity energy", "[timoshenko]") {

@@ -106,14 +106,16 @@ template <class Kernel> class KernelElement final : public Element {
   /// ∂r/∂q by forward AD in the kNq coordinate directions (coordinateJacobian). ∂r/∂dq by
   /// polarization: r is a polynomial of degree ≤ 2 in dq (kinetic energy is quadratic in the
   /// velocities, material damping linear; the kernel contract), so the central difference
-  /// (r(dq + s e_j) − r(dq − s e_j)) / 2s is its exact derivative for any s, up to rounding.
+  /// (r(dq + s e_j) − r(dq − s e_j)) / 2s is its exact derivative for any s, up to rounding
+  /// (≈ ε‖r‖/s). s is kept small so that a kink in dq (a damped rope's max(ε + η ε̇, 0) at the
+  /// verge of slack) lies between the probes only within s of it.
   void jacobian(const ElementInput& in, double cj, double* J) const override {
     coordinateJacobian(in, J);
     const Qd q = gatherQ(in.q);
     const Vd v = gatherV(in.v), a = gatherV(in.a);
     Eigen::Map<Eigen::Matrix<double, kNv, kNv>> Jv(J + kNv * kNq);
     for (int j = 0; j < kNv; ++j) {
-      const double s = 1.0 + std::abs(v(j));
+      const double s = 1e-3 * (1.0 + std::abs(v(j)));
       Vd vp = v, vm = v;
       vp(j) += s, vm(j) -= s;
       Jv.col(j) = (residualAt(q, vp, a, in) - residualAt(q, vm, a, in)) / (2.0 * s);
