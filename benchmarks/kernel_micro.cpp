@@ -10,10 +10,12 @@
 
 #include <cxxabi.h>
 
-#include <map>
+#include <algorithm>
+#include <cstdlib>
 #include <memory>
-#include <typeinfo>
+#include <set>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 #include <fmt/format.h>
@@ -163,12 +165,15 @@ void craneElements(benchmark::State& state, bool condensed, const std::string& k
   const cranesim::ElementInput in{f.y.data(), f.y.data() + a.vOffset(), f.yp.data() + a.vOffset(), 0.0,
                                   f.model.gravity};
   std::vector<const cranesim::Element*> group;
+  std::size_t largest = 0;  // the largest Jacobian of the group, size() × (nq_local + size())
   for (const auto& e : f.model.elements)
-    if (elementKind(*e) == kind) group.push_back(e.get());
-  std::vector<double> out(24 * 48);
+    if (elementKind(*e) == kind) {
+      group.push_back(e.get());
+      largest = std::max(largest, e->size() * (e->coordinateIndices().size() + e->size()));
+    }
+  std::vector<double> out(largest);
   for (auto _ : state) {
     for (const cranesim::Element* e : group) {
-      out.resize(static_cast<std::size_t>(e->size()) * (e->coordinateIndices().size() + e->size()));
       if (jacobian)
         e->jacobian(in, 1e3, out.data());
       else
@@ -183,9 +188,9 @@ void craneElements(benchmark::State& state, bool condensed, const std::string& k
 /// BM_CraneElements/<fidelity>/<kind>/<residual|jacobian> for every kind of element in each crane.
 void registerCraneElementBenchmarks() {
   for (const bool condensed : {false, true}) {
-    std::map<std::string, int> kinds;
-    for (const auto& e : crane(condensed).model.elements) ++kinds[elementKind(*e)];
-    for (const auto& [kind, count] : kinds)
+    std::set<std::string> kinds;
+    for (const auto& e : crane(condensed).model.elements) kinds.insert(elementKind(*e));
+    for (const std::string& kind : kinds)
       for (const bool jacobian : {false, true})
         benchmark::RegisterBenchmark(
             fmt::format("BM_CraneElements/{}/{}/{}", condensed ? "condensed" : "super_truss", kind,
