@@ -59,13 +59,22 @@ class ProgressLine {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
 
+/// The scene's drawing, posed at its drives and assembled; a move beyond rounding is reported.
+DynamicState drawnState(const Model& model, const Assembler& assembler, bool quiet) {
+  AssemblyMove move;
+  DynamicState drawn =
+      assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance, &move);
+  if (!quiet && (move.displacement > 1e-9 * move.scene_size || move.rotation > 1e-9))
+    fmt::print(stderr, "assembled: the drawing closed by moving {}\n", move.describe());
+  return drawn;
+}
+
 /// Static equilibrium of the scene at its start time by the scene's method (solver.statics):
 /// Newton along the path from the drawn controls, or relaxation from the drawn state. Throws
 /// when it is not found.
 StaticResult equilibrium(const Scene& scene, const Model& model, const Assembler& assembler, bool quiet) {
+  const DynamicState given = drawnState(model, assembler, quiet);
   if (model.solver.static_method == StaticMethod::Relaxation) {
-    const DynamicState given =
-        assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
     RelaxationOptions options;
     options.damping = model.solver.relaxation_damping;
     options.duration = model.solver.relaxation_duration;
@@ -109,6 +118,32 @@ void printEquilibriumReport(const Model& model, const StaticResult& eq) {
   }
 }
 
+/// Models up to this many velocity coordinates get the equilibrium's stability checked (dense
+/// modal analysis, O(nv³): ~5 ms for the thesis crane's 160, seconds at 1000).
+constexpr int kStabilityCheckLimit = 1200;
+
+/// Why the equilibrium is unstable (its reduced stiffness has a negative eigenvalue), or empty;
+/// the lowest elastic mode is reported.
+std::string instability(const Model& model, const StaticResult& eq, bool quiet = false) {
+  if (model.nv > kStabilityCheckLimit) {
+    if (!quiet) fmt::print(stderr, "stability: not checked ({} velocity coordinates, more than {})\n", model.nv, kStabilityCheckLimit);
+    return {};
+  }
+  const ModalResult modal = computeModes(model, eq.q, eq.t, 0);
+  if (modal.omega_squared.size() == 0) return {};
+  if (modal.omega_squared(0) < -modal.zero_threshold)
+    return fmt::format("the equilibrium found is unstable: its lowest mode has ω² = {:.4g} rad²/s² (a perturbation grows "
+                       "like e^({:.3g} t)); try solver.statics.method: relaxation, which settles into a stable one",
+                       modal.omega_squared(0), std::sqrt(-modal.omega_squared(0)));
+  for (Eigen::Index k = 0; k < modal.frequencies.size(); ++k)
+    if (!modal.rigid[k]) {
+      if (!quiet) fmt::print(stderr, "stability: stable; lowest elastic mode {:.4g} Hz (period {:.4g} s), {} rigid-body mode(s)\n",
+                 modal.frequencies(k), 1.0 / modal.frequencies(k), modal.rigid_modes);
+      break;
+    }
+  return {};
+}
+
 int run(const std::string& scene_path, std::string out, bool quiet) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
@@ -118,9 +153,13 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   if (model.solver.start_from_equilibrium) {
     const StaticResult eq = equilibrium(scene, model, assembler, quiet);
     if (!quiet) printEquilibrium(eq);
-    initial = consistentInitialState(assembler, model.solver.t_start, eq.q, VecX::Zero(model.nv), model.solver.initial_tolerance);
+    if (const std::string unstable = instability(model, eq, quiet); !unstable.empty()) {
+      fmt::print(stderr, "error: initial_state: equilibrium: {}\n", unstable);
+      return kExitSolverFailure;
+    }
+    initial = consistentInitialState(assembler, model.solver.t_start, eq.q, VecX::Zero(model.nv), model.solver.assembly_tolerance);
   } else {
-    initial = assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+    initial = drawnState(model, assembler, quiet);
   }
 
   ResultsRecorder recorder(assembler);
@@ -168,32 +207,6 @@ StaticResult reportedEquilibrium(const Scene& scene, const Model& model, const A
   printEquilibrium(eq);
   printEquilibriumReport(model, eq);
   return eq;
-}
-
-/// Models up to this many velocity coordinates get the equilibrium's stability checked (dense
-/// modal analysis, O(nv³): ~5 ms for the thesis crane's 160, seconds at 1000).
-constexpr int kStabilityCheckLimit = 1200;
-
-/// Why the equilibrium is unstable (its reduced stiffness has a negative eigenvalue), or empty;
-/// the lowest elastic mode is reported.
-std::string instability(const Model& model, const StaticResult& eq) {
-  if (model.nv > kStabilityCheckLimit) {
-    fmt::print(stderr, "stability: not checked ({} velocity coordinates, more than {})\n", model.nv, kStabilityCheckLimit);
-    return {};
-  }
-  const ModalResult modal = computeModes(model, eq.q, eq.t, 0);
-  if (modal.omega_squared.size() == 0) return {};
-  if (modal.omega_squared(0) < -modal.zero_threshold)
-    return fmt::format("the equilibrium found is unstable: its lowest mode has ω² = {:.4g} rad²/s² (a perturbation grows "
-                       "like e^({:.3g} t)); try solver.statics.method: relaxation, which settles into a stable one",
-                       modal.omega_squared(0), std::sqrt(-modal.omega_squared(0)));
-  for (Eigen::Index k = 0; k < modal.frequencies.size(); ++k)
-    if (!modal.rigid[k]) {
-      fmt::print(stderr, "stability: stable; lowest elastic mode {:.4g} Hz (period {:.4g} s), {} rigid-body mode(s)\n",
-                 modal.frequencies(k), 1.0 / modal.frequencies(k), modal.rigid_modes);
-      break;
-    }
-  return {};
 }
 
 int statics(const std::string& scene_path, std::string out) {
@@ -246,9 +259,14 @@ int check(const std::string& scene_path) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+  AssemblyMove move;
+  assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance, &move);
   fmt::print("{}", modelSummary(assembler));
-  fmt::print("initial state: consistent (within solver.initial_tolerance = {:g})\n", model.solver.initial_tolerance);
+  if (move.displacement > 1e-9 * move.scene_size || move.rotation > 1e-9)
+    fmt::print("initial state: assembled; largest move {} (solver.assembly_tolerance = {:g})\n", move.describe(),
+               model.solver.assembly_tolerance);
+  else
+    fmt::print("initial state: consistent as drawn (solver.assembly_tolerance = {:g})\n", model.solver.assembly_tolerance);
   return 0;
 }
 

@@ -103,7 +103,7 @@ Run simulateCase(const Options& o, const Case& c, double timeout_s) {
     const cranesim::Model model = cranesim::compileModel(scene);
     const cranesim::Assembler assembler(model);
     const cranesim::DynamicState initial = cranesim::consistentInitialState(
-        assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+        assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance);
     TipSink sink(model, model.findJoint(scene.members.at(0).name + ".end"));
     std::atomic<bool> stop{false};
     cranesim::SimulationControl control;

@@ -41,7 +41,7 @@ struct Fixture {
     model = cranesim::compileModel(cranesim::parseScene(cranesim_bench::chainSceneYaml(n, s), "<chain>"));
     assembler = std::make_unique<cranesim::Assembler>(model);
     const cranesim::DynamicState st = cranesim::consistentInitialState(
-        *assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+        *assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance);
     const auto& a = *assembler;
     y.assign(a.size(), 0.0);
     yp.assign(a.size(), 0.0);

@@ -107,7 +107,7 @@ RunResult runChain(int n, const ChainSolver& solver, double timeout_s) {
     const int tip = model.findJoint(cranesim_bench::chainTipJoint(n));
     if (tip < 0) throw std::runtime_error("tip joint not found in the generated scene");
     const cranesim::DynamicState initial = cranesim::consistentInitialState(
-        assembler, model.solver.t_start, model.q0, model.v0, model.solver.initial_tolerance);
+        assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance);
     r.energy_scale = assembler.potentialEnergy(initial.t, initial.q.data()) - hangingPotential(assembler, n);
 
     ChainSink sink(assembler, tip);

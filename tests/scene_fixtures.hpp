@@ -45,7 +45,7 @@ struct SimulationRun {
   explicit SimulationRun(const Scene& scene)
       : model(compileModel(scene)), assembler(model), recorder(assembler) {
     const DynamicState initial = consistentInitialState(assembler, model.solver.t_start, model.q0, model.v0,
-                                                        model.solver.initial_tolerance);
+                                                        model.solver.assembly_tolerance);
     outcome = simulate(assembler, initial, recorder);
   }
   const std::vector<double>& jointPositions(const std::string& joint) const {

@@ -11,6 +11,7 @@
 
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/rotation.hpp"
+#include "member_ends.hpp"
 #include "profile_reader.hpp"
 #include "scene_composition.hpp"
 #include "yaml_field.hpp"
@@ -205,7 +206,7 @@ TrussDescription readTruss(const YamlField& f) {
   return d;
 }
 
-/// `type: truss`: a placed truss type; its length must match the distance of start and end.
+/// `type: truss`: a placed truss type (its drawn length is checked by placeMemberEnds).
 void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussDescription>& trusses) {
   const YamlField tf = f.at("truss");
   m.truss = tf.text();
@@ -215,9 +216,6 @@ void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussD
     for (const TrussDescription& d : trusses) known += (known.empty() ? "" : ", ") + d.name;
     tf.fail(fmt::format("unknown truss type '{}' (types under trusses: {})", m.truss, known.empty() ? "none" : known));
   }
-  const double distance = (m.end - m.start).norm();
-  if (std::abs(distance - type->length) > 1e-6 * type->length)
-    f.at("end").fail(fmt::format("|end − start| = {} differs from the length {} of truss type '{}'", distance, type->length, m.truss));
   const YamlField fidelity = f.at("fidelity");
   const std::string chosen = fidelity.choice({"super_truss", "condensed", "members"});
   m.fidelity = chosen == "members" ? TrussFidelity::Members : chosen == "condensed" ? TrussFidelity::Condensed : TrussFidelity::SuperTruss;
@@ -227,6 +225,13 @@ void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussD
   }
   if (m.fidelity != TrussFidelity::Members && f.has("segments"))
     f.at("segments").fail("'segments' splits the tubes of fidelity 'members' only");
+}
+
+/// A member's `start` or `end`: coordinates, or a joint's name (placed by placeMemberEnds).
+void readMemberEnd(const YamlField& f, Vec3& position, std::string& joint, SourceLocation& where) {
+  where = f.where();
+  if (f.isScalar()) joint = f.text();
+  else position = f.vec3();
 }
 
 MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& trusses) {
@@ -246,9 +251,8 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
   if (m.type == MemberType::Rope) keys.push_back("length");
   if (m.type == MemberType::StrutTie) keys.insert(keys.end(), {"constant_volume", "smoothing"});
   f.allowKeys(keys);
-  m.start = f.at("start").vec3();
-  m.end = f.at("end").vec3();
-  if ((m.end - m.start).norm() < 1e-9) f.at("end").fail("a member needs distinct start and end points");
+  readMemberEnd(f.at("start"), m.start, m.start_joint, m.where_start);
+  readMemberEnd(f.at("end"), m.end, m.end_joint, m.where_end);
   m.z_axis = f.vec3("z_axis", Vec3::UnitZ());
   if (f.has("segments")) {
     m.segments = f.at("segments").integer();
@@ -323,7 +327,7 @@ LoadSpec readLoad(const YamlField& f) {
 
 SolverSpec readSolver(const YamlField& f) {
   f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_order", "initial_step",
-               "baumgarte", "initial_tolerance", "initial_state", "statics"});
+               "baumgarte", "assembly_tolerance", "initial_state", "statics"});
   SolverSpec s;
   if (const auto form = f.find("formulation"))
     s.formulation = form->choice({"ggl", "baumgarte"}) == "ggl" ? Formulation::GGL : Formulation::Baumgarte;
@@ -348,7 +352,9 @@ SolverSpec readSolver(const YamlField& f) {
     s.baumgarte_alpha = b->positive("alpha", s.baumgarte_alpha);
     s.baumgarte_beta = b->positive("beta", s.baumgarte_beta);
   }
-  s.initial_tolerance = f.positive("initial_tolerance", s.initial_tolerance);
+  s.assembly_tolerance = f.positive("assembly_tolerance", s.assembly_tolerance);
+  if (s.assembly_tolerance >= 0.1)
+    f.at("assembly_tolerance").fail(fmt::format("{} is not a drawing's rounding: use a value below 0.1", s.assembly_tolerance));
   if (const auto start = f.find("initial_state")) s.start_from_equilibrium = start->choice({"given", "equilibrium"}) == "equilibrium";
   if (const auto st = f.find("statics")) {
     st->allowKeys({"method", "damping", "duration"});
@@ -407,6 +413,7 @@ Scene sceneFromYaml(const ComposedScene& composed, const std::string& path) {
   const YamlField solver = f.at("solver");
   s.solver = readSolver(solver);
   s.where_solver = solver.where();
+  placeMemberEnds(s);
   if (const auto o = f.find("output")) {
     o->allowKeys({"interval"});
     s.output.interval = o->positive("interval", s.output.interval);

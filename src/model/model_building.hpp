@@ -1,29 +1,16 @@
 #pragma once
-// Steps shared by the scene compilers (compile.cpp, compile_truss.cpp): the axes of a straight
-// member, adding a kernel element on nodes, and adding a constraint with its rows.
+// Steps shared by the scene compilers (compile.cpp, compile_truss.cpp): adding a kernel element
+// on nodes, and adding a constraint with its rows.
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "cranesim/math/rotation.hpp"
 #include "cranesim/model/kernel_elements.hpp"
 #include "cranesim/model/model.hpp"
 
 namespace cranesim {
-
-/// Section axes of a straight member: x along it, z as close to `z_hint` as possible.
-inline Mat3 memberFrame(const Vec3& start, const Vec3& end, const Vec3& z_hint) {
-  const Vec3 x = (end - start).normalized();
-  Vec3 z = z_hint - z_hint.dot(x) * x;
-  if (z.norm() < 1e-6) {  // hint along the member: fall back to the global z, then y
-    z = Vec3::UnitZ() - x.z() * x;
-    if (z.norm() < 1e-6) z = Vec3::UnitY() - x.y() * x;
-  }
-  z.normalize();
-  Mat3 R;
-  R << x, z.cross(x), z;
-  return R;
-}
 
 template <class Kernel>
 void addElement(Model& model, Kernel kernel, const std::vector<int>& nodes) {

@@ -165,7 +165,7 @@ void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::stri
   const Assembler assembler(model);
   const StaticResult eq = equilibriumUnder(scene, model, 0.0, plan.controls.front());
   const DynamicState initial =
-      consistentInitialState(assembler, 0.0, eq.q, VecX::Zero(model.nv), model.solver.initial_tolerance);
+      consistentInitialState(assembler, 0.0, eq.q, VecX::Zero(model.nv), model.solver.assembly_tolerance);
   ResultsRecorder recorder(assembler);
   Verification& v = plan.verification;
   v.outcome = simulate(assembler, initial, recorder);

@@ -98,7 +98,7 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
   VecX q_drawn = path.q0;
   poseAtDrives(path, 0.0, q_drawn);
   const DynamicState drawn =
-      consistentInitialState(Assembler(path), 0.0, q_drawn, VecX::Zero(path.nv), model.solver.initial_tolerance);
+      consistentInitialState(Assembler(path), 0.0, q_drawn, VecX::Zero(path.nv), model.solver.assembly_tolerance);
 
   // The start: Newton at the drawn controls under the full load, load stepping if that fails.
   EquilibriumSystem system(path, 0.0);

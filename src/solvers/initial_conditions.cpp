@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <Eigen/SparseLU>
+#include <limits>
 
+#include "cranesim/math/rotation.hpp"
 #include "cranesim/solvers/drive_posing.hpp"
 
 namespace cranesim {
@@ -28,6 +30,25 @@ const Constraint& constraintOfRow(const Model& model, int row) {
 VecX minimumNormSolution(const Eigen::SparseMatrix<double>& A, const VecX& b) {
   const MatX AAt = MatX(A * A.transpose());
   return A.transpose() * AAt.ldlt().solve(b);
+}
+
+/// The largest joint displacement and turn between two states, and the drawing's size.
+AssemblyMove assemblyMove(const Model& model, const VecX& q_drawn, const VecX& q) {
+  AssemblyMove move;
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (int j = 0; j < static_cast<int>(model.joints.size()); ++j) {
+    const Frame drawn = model.jointFrame(q_drawn.data(), j), closed = model.jointFrame(q.data(), j);
+    low = low.cwiseMin(drawn.r);
+    high = high.cwiseMax(drawn.r);
+    const double displacement = (closed.r - drawn.r).norm();
+    const double rotation = rotationVector(drawn.R.transpose() * closed.R).norm();
+    if (displacement > move.displacement || move.displaced_joint.empty())
+      move.displacement = displacement, move.displaced_joint = model.joints[j].name;
+    if (rotation > move.rotation || move.rotated_joint.empty())
+      move.rotation = rotation, move.rotated_joint = model.joints[j].name;
+  }
+  move.scene_size = std::max((high - low).norm(), std::numeric_limits<double>::min());
+  return move;
 }
 
 }  // namespace
@@ -82,7 +103,18 @@ void solveAccelerations(const Assembler& assembler, DynamicState& s, const Const
   s.qdot = assembler.coordinateRates(s.q.data(), s.v.data());
 }
 
-DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance) {
+std::string AssemblyMove::describe() const {
+  const std::string distance = displacement >= 1.0    ? fmt::format("{:.4g} m", displacement)
+                               : displacement >= 1e-6 ? fmt::format("{:.3g} mm", 1e3 * displacement)
+                                                      : fmt::format("{:.3g} m", displacement);
+  std::string text = fmt::format("{} at joint '{}' ({:.2g} % of the scene's {:.4g} m)", distance, displaced_joint,
+                                 100.0 * displacement / scene_size, scene_size);
+  if (rotation > 1e-12) text += fmt::format("; turn {:.3g} rad at '{}'", rotation, rotated_joint);
+  return text;
+}
+
+DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance,
+                                    AssemblyMove* move) {
   const Model& model = assembler.model();
   DynamicState s;
   s.t = t;
@@ -91,17 +123,26 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
     ConstraintState C = assembler.constraints(t, q.data(), v.data(), Limit::Right);
     int worst = 0;
     const double violation = C.phi.cwiseAbs().maxCoeff(&worst);
-    if (violation > tolerance) {
-      const Constraint& c = constraintOfRow(model, worst);
-      throw SceneError(c.where, fmt::format("the initial state violates the constraint: |Φ| = {:.3g} in "
-                                            "'{}' exceeds solver.initial_tolerance = {:.3g}; correct the "
-                                            "initial positions or rotations of the bodies it connects",
-                                            violation, rowLabel(model, worst), tolerance));
-    }
-    for (int it = 0; it < kMaxProjectionIterations && C.phi.cwiseAbs().maxCoeff() > kProjectionTolerance; ++it) {
+    const Constraint& most_violated = constraintOfRow(model, worst);
+    const VecX q_drawn = q;
+    int it = 0;
+    for (; it < kMaxProjectionIterations && C.phi.cwiseAbs().maxCoeff() > kProjectionTolerance; ++it) {
       q -= minimumNormSolution(C.Phi_q, C.phi);
       C = assembler.constraints(t, q.data(), v.data(), Limit::Right);
     }
+    if (!(C.phi.cwiseAbs().maxCoeff() <= kProjectionTolerance))
+      throw SceneError(most_violated.where,
+                       fmt::format("the drawing cannot be assembled: |Φ| = {:.3g} in '{}' is left {:.3g} after {} "
+                                   "least-change steps; correct the initial positions or rotations of the parts it "
+                                   "connects", violation, rowLabel(model, worst), C.phi.cwiseAbs().maxCoeff(), it));
+    const AssemblyMove moved = assemblyMove(model, q_drawn, q);
+    if (moved.displacement > tolerance * moved.scene_size || moved.rotation > tolerance)
+      throw SceneError(most_violated.where,
+                       fmt::format("the drawing is off: |Φ| = {:.3g} in '{}', and closing it moves {}, more than "
+                                   "solver.assembly_tolerance = {:g} (of the scene's size, or rad) allows; correct "
+                                   "the initial positions or rotations of the parts it connects",
+                                   violation, rowLabel(model, worst), moved.describe(), tolerance));
+    if (move) *move = moved;
     v -= minimumNormSolution(C.G, C.phi_dot);
   }
   s.q = std::move(q);
@@ -110,9 +151,10 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
   return s;
 }
 
-DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance) {
+DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance,
+                                   AssemblyMove* move) {
   poseAtDrives(assembler.model(), t, q, &v);
-  return consistentInitialState(assembler, t, std::move(q), std::move(v), tolerance);
+  return consistentInitialState(assembler, t, std::move(q), std::move(v), tolerance, move);
 }
 
 }  // namespace cranesim

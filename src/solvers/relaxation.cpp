@@ -62,7 +62,7 @@ RelaxationResult relaxToEquilibrium(const Scene& scene, const VecX& q_start, con
 
   RelaxationResult result;
   const DynamicState initial = consistentInitialState(assembler, model.solver.t_start, q_start,
-                                                      VecX::Zero(model.nv), model.solver.initial_tolerance);
+                                                      VecX::Zero(model.nv), model.solver.assembly_tolerance);
   // Motion that starts from rest needs a few damping times to build up before it can die out.
   RelaxationMonitor monitor(assembler, options.kinetic_energy_ratio, 2.0 / options.damping);
   SimulationControl control;

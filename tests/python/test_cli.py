@@ -326,6 +326,20 @@ def test_static_slews_the_crane_by_its_drive(slewing_deg: int, tmp_path: Path):
     assert "path steps" in result.stderr
 
 
+def test_run_refuses_to_start_from_an_unstable_equilibrium(tmp_path: Path):
+    """`initial_state: equilibrium` from the pendulum drawn 170° up: Newton's equilibrium is the
+    inverted one; the run stops before integrating, exit 1, naming the instability."""
+    scene = tmp_path / "upright.yaml"
+    scene.write_text(f"base: {PENDULUM}\nmodify:\n"
+                     "  bodies.rod.position: [-0.0868241, 0, 0.4924039]\n"
+                     "  bodies.rod.rotation: {axis: [0, 1, 0], angle_deg: 170}\n"
+                     "  solver.initial_state: equilibrium\n", encoding="utf-8")
+    result = crane_sim("run", scene, "-o", tmp_path / "upright.h5", cwd=tmp_path)
+    assert result.returncode == EXIT_SOLVER_FAILURE, result.stderr
+    assert "error: initial_state: equilibrium: the equilibrium found is unstable" in result.stderr
+    assert "completed" not in result.stderr
+
+
 @pytest.mark.parametrize("method,code", [("newton", EXIT_SOLVER_FAILURE), ("relaxation", 0)])
 def test_static_refuses_an_unstable_equilibrium(method: str, code: int, tmp_path: Path):
     """The pendulum drawn 170° up: Newton finds the inverted equilibrium, which is unstable and

@@ -127,4 +127,18 @@ inline bool reparameterise(Vec3& phi) {
   return true;
 }
 
+/// Section axes of a straight member: x along it, z as close to `z_hint` as possible.
+inline Mat3 memberFrame(const Vec3& start, const Vec3& end, const Vec3& z_hint) {
+  const Vec3 x = (end - start).normalized();
+  Vec3 z = z_hint - z_hint.dot(x) * x;
+  if (z.norm() < 1e-6) {  // hint along the member: fall back to the global z, then y
+    z = Vec3::UnitZ() - x.z() * x;
+    if (z.norm() < 1e-6) z = Vec3::UnitY() - x.y() * x;
+  }
+  z.normalize();
+  Mat3 R;
+  R << x, z.cross(x), z;
+  return R;
+}
+
 }  // namespace cranesim

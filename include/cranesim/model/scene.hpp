@@ -48,6 +48,10 @@ struct MemberSpec {
   std::string name;
   MemberType type = MemberType::Timoshenko;
   Vec3 start = Vec3::Zero(), end = Vec3::UnitX();
+  /// A joint named for `start` / `end` (e.g. "head.sheave") instead of coordinates; the reader
+  /// places the end at that joint's drawn position (io/member_ends.cpp). Empty: coordinates.
+  std::string start_joint, end_joint;
+  SourceLocation where_start, where_end;
   Vec3 z_axis = Vec3::UnitZ();
   int segments = 1;
   int quadrature = 0;  // Gauss points per element; 0: the element's default
@@ -111,7 +115,11 @@ struct SolverSpec {
   double initial_step = 0.0;  // 0: chosen by IDAS
   double baumgarte_alpha = 10.0;
   double baumgarte_beta = 1.0;
-  double initial_tolerance = 1e-6;  // largest initial constraint violation that is projected away
+  /// The drawn state is assembled (closed onto the constraints by the least change of the
+  /// coordinates); a joint moving farther than this fraction of the scene's size, or turning
+  /// by more than this many radians, is a drawing error. Also the slack of a truss member's
+  /// drawn length against its type's length.
+  double assembly_tolerance = 1e-3;
   /// Start from the given state, or from the static equilibrium near it (thesis: every crane
   /// motion starts from equilibrium).
   bool start_from_equilibrium = false;

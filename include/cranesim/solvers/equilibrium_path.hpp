@@ -54,9 +54,8 @@ std::vector<PathControl> pathControls(const Scene& scene, const Model& model, co
 /// The equilibrium of `model` (compiled from `scene`) at time t, solved along the path from
 /// the drawn controls. result.load_steps counts the Newton stage at τ = 0 (its load steps);
 /// result.path_steps the path's steps. On failure the message names the controls and how far
-/// along the path the solution got. The drawn state must satisfy the constraints to
-/// scene.solver.initial_tolerance (with the drives at their drawn values, it does wherever the
-/// drawing closes).
+/// along the path the solution got. The drawing (its drives at their drawn values) is
+/// assembled first, within scene.solver.assembly_tolerance (solvers/initial_conditions.hpp).
 StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, const PathOptions& options = {});
 
 }  // namespace cranesim

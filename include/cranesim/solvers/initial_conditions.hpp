@@ -16,13 +16,28 @@ struct DynamicState {
 /// Checks the constraint Jacobian for redundant equations; throws SceneError naming them.
 void requireIndependentConstraints(const Assembler& assembler, const VecX& q, double t);
 
-/// Projects (q, v) onto the constraint manifold and solves for a and λ. Throws SceneError
-/// naming the constraint when the initial violation exceeds `tolerance`.
-DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance);
+/// How far assembly moved the drawing: the largest displacement of a joint (m) and the largest
+/// turn of a joint frame (rad), each with the joint's name, and the scene's size (the diagonal
+/// of the drawn joints' bounding box) the displacement is measured against.
+struct AssemblyMove {
+  double displacement = 0.0, rotation = 0.0, scene_size = 0.0;
+  std::string displaced_joint, rotated_joint;
+  /// "0.87 mm at joint 'jib.tip'; 1.2e-05 rad at 'jib.tip'", for the tools' reports.
+  std::string describe() const;
+};
+
+/// Assembles (q, v): positions closed onto Φ = 0 by the least change of the coordinates
+/// (Gauss–Newton, minimum-norm steps), velocities projected onto Φ̇ = 0, then a and λ solved.
+/// Throws SceneError naming the most violated constraint when the drawing cannot be closed or
+/// closing it moves a joint by more than `tolerance` × the scene's size or turns one by more
+/// than `tolerance` rad (solver.assembly_tolerance). `move`, if given, receives the move.
+DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance,
+                                    AssemblyMove* move = nullptr);
 
 /// The scene's drawn state (q, v) at time t: posed at its drives' values (solvers/drive_posing.hpp),
-/// then made consistent as by consistentInitialState.
-DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance);
+/// then assembled as by consistentInitialState.
+DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance,
+                                   AssemblyMove* move = nullptr);
 
 /// Recomputes a, λ and q̇ for a state whose q and v are already consistent. `limit`: Right
 /// when restarting from a breakpoint, so the accelerations are those of the coming segment.
