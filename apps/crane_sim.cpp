@@ -73,12 +73,12 @@ DynamicState drawnState(const Model& model, const Assembler& assembler, bool qui
 /// Newton along the path from the drawn controls, or relaxation from the drawn state. Throws
 /// when it is not found.
 StaticResult equilibrium(const Scene& scene, const Model& model, const Assembler& assembler, bool quiet) {
-  const DynamicState given = drawnState(model, assembler, quiet);
+  drawnState(model, assembler, quiet);  // reports the assembly move, refuses a drawing that is off
   if (model.solver.static_method == StaticMethod::Relaxation) {
     RelaxationOptions options;
     options.damping = model.solver.relaxation_damping;
     options.duration = model.solver.relaxation_duration;
-    const RelaxationResult r = relaxToEquilibrium(scene, given.q, options);
+    const RelaxationResult r = relaxToEquilibrium(scene, options);
     if (!quiet)
       fmt::print(stderr, "relaxation: {:.4g} s of damped motion (α = {:g}/s) in {} steps, kinetic energy down to {:.2g} of its peak\n",
                  r.relaxation_time, options.damping, r.steps, r.final_kinetic_ratio);

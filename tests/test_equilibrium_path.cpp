@@ -2,7 +2,8 @@
 // the thesis crane solved from its drawn geometry with one set of solver settings over its
 // working range, checked against crane-opt's static map (whose points are reached by
 // continuation along the boom angle from the scene's own equilibrium); the slewing drive at any
-// angle; loads from 10 t to 500 t, each equilibrium stable; a drive in a closed loop, which
+// angle; loads from 10 t to 500 t, each equilibrium stable; relaxation reaching the same
+// equilibrium from the drawing; a drive in a closed loop, which
 // cannot be posed rigidly, moved along the path; the revolute drive's equation with one root
 // per turn.
 
@@ -15,6 +16,7 @@
 #include "cranesim/planning/static_map.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/modes.hpp"
+#include "cranesim/solvers/relaxation.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -113,6 +115,24 @@ TEST_CASE("Equilibrium path: loads from 10 t to 500 t, each equilibrium stable",
     const ModalResult modes = computeModes(model, eq.result.q, 0.0, 3);
     CHECK(modes.omega_squared.minCoeff() > -modes.zero_threshold);
   }
+}
+
+TEST_CASE("Relaxation, the independent second method: the condensed crane reeled from its drawing to far controls",
+          "[statics][relaxation][crane]") {
+  // Luffing rope 12 m (drawn 6.145 m: the boom turns from 84° to ~60°), hoist rope 40 m (drawn
+  // 54.8 m). Released at those lengths the ropes would start 6 m slack and 37 % stretched.
+  const CraneCase far{12.0, 40.0};
+  const Scene scene = craneScene("crane_condensed.yaml", far);
+  RelaxationOptions options;
+  options.damping = scene.solver.relaxation_damping;
+  const RelaxationResult relaxed = relaxToEquilibrium(scene, options);
+  INFO(relaxed.equilibrium.message);
+  REQUIRE(relaxed.equilibrium.converged);
+  CHECK(relaxed.equilibrium.iterations <= 3);  // the relaxed state is close: Newton only polishes
+  const Model model = compileModel(scene);
+  const Vec3 load = model.jointFrame(relaxed.equilibrium.q.data(), model.findJoint("load.origin")).r;
+  const CraneEquilibrium path = solveCrane("crane_condensed.yaml", far);
+  CHECK((load - path.load).norm() < 1e-6);
 }
 
 TEST_CASE("Equilibrium path: a drive in a closed loop moves along the path", "[statics][drives]") {

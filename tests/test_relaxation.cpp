@@ -37,7 +37,7 @@ TEST_CASE("Relaxation finds the hanging pendulum where Newton finds the inverted
 
   RelaxationOptions options;
   options.damping = 3.0;  // ≈ 2ω, ω = √(3g/2l) = 3.8 rad/s for the rod
-  const RelaxationResult relaxed = relaxToEquilibrium(scene, model.q0, options);
+  const RelaxationResult relaxed = relaxToEquilibrium(scene, options);
   INFO(relaxed.equilibrium.message);
   REQUIRE(relaxed.equilibrium.converged);
   CHECK(tipHeight(relaxed.equilibrium.q) == Approx(-1.0).margin(1e-9));
@@ -47,7 +47,7 @@ TEST_CASE("Relaxation finds the hanging pendulum where Newton finds the inverted
 
 TEST_CASE("Relaxation hangs a straight slack rope into the elastic catenary", "[statics][relaxation][rope]") {
   // The catenary of test_strut_rope.cpp, started from the straight line between the supports
-  // (22 m of rope over a 20 m span: slack, without transverse stiffness).
+  // and reeled out from the chord to 22 m (slack over a 20 m span: no transverse stiffness).
   const double span = 20.0, L0 = 22.0, radius = 0.01, E = 1e9, rho = 7800.0, g = 9.81;
   const Scene scene = parseScene(R"(
 name: catenary
@@ -66,7 +66,7 @@ solver: {t_end: 1}
   RelaxationOptions options;
   options.damping = 2.0;
   options.duration = 60.0;
-  const RelaxationResult relaxed = relaxToEquilibrium(scene, model.q0, options);
+  const RelaxationResult relaxed = relaxToEquilibrium(scene, options);
   INFO(relaxed.equilibrium.message);
   REQUIRE(relaxed.equilibrium.converged);
   const double A = std::numbers::pi * radius * radius;

@@ -166,6 +166,20 @@ TEST_CASE("Spline rope: constant mass, tension only, energy gradient and Jacobia
   qs << 0, 0, 0, 1.00002, 0, 0, 3.00006, 0, 0, 1.00002, 0, 0;
   const Vq<SplineRopeKernel> vs = 0.01 * v;
   CHECK(jacobianDeviation(damped, qs, vs, a) < 1e-6);
+  // Snapping taut while stretching at ε̇ = 0.1/s: the damped tension EA max(ε + η ε̇, 0) is
+  // continuous where ε crosses 0 (a jump of EA η ε̇ there stalled IDAS at steps of 1e-12 s).
+  const auto straight = [](double strain) {
+    Vq<SplineRopeKernel> qe;
+    qe << 0, 0, 0, 1 + strain, 0, 0, 3 * (1 + strain), 0, 0, 1 + strain, 0, 0;
+    return qe;
+  };
+  Vq<SplineRopeKernel> stretching = Vq<SplineRopeKernel>::Zero();
+  stretching(3) = 0.1, stretching(6) = 0.3, stretching(9) = 0.1;  // ṙ'¹, ṙ², ṙ'²
+  const auto taut = damped.force<double>(straight(1e-9), stretching, 0.0, zero);
+  const auto slack = damped.force<double>(straight(-1e-9), stretching, 0.0, zero);
+  CHECK(taut(6) == Approx(EA * 1e-4).epsilon(1e-4));
+  CHECK((taut - slack).norm() < 1e-4 * taut.norm());
+  CHECK(damped.force<double>(straight(-2e-4), stretching, 0.0, zero).norm() == 0.0);  // below −η ε̇: slack
   // Reeling: the mass follows the unstretched length.
   SplineRopeKernel reeled = k;
   reeled.total_length = Profile(RampProfile{3.0, -0.5, 0.0});

@@ -15,12 +15,6 @@
 namespace cranesim {
 namespace {
 
-/// A rope's unstretched length in the drawing: its chord, less a strain of 1e-3 so that it starts
-/// taut, with axial and transverse stiffness. At the chord itself every Gauss point sits on the
-/// kink of the tension-only law, where the rope has no stiffness, and Newton's first step lets
-/// the boom fall.
-double drawnRopeLength(const MemberSpec& m) { return (1.0 - 1e-3) * (m.end - m.start).norm(); }
-
 /// The value a constraint's drive stands at in the state q (its joints' measured angle,
 /// displacement or distance).
 double driveValueAt(const Model& model, const Constraint& c, const VecX& q) {
@@ -68,6 +62,10 @@ VecX pathTangent(EquilibriumSystem& system, const Eigen::SparseLU<Eigen::SparseM
 }
 
 }  // namespace
+
+// At the chord itself every Gauss point sits on the kink of the tension-only law, where the
+// rope has no stiffness, and Newton's first step lets the boom fall.
+double drawnRopeLength(const MemberSpec& rope) { return (1.0 - 1e-3) * (rope.end - rope.start).norm(); }
 
 std::vector<PathControl> pathControls(const Scene& scene, const Model& model, const VecX& q_drawn, double t) {
   std::vector<PathControl> controls;

@@ -3,8 +3,11 @@
 // q = [r¹, r'¹, r², r'²] (C-141), r' = dr/ds, with the centre line interpolated by cubic Hermite
 // functions (C-142). Tension only (7-1): N = EA max(ε, 0), ε = ‖r'‖ − 1 (C-150); no bending or
 // torsion stiffness; translational inertia only (C-154).
-// Optional Kelvin–Voigt damping with retardation time η while taut: N = EA max(ε + η ε̇, 0),
-// ε̇ = r'·ṙ'/‖r'‖ (the rate at fixed unstretched length; reeling itself is not damped).
+// Optional Kelvin–Voigt damping with retardation time η: N = EA max(ε + η ε̇, 0),
+// ε̇ = r'·ṙ'/‖r'‖ (the rate at fixed unstretched length; reeling itself is not damped). The law is
+// continuous where a rope snaps taut: tension starts at ε = −η ε̇, not with a jump of EA η ε̇ at
+// ε = 0, which no step size resolves (a crane released from its drawing, ropes at ε = 0, stalled
+// IDAS at steps of 1e-12 s). It dissipates in every branch: N ε̇ ≥ d/dt ½ EA max(ε, 0)².
 //
 // The unstretched length may follow a drive, L(t) = length(t)/segments per element; the mass
 // ρA L(t) changes with it, as when a winch reels the rope in or out (6). The equations use
@@ -55,7 +58,7 @@ struct SplineRopeKernel {
       const Vec3T<S> rs = dN.template cast<S>() * q;
       const S stretch = sqrt(rs.squaredNorm());
       S stress = stretch - 1.0;  // σ/E
-      if (stress > 0.0 && damping > 0.0) stress += damping * rs.dot(dN.template cast<S>() * v) / stretch;
+      if (damping > 0.0) stress += damping * rs.dot(dN.template cast<S>() * v) / stretch;
       if (stress > 0.0) F += (rule.weight[g] * L * EA) * (stress / stretch) * (dN.transpose().template cast<S>() * rs);
       F -= (rule.weight[g] * L * rhoA) * (shape(b.N).transpose() * gravity).template cast<S>();
     }

@@ -46,6 +46,10 @@ struct PathOptions {
   double max_angle_step = 0.5;
 };
 
+/// A rope's unstretched length in the drawing: its chord, less a strain of 1e-3 so that it
+/// starts taut, with axial and transverse stiffness, rather than on the tension-only law's kink.
+double drawnRopeLength(const MemberSpec& rope);
+
 /// The path's controls: ropes whose unstretched length differs from their drawn one, drives
 /// whose value at t differs from the one in the drawn state q_drawn (to 1e-12 relative).
 /// `model` is compileModel(scene).
