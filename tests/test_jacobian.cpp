@@ -111,3 +111,38 @@ TEST_CASE("GGL Jacobian equals finite differences of the residual", "[jacobian]"
 TEST_CASE("Baumgarte Jacobian equals finite differences except for the documented ∂Γ/∂q term", "[jacobian]") {
   checkJacobian("baumgarte");
 }
+
+TEST_CASE("Constraint quantities Φ_q, Φ̇ and Γ equal finite differences", "[jacobian][constraints]") {
+  std::string yaml = kScene;
+  yaml.replace(yaml.find("FORM"), 4, "ggl");
+  const Model model = test::loadYaml(yaml);
+  const Assembler a(model);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 3; ++trial) {
+    VecX q(model.nq), v(model.nv);
+    for (int k = 0; k < model.nq; ++k) q(k) = u(rng);
+    for (int k = 0; k < model.nv; ++k) v(k) = u(rng);
+    const double t = 0.7, h = 1e-6;
+    const ConstraintState C = a.constraints(t, q.data(), v.data());
+    MatX Phi_q_fd(model.m, model.nq);
+    for (int k = 0; k < model.nq; ++k) {
+      VecX qp = q, qm = q;
+      qp(k) += h, qm(k) -= h;
+      Phi_q_fd.col(k) = (a.constraints(t, qp.data(), v.data()).phi - a.constraints(t, qm.data(), v.data()).phi) / (2.0 * h);
+    }
+    // Along the motion: q(ε) = q + ε q̇, t + ε; Φ̇ = dΦ/dε, Γ = d(G v + Φ_t)/dε at fixed v
+    // (Φ̈ = G v̇ + Γ).
+    const VecX qdot = a.coordinateRates(q.data(), v.data());
+    const VecX qp = q + h * qdot, qm = q - h * qdot;
+    const ConstraintState Cp = a.constraints(t + h, qp.data(), v.data()), Cm = a.constraints(t - h, qm.data(), v.data());
+    const VecX phi_dot_fd = (Cp.phi - Cm.phi) / (2.0 * h);
+    const VecX gamma_fd = (Cp.G * v + Cp.phi_t - Cm.G * v - Cm.phi_t) / (2.0 * h);
+    INFO("Φ_q " << (MatX(C.Phi_q) - Phi_q_fd).cwiseAbs().maxCoeff() << ", Φ̇ " << (C.phi_dot - phi_dot_fd).cwiseAbs().maxCoeff()
+                << ", Γ " << (C.gamma - gamma_fd).cwiseAbs().maxCoeff() << " (scale " << gamma_fd.cwiseAbs().maxCoeff() << ")");
+    CHECK((MatX(C.Phi_q) - Phi_q_fd).cwiseAbs().maxCoeff() < 1e-8);
+    CHECK((C.phi_dot - phi_dot_fd).cwiseAbs().maxCoeff() < 1e-8);
+    CHECK((C.gamma - gamma_fd).cwiseAbs().maxCoeff() < 1e-7 * std::max(1.0, gamma_fd.cwiseAbs().maxCoeff()));
+  }
+}
+

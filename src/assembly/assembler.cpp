@@ -1,5 +1,8 @@
 #include "cranesim/assembly/assembler.hpp"
 
+#include <algorithm>
+#include <array>
+
 #include "cranesim/assembly/constraint_evaluation.hpp"
 #include "cranesim/math/rotation.hpp"
 
@@ -366,20 +369,33 @@ ConstraintState Assembler::constraints(double t, const double* q, const double* 
   std::vector<Eigen::Triplet<double>> g, pq;
   for (const Constraint& c : model_.constraints) {
     const ConstraintSides s = sidesOf(model_, c);
-    const auto C = evaluateConstraint<ConstraintQDual>(model_, c, q, t, limit);
     const auto vloc = localExtended(model_, s, v, false);
     const auto qdloc = localExtended(model_, s, qdot.data(), true);
+    const auto C = evaluateConstraint<ConstraintRateDual>(model_, c, q, t, limit, qdloc.data());
+    // Φ_q from G: a node's rotation-vector rates φ̇ turn it by the body-frame twist T(φ) φ̇ (2-10).
+    std::array<Mat3, 2> twist_per_phi;
+    for (int side = 0; side < 2; ++side) {
+      const int first = 6 * side + 3;
+      if (std::find(s.directions.begin(), s.directions.end(), first) != s.directions.end())
+        twist_per_phi[side] = angularVelocityMap<double>(Vec3(q + qIndex(model_, s, first)));
+    }
     for (int i = 0; i < c.rows; ++i) {
       const int row = c.row + i;
       out.phi(row) = C.phi(i).value();
       out.phi_t(row) = C.G(i, kTimeDirection).value();
       for (int j = 0; j < kConstraintDirections; ++j) {
         out.phi_dot(row) += C.G(i, j).value() * vloc(j);
-        out.gamma(row) += C.G(i, j).derivatives().dot(qdloc) * vloc(j);
+        out.gamma(row) += C.G(i, j).derivatives()(0) * vloc(j);
       }
       for (int d : s.directions) {
         g.emplace_back(row, vIndex(model_, s, d), C.G(i, d).value());
-        pq.emplace_back(row, qIndex(model_, s, d), C.phi(i).derivatives()(d));
+        const int side = d / 6, k = d % 6;
+        double dphi = C.G(i, d).value();  // ∂Φ/∂r = ∂Φ/∂δr
+        if (k >= 3) {
+          dphi = 0.0;
+          for (int l = 0; l < 3; ++l) dphi += C.G(i, 6 * side + 3 + l).value() * twist_per_phi[side](l, k - 3);
+        }
+        pq.emplace_back(row, qIndex(model_, s, d), dphi);
       }
     }
   }

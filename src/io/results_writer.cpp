@@ -35,7 +35,7 @@ VecX ResultsRecorder::multipliersAt(double t, const double* y, const ConstraintS
   s.q = Eigen::Map<const VecX>(y, model.nq);
   s.v = Eigen::Map<const VecX>(y + assembler_.vOffset(), model.nv);
   try {
-    solveAccelerations(assembler_, s, constraints);
+    accelerations_.solve(assembler_, s, constraints, Limit::Left);
     return s.lambda;
   } catch (const std::exception&) {
     return Eigen::Map<const VecX>(y + assembler_.lambdaOffset(), model.m);

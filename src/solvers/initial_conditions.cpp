@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/SparseLU>
+#include <algorithm>
 #include <limits>
 
 #include "cranesim/math/rotation.hpp"
@@ -76,28 +76,44 @@ void solveAccelerations(const Assembler& assembler, DynamicState& s, Limit limit
 }
 
 void solveAccelerations(const Assembler& assembler, DynamicState& s, const ConstraintState& C, Limit limit) {
+  AccelerationSolver().solve(assembler, s, C, limit);
+}
+
+void AccelerationSolver::solve(const Assembler& assembler, DynamicState& s, const ConstraintState& C, Limit limit) {
   const Model& model = assembler.model();
   const int nv = model.nv, m = model.m;
   const Eigen::SparseMatrix<double> M = assembler.massMatrix(s.t, s.q.data());
   const VecX F = assembler.appliedForces(s.t, s.q.data(), s.v.data(), limit);
-  std::vector<Eigen::Triplet<double>> t;
+  triplets_.clear();
   for (int k = 0; k < M.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) t.emplace_back(it.row(), it.col(), it.value());
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) triplets_.emplace_back(it.row(), it.col(), it.value());
   for (int k = 0; k < C.G.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(C.G, k); it; ++it) {
-      t.emplace_back(nv + it.row(), it.col(), it.value());
-      t.emplace_back(it.col(), nv + it.row(), it.value());
+      triplets_.emplace_back(nv + it.row(), it.col(), it.value());
+      triplets_.emplace_back(it.col(), nv + it.row(), it.value());
     }
-  Eigen::SparseMatrix<double> K(nv + m, nv + m);
-  K.setFromTriplets(t.begin(), t.end());
-  VecX rhs(nv + m);
-  rhs << -F, -C.gamma;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(K);
-  if (lu.info() != Eigen::Success)
+  matrix_.resize(nv + m, nv + m);
+  matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
+  const auto samePattern = [&] {
+    const int* outer = matrix_.outerIndexPtr();
+    const int* inner = matrix_.innerIndexPtr();
+    return analysed_outer_.size() == static_cast<std::size_t>(matrix_.outerSize() + 1) &&
+           std::equal(analysed_outer_.begin(), analysed_outer_.end(), outer) &&
+           analysed_inner_.size() == static_cast<std::size_t>(matrix_.nonZeros()) &&
+           std::equal(analysed_inner_.begin(), analysed_inner_.end(), inner);
+  };
+  if (!samePattern()) {
+    lu_.analyzePattern(matrix_);
+    analysed_outer_.assign(matrix_.outerIndexPtr(), matrix_.outerIndexPtr() + matrix_.outerSize() + 1);
+    analysed_inner_.assign(matrix_.innerIndexPtr(), matrix_.innerIndexPtr() + matrix_.nonZeros());
+  }
+  lu_.factorize(matrix_);
+  if (lu_.info() != Eigen::Success)
     throw std::runtime_error(fmt::format("t = {} s: the saddle-point matrix [M Gᵀ; G 0] is singular "
                                          "(a body without mass or inertia in a free direction?)", s.t));
-  const VecX x = lu.solve(rhs);
+  VecX rhs(nv + m);
+  rhs << -F, -C.gamma;
+  const VecX x = lu_.solve(rhs);
   s.a = x.head(nv);
   s.lambda = x.tail(m);
   s.qdot = assembler.coordinateRates(s.q.data(), s.v.data());

@@ -8,7 +8,9 @@
 //
 // With Q = double this yields Φ, G and Φ_t. With Q = Dual<double, 13> the node coordinates
 // [r, φ] of both nodes and time are seeded once more, so every entry of G also carries its
-// derivatives with respect to q and t: the exact Jacobians of Gᵀλ and G dq, and Γ (4-27).
+// derivatives with respect to q and t: the exact Jacobians of Gᵀλ and G dq. With
+// Q = Dual<double, 1> they are seeded along given rates (q̇, 1) instead: every entry of G
+// carries its rate along the motion, Ġ, which is all Γ (4-27) needs, at a thirteenth the work.
 
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/rotation.hpp"
@@ -21,6 +23,7 @@ inline constexpr int kTimeDirection = 12;
 inline constexpr int kMaxConstraintRows = 6;
 
 using ConstraintQDual = Dual<double, kConstraintDirections>;
+using ConstraintRateDual = Dual<double, 1>;
 
 template <class Q> struct ConstraintDerivatives {
   int rows = 0;
@@ -30,9 +33,15 @@ template <class Q> struct ConstraintDerivatives {
 };
 
 namespace detail {
-template <class Q> Q seedCoordinate(double value, int direction) {
+/// A node coordinate or time as Q: plain, seeded in its own direction (ConstraintQDual), or
+/// seeded with its rate rates[direction] (ConstraintRateDual).
+template <class Q> Q seedCoordinate(double value, int direction, const double* rates) {
   if constexpr (std::is_same_v<Q, double>) {
     return value;
+  } else if constexpr (std::is_same_v<Q, ConstraintRateDual>) {
+    Q x(value);
+    x.derivatives()(0) = rates[direction];
+    return x;
   } else {
     return seeded<double, kConstraintDirections>(value, direction);
   }
@@ -42,8 +51,8 @@ template <class Q> Q seedCoordinate(double value, int direction) {
 /// perturbation is linear in δ, so its derivatives are written down directly:
 /// ∂r_J/∂δr = I, ∂r_J/∂δθ_k = R (e_k × r_BJ), ∂R_J/∂δθ_k = R ẽ_k R_BJ (4-5, 4-7).
 template <class Q>
-FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, int joint,
-                                                           const double* q, int side) {
+FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, int joint, const double* q, int side,
+                                                           const double* rates) {
   using D = Dual<Q, kConstraintDirections>;
   const Joint& J = model.joints[joint];
   FrameT<D> f;
@@ -55,8 +64,8 @@ FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, i
   const Node& N = model.nodes[J.node];
   Vec3T<Q> r, phi = Vec3T<Q>::Zero();
   for (int k = 0; k < 3; ++k) {
-    r(k) = seedCoordinate<Q>(q[N.q + k], 6 * side + k);
-    if (N.hasRotation()) phi(k) = seedCoordinate<Q>(q[N.q + 3 + k], 6 * side + 3 + k);
+    r(k) = seedCoordinate<Q>(q[N.q + k], 6 * side + k, rates);
+    if (N.hasRotation()) phi(k) = seedCoordinate<Q>(q[N.q + 3 + k], 6 * side + 3 + k, rates);
   }
   const Mat3T<Q> R = N.hasRotation() ? rotationMatrix<Q>(phi) : Mat3T<Q>::Identity();
   const Vec3T<Q> offset = J.offset.cast<Q>();
@@ -77,13 +86,15 @@ FrameT<Dual<Q, kConstraintDirections>> perturbedJointFrame(const Model& model, i
 }
 }  // namespace detail
 
+/// `rates`: with Q = ConstraintRateDual, the rates of the constraint's 13 local coordinates
+/// (both nodes' [r, φ] and time, as the directions of G).
 template <class Q>
-ConstraintDerivatives<Q> evaluateConstraint(const Model& model, const Constraint& c,
-                                            const double* q, double t, Limit limit = Limit::Left) {
+ConstraintDerivatives<Q> evaluateConstraint(const Model& model, const Constraint& c, const double* q, double t,
+                                            Limit limit = Limit::Left, const double* rates = nullptr) {
   using D = Dual<Q, kConstraintDirections>;
-  const FrameT<D> j1 = detail::perturbedJointFrame<Q>(model, c.joint1, q, 0);
-  const FrameT<D> j2 = detail::perturbedJointFrame<Q>(model, c.joint2, q, 1);
-  const D time = seeded<Q, kConstraintDirections>(detail::seedCoordinate<Q>(t, kTimeDirection),
+  const FrameT<D> j1 = detail::perturbedJointFrame<Q>(model, c.joint1, q, 0, rates);
+  const FrameT<D> j2 = detail::perturbedJointFrame<Q>(model, c.joint2, q, 1, rates);
+  const D time = seeded<Q, kConstraintDirections>(detail::seedCoordinate<Q>(t, kTimeDirection, rates),
                                                   kTimeDirection);
   D phi[kMaxConstraintRows];
   constraintEquations<D>(c.law(limit), j1, j2, time, phi);

@@ -44,6 +44,7 @@ class ResultsRecorder final : public SampleSink {
   VecX multipliersAt(double t, const double* y, const ConstraintState& constraints) const;
 
   const Assembler& assembler_;
+  mutable AccelerationSolver accelerations_;  // the multipliers at every sample
   std::vector<double> time_, state_;
   std::vector<std::vector<double>> body_position_, body_rotation_, body_velocity_, body_omega_;
   std::vector<std::vector<double>> joint_position_, joint_rotation_;

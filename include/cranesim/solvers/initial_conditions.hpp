@@ -4,6 +4,10 @@
 //   [M  Gᵀ] [d(dq)/dt]   [−F + Q]
 //   [G  0 ] [   λ    ] = [  −Γ  ].
 
+#include <Eigen/SparseLU>
+
+#include <vector>
+
 #include "cranesim/assembly/assembler.hpp"
 
 namespace cranesim {
@@ -38,6 +42,20 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
 /// then assembled as by consistentInitialState.
 DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance,
                                    AssemblyMove* move = nullptr);
+
+/// Solves the saddle-point system (4-3) for a and λ. Keeps the sparse LU's column ordering and
+/// symbolic analysis while the matrix pattern stays the same, as it does from one output sample
+/// to the next (the analysis was a third of a sample's cost on the crane).
+class AccelerationSolver {
+ public:
+  void solve(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints, Limit limit);
+
+ private:
+  std::vector<Eigen::Triplet<double>> triplets_;
+  Eigen::SparseMatrix<double> matrix_;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
+  std::vector<int> analysed_outer_, analysed_inner_;  // the pattern lu_ was analysed for
+};
 
 /// Recomputes a, λ and q̇ for a state whose q and v are already consistent. `limit`: Right
 /// when restarting from a breakpoint, so the accelerations are those of the coming segment.
