@@ -64,7 +64,7 @@ DynamicState drawnState(const Model& model, const Assembler& assembler, bool qui
   AssemblyMove move;
   DynamicState drawn =
       assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance, &move);
-  if (!quiet && (move.displacement > 1e-9 * move.scene_size || move.rotation > 1e-9))
+  if (!quiet && move.visible())
     fmt::print(stderr, "assembled: the drawing closed by moving {}\n", move.describe());
   return drawn;
 }
@@ -262,7 +262,7 @@ int check(const std::string& scene_path) {
   AssemblyMove move;
   assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance, &move);
   fmt::print("{}", modelSummary(assembler));
-  if (move.displacement > 1e-9 * move.scene_size || move.rotation > 1e-9)
+  if (move.visible())
     fmt::print("initial state: assembled; largest move {} (solver.assembly_tolerance = {:g})\n", move.describe(),
                model.solver.assembly_tolerance);
   else

@@ -28,6 +28,8 @@ struct AssemblyMove {
   std::string displaced_joint, rotated_joint;
   /// "0.87 mm at joint 'jib.tip'; 1.2e-05 rad at 'jib.tip'", for the tools' reports.
   std::string describe() const;
+  /// Whether the drawing moved by more than rounding (1e-9 of its size, or 1e-9 rad).
+  bool visible() const { return displacement > 1e-9 * scene_size || rotation > 1e-9; }
 };
 
 /// Assembles (q, v): positions closed onto Φ = 0 by the least change of the coordinates
