@@ -49,8 +49,7 @@
 //
 // The elastic forces need no AD (J_d in closed form); the inertial forces use one forward-AD
 // direction on top of S, so KernelElement's Jacobian (S itself a dual number) stays at two
-// levels of nesting, the most Eigen's AutoDiffScalar supports with the double literals of
-// rotation.hpp.
+// levels of nesting.
 
 #include <cmath>
 #include <numbers>

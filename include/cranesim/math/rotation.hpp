@@ -33,7 +33,7 @@ template <class S> S sinc(const S& t2) {
 }
 // (1 − cos θ) / θ²
 template <class S> S cosc(const S& t2) {
-  using std::cos;
+  using std::cos, std::sqrt;
   if (t2 < kSeriesThreshold) return 0.5 - t2 / 24.0 + t2 * t2 / 720.0 - t2 * t2 * t2 / 40320.0;
   return (1.0 - cos(sqrt(t2))) / t2;
 }
