@@ -28,14 +28,15 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
       joint_position_(assembler.model().joints.size()),
       joint_rotation_(assembler.model().joints.size()) {}
 
-VecX ResultsRecorder::multipliersAt(double t, const double* y, const ConstraintState& constraints) const {
+VecX ResultsRecorder::multipliersAt(double t, const double* y, const ConstraintState& constraints,
+                                    const Eigen::SparseMatrix<double>& mass) const {
   const Model& model = assembler_.model();
   DynamicState s;
   s.t = t;
   s.q = Eigen::Map<const VecX>(y, model.nq);
   s.v = Eigen::Map<const VecX>(y + assembler_.vOffset(), model.nv);
   try {
-    accelerations_.solve(assembler_, s, constraints, Limit::Left);
+    accelerations_.solve(assembler_, s, constraints, mass, Limit::Left);
     return s.lambda;
   } catch (const std::exception&) {
     return Eigen::Map<const VecX>(y + assembler_.lambdaOffset(), model.m);
@@ -47,9 +48,10 @@ void ResultsRecorder::sample(double t, const double* y, double drive_work, doubl
   const double* q = y;
   const double* v = y + assembler_.vOffset();
   const ConstraintState C = assembler_.constraints(t, q, v);
+  const Eigen::SparseMatrix<double> M = assembler_.massMatrix(t, q);  // for λ and T = ½ dqᵀ M dq
   time_.push_back(t);
   append(state_, y, model.nq + model.nv);
-  append(state_, multipliersAt(t, y, C).data(), model.m);
+  append(state_, multipliersAt(t, y, C, M).data(), model.m);
   for (std::size_t n = 0; n < model.nodes.size(); ++n) {
     const Frame f = model.nodeFrame(q, static_cast<int>(n));
     append(body_position_[n], f.r.data(), 3);
@@ -62,7 +64,8 @@ void ResultsRecorder::sample(double t, const double* y, double drive_work, doubl
     append(joint_position_[j], f.r.data(), 3);
     appendRowMajor(joint_rotation_[j], f.R);
   }
-  const double T = assembler_.kineticEnergy(t, q, v), V = assembler_.potentialEnergy(t, q);
+  const Eigen::Map<const VecX> dq(v, model.nv);
+  const double T = 0.5 * dq.dot(M * dq), V = assembler_.potentialEnergy(t, q);
   kinetic_.push_back(T);
   potential_.push_back(V);
   drive_work_.push_back(drive_work);

@@ -1,6 +1,7 @@
 #include "cranesim/solvers/initial_conditions.hpp"
 
 #include <fmt/format.h>
+#include <klu.h>
 
 #include <algorithm>
 #include <limits>
@@ -79,10 +80,59 @@ void solveAccelerations(const Assembler& assembler, DynamicState& s, const Const
   AccelerationSolver().solve(assembler, s, C, limit);
 }
 
+/// KLU's analysis of one pattern and the latest factorisation on it.
+struct AccelerationSolver::Factorisation {
+  klu_common common;
+  klu_symbolic* symbolic = nullptr;
+  klu_numeric* numeric = nullptr;
+  std::vector<int> outer, inner;  // the pattern `symbolic` was analysed for
+
+  Factorisation() { klu_defaults(&common); }
+  ~Factorisation() { release(); }
+  void release() {
+    if (numeric) klu_free_numeric(&numeric, &common);
+    if (symbolic) klu_free_symbolic(&symbolic, &common);
+  }
+  bool analysed(const Eigen::SparseMatrix<double>& A) const {
+    return symbolic && std::equal(outer.begin(), outer.end(), A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1) &&
+           std::equal(inner.begin(), inner.end(), A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  }
+  /// Factorises A (compressed, column-major); false when it is singular.
+  bool factorise(Eigen::SparseMatrix<double>& A) {
+    int* Ap = A.outerIndexPtr();
+    int* Ai = A.innerIndexPtr();
+    if (!analysed(A)) {
+      release();
+      outer.assign(Ap, Ap + A.outerSize() + 1);
+      inner.assign(Ai, Ai + A.nonZeros());
+      symbolic = klu_analyze(static_cast<int>(A.rows()), Ap, Ai, &common);
+      if (!symbolic) return false;
+    }
+    // The previous pivot sequence serves while the factors stay as well conditioned as KLU's
+    // own test in SUNDIALS asks (reciprocal pivot growth above ε^(2/3)); else pivot anew.
+    if (numeric && klu_refactor(Ap, Ai, A.valuePtr(), symbolic, numeric, &common) && klu_rcond(symbolic, numeric, &common) &&
+        common.rcond > kRefactorConditionLimit)
+      return true;
+    if (numeric) klu_free_numeric(&numeric, &common);
+    numeric = klu_factor(Ap, Ai, A.valuePtr(), symbolic, &common);
+    return numeric != nullptr && common.status == KLU_OK;
+  }
+  static constexpr double kRefactorConditionLimit = 3.7e-11;  // ε^(2/3)
+};
+
+AccelerationSolver::AccelerationSolver() : lu_(std::make_unique<Factorisation>()) {}
+AccelerationSolver::~AccelerationSolver() = default;
+AccelerationSolver::AccelerationSolver(AccelerationSolver&&) noexcept = default;
+AccelerationSolver& AccelerationSolver::operator=(AccelerationSolver&&) noexcept = default;
+
 void AccelerationSolver::solve(const Assembler& assembler, DynamicState& s, const ConstraintState& C, Limit limit) {
+  solve(assembler, s, C, assembler.massMatrix(s.t, s.q.data()), limit);
+}
+
+void AccelerationSolver::solve(const Assembler& assembler, DynamicState& s, const ConstraintState& C,
+                               const Eigen::SparseMatrix<double>& M, Limit limit) {
   const Model& model = assembler.model();
   const int nv = model.nv, m = model.m;
-  const Eigen::SparseMatrix<double> M = assembler.massMatrix(s.t, s.q.data());
   const VecX F = assembler.appliedForces(s.t, s.q.data(), s.v.data(), limit);
   triplets_.clear();
   for (int k = 0; k < M.outerSize(); ++k)
@@ -94,26 +144,12 @@ void AccelerationSolver::solve(const Assembler& assembler, DynamicState& s, cons
     }
   matrix_.resize(nv + m, nv + m);
   matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
-  const auto samePattern = [&] {
-    const int* outer = matrix_.outerIndexPtr();
-    const int* inner = matrix_.innerIndexPtr();
-    return analysed_outer_.size() == static_cast<std::size_t>(matrix_.outerSize() + 1) &&
-           std::equal(analysed_outer_.begin(), analysed_outer_.end(), outer) &&
-           analysed_inner_.size() == static_cast<std::size_t>(matrix_.nonZeros()) &&
-           std::equal(analysed_inner_.begin(), analysed_inner_.end(), inner);
-  };
-  if (!samePattern()) {
-    lu_.analyzePattern(matrix_);
-    analysed_outer_.assign(matrix_.outerIndexPtr(), matrix_.outerIndexPtr() + matrix_.outerSize() + 1);
-    analysed_inner_.assign(matrix_.innerIndexPtr(), matrix_.innerIndexPtr() + matrix_.nonZeros());
-  }
-  lu_.factorize(matrix_);
-  if (lu_.info() != Eigen::Success)
+  if (!lu_->factorise(matrix_))
     throw std::runtime_error(fmt::format("t = {} s: the saddle-point matrix [M Gᵀ; G 0] is singular "
                                          "(a body without mass or inertia in a free direction?)", s.t));
-  VecX rhs(nv + m);
-  rhs << -F, -C.gamma;
-  const VecX x = lu_.solve(rhs);
+  VecX x(nv + m);
+  x << -F, -C.gamma;
+  klu_solve(lu_->symbolic, lu_->numeric, nv + m, 1, x.data(), &lu_->common);
   s.a = x.head(nv);
   s.lambda = x.tail(m);
   s.qdot = assembler.coordinateRates(s.q.data(), s.v.data());

@@ -41,7 +41,8 @@ class ResultsRecorder final : public SampleSink {
   void write(const std::string& path, const Metadata& meta, const SimulationOutcome& outcome) const;
 
  private:
-  VecX multipliersAt(double t, const double* y, const ConstraintState& constraints) const;
+  VecX multipliersAt(double t, const double* y, const ConstraintState& constraints,
+                     const Eigen::SparseMatrix<double>& mass) const;
 
   const Assembler& assembler_;
   mutable AccelerationSolver accelerations_;  // the multipliers at every sample

@@ -4,8 +4,7 @@
 //   [M  Gᵀ] [d(dq)/dt]   [−F + Q]
 //   [G  0 ] [   λ    ] = [  −Γ  ].
 
-#include <Eigen/SparseLU>
-
+#include <memory>
 #include <vector>
 
 #include "cranesim/assembly/assembler.hpp"
@@ -45,18 +44,26 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
 DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance,
                                    AssemblyMove* move = nullptr);
 
-/// Solves the saddle-point system (4-3) for a and λ. Keeps the sparse LU's column ordering and
-/// symbolic analysis while the matrix pattern stays the same, as it does from one output sample
-/// to the next (the analysis was a third of a sample's cost on the crane).
+/// Solves the saddle-point system (4-3) for a and λ by KLU. Keeps the ordering and symbolic
+/// analysis while the matrix pattern stays the same, as it does from one output sample to the
+/// next, and refactors with the previous pivot sequence while that stays well conditioned.
 class AccelerationSolver {
  public:
+  AccelerationSolver();
+  ~AccelerationSolver();
+  AccelerationSolver(AccelerationSolver&&) noexcept;
+  AccelerationSolver& operator=(AccelerationSolver&&) noexcept;
+
   void solve(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints, Limit limit);
+  /// The same with the mass matrix M(state.q) at hand.
+  void solve(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints,
+             const Eigen::SparseMatrix<double>& mass, Limit limit);
 
  private:
+  struct Factorisation;  // KLU's symbolic and numeric objects
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SparseMatrix<double> matrix_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu_;
-  std::vector<int> analysed_outer_, analysed_inner_;  // the pattern lu_ was analysed for
+  std::unique_ptr<Factorisation> lu_;
 };
 
 /// Recomputes a, λ and q̇ for a state whose q and v are already consistent. `limit`: Right
