@@ -86,3 +86,11 @@ TEST_CASE("Re-parameterisation keeps the rotation and maps θ to 2π − θ", "[
   Vec3 small = Vec3(0.1, 0.2, 0.3);
   CHECK_FALSE(reparameterise(small));
 }
+
+TEST_CASE("exp and T(φ) computed together equal Rodrigues' formula and (B-8)", "[rotation]") {
+  for (const Vec3& phi : samplePhis()) {
+    const RotationAndRateMap<double> both = rotationAndRateMap<double>(phi);
+    CHECK((both.R - rotationMatrix<double>(phi)).cwiseAbs().maxCoeff() < 1e-15);
+    CHECK((both.T - angularVelocityMap<double>(phi)).cwiseAbs().maxCoeff() < 1e-15);
+  }
+}

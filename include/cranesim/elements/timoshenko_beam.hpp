@@ -345,19 +345,19 @@ struct TimoshenkoBeamKernel {
 
   template <class T> SectionMap<T> sectionMap(const EndFrames<T>& e, double xi) const {
     const HermiteBasis h = hermiteBasis(xi, length);
-    const Mat3T<T> ex = skew<T>(Vec3T<T>(Vec3T<T>::UnitX()));
     SectionMap<T> m;
-    // x = N0¹ r¹ + N1¹ R¹e_x + N0² r² + N1² R²e_x (A-9 with unit end slopes); d(Re_x)/dt = −R ẽ_x ω.
+    // x = N0¹ r¹ + N1¹ R¹e_x + N0² r² + N1² R²e_x (A-9 with unit end slopes); d(Re_x)/dt = −R ẽ_x ω,
+    // where R ẽ_x = [0, R e_z, −R e_y].
     m.x = T(h.N[0]) * e.r1 + T(h.N[1]) * e.R1.col(0) + T(h.N[2]) * e.r2 + T(h.N[3]) * e.R2.col(0);
     m.a[0] = h.N[0], m.a[1] = h.N[2];
-    m.X[0] = T(-h.N[1]) * (e.R1 * ex);
-    m.X[1] = T(-h.N[3]) * (e.R2 * ex);
+    const T n1(-h.N[1]), n3(-h.N[3]);
+    m.X[0] << Vec3T<T>::Zero(), n1 * e.R1.col(2), -n1 * e.R1.col(1);
+    m.X[1] << Vec3T<T>::Zero(), n3 * e.R2.col(2), -n3 * e.R2.col(1);
     // R_c = R¹ exp(ξφ̃): Ω = exp(ξφ̃)ᵀ ω¹ + ξ T(ξφ) φ̇, φ̇ = T(φ)⁻¹ (ω² − Rrelᵀ ω¹) (2-10, B-8).
-    const Vec3T<T> xphi = T(xi) * e.phi;
-    const Mat3T<T> E = rotationMatrix<T>(xphi);
-    const Mat3T<T> xT = T(xi) * angularVelocityMap<T>(xphi);
-    m.Rc = e.R1 * E;
-    m.W[0] = E.transpose() - xT * e.TinvRrelT;
+    const RotationAndRateMap<T> E = rotationAndRateMap<T>(Vec3T<T>(T(xi) * e.phi));
+    const Mat3T<T> xT = T(xi) * E.T;
+    m.Rc = e.R1 * E.R;
+    m.W[0] = E.R.transpose() - xT * e.TinvRrelT;
     m.W[1] = xT * e.Tinv;
     return m;
   }

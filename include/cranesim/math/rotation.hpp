@@ -67,6 +67,25 @@ template <class S> Mat3T<S> angularVelocityMap(const Vec3T<S>& phi) {
   return Mat3T<S>::Identity() - detail::cosc(t2) * P + detail::sinc3(t2) * (P * P);
 }
 
+/// R = exp(φ̃) and T(φ) together, sharing θ, its sine and cosine and φ̃² (the interpolated
+/// sections of the beam kernels need both at every Gauss point).
+template <class S> struct RotationAndRateMap {
+  Mat3T<S> R, T;
+};
+template <class S> RotationAndRateMap<S> rotationAndRateMap(const Vec3T<S>& phi) {
+  using std::cos, std::sin, std::sqrt;
+  const S t2 = phi.squaredNorm();
+  const Mat3T<S> P = skew(phi), P2 = P * P;
+  S sinc, cosc, sinc3;  // sin θ/θ, (1 − cos θ)/θ², (θ − sin θ)/θ³
+  if (t2 < detail::kSeriesThreshold) {
+    sinc = detail::sinc(t2), cosc = detail::cosc(t2), sinc3 = detail::sinc3(t2);
+  } else {
+    const S t = sqrt(t2), st = sin(t);
+    sinc = st / t, cosc = (1.0 - cos(t)) / t2, sinc3 = (t - st) / (t2 * t);
+  }
+  return {Mat3T<S>::Identity() + sinc * P + cosc * P2, Mat3T<S>::Identity() - cosc * P + sinc3 * P2};
+}
+
 /// T(φ)⁻¹: φ̇ = T(φ)⁻¹ ω. Singular at θ = 2π, hence the re-parameterisation below.
 template <class S> Mat3T<S> angularVelocityMapInverse(const Vec3T<S>& phi) {
   const S t2 = phi.squaredNorm();
