@@ -108,8 +108,9 @@ struct AccelerationSolver::Factorisation {
       symbolic = klu_analyze(static_cast<int>(A.rows()), Ap, Ai, &common);
       if (!symbolic) return false;
     }
-    // The previous pivot sequence serves while the factors stay as well conditioned as KLU's
-    // own test in SUNDIALS asks (reciprocal pivot growth above ε^(2/3)); else pivot anew.
+    // The previous pivot sequence serves while KLU's cheap condition estimate min|u_ii| / max|u_ii|
+    // stays above ε^(2/3), SUNDIALS' own test for its KLU solver; else pivot anew. (On the
+    // crane's 600 output samples it stays near 6e-8: every sample refactors.)
     if (numeric && klu_refactor(Ap, Ai, A.valuePtr(), symbolic, numeric, &common) && klu_rcond(symbolic, numeric, &common) &&
         common.rcond > kRefactorConditionLimit)
       return true;

@@ -75,7 +75,7 @@ template <class T, int N> class Dual {
     for (int k = 0; k < N; ++k) r.derivatives_(k) = -a.derivatives_(k);
     return r;
   }
-  friend const Dual& operator+(const Dual& a) { return a; }
+  friend Dual operator+(const Dual& a) { return a; }
 
   friend Dual operator+(const Dual& a, const Dual& b) {
     Dual r;
