@@ -32,9 +32,21 @@ namespace {
 
 using namespace cranesim;
 
-constexpr int kExitInterrupted = 130;
-
 std::atomic<bool> g_interrupted{false};
+std::atomic<int> g_signal{0};
+
+/// SIGINT (Ctrl-C), SIGTERM (a batch system's stop) and SIGHUP (a closed terminal) end a run
+/// cleanly: the time loop stops at its next step and the results so far are written, marked
+/// incomplete; the exit code is then 128 + the signal's number, as the shell's.
+void stopOnSignals() {
+  struct sigaction action {};
+  action.sa_handler = [](int signal) {
+    g_signal = signal;
+    g_interrupted = true;
+  };
+  sigemptyset(&action.sa_mask);
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &action, nullptr);
+}
 
 /// A one-line progress display on a terminal: simulated time, percent, real-time factor.
 class ProgressLine {
@@ -145,10 +157,11 @@ std::string instability(const Model& model, const StaticResult& eq, bool quiet =
 }
 
 int run(const std::string& scene_path, std::string out, bool quiet) {
+  stopOnSignals();
   const Scene scene = readScene(scene_path);
+  out = outputPath(scene_path, out, ".h5");
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  out = outputPath(scene_path, out, ".h5");
   DynamicState initial;
   if (model.solver.start_from_equilibrium) {
     const StaticResult eq = equilibrium(scene, model, assembler, quiet);
@@ -167,7 +180,6 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   SimulationControl control;
   control.on_step = [&](double t) { progress.update(t); };
   control.stop_requested = &g_interrupted;
-  std::signal(SIGINT, [](int) { g_interrupted = true; });
   const SimulationOutcome outcome = simulate(assembler, initial, recorder, control);
   progress.finish();
 
@@ -195,7 +207,7 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   }
   if (!outcome.complete) {
     fmt::print(stderr, "error: {}\n", outcome.message);
-    return g_interrupted ? kExitInterrupted : kExitSolverFailure;
+    return g_interrupted ? 128 + g_signal : kExitSolverFailure;
   }
   return 0;
 }
@@ -211,9 +223,9 @@ StaticResult reportedEquilibrium(const Scene& scene, const Model& model, const A
 
 int statics(const std::string& scene_path, std::string out) {
   const Scene scene = readScene(scene_path);
+  out = outputPath(scene_path, out, "_static.h5");
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  out = outputPath(scene_path, out, "_static.h5");
   const StaticResult eq = reportedEquilibrium(scene, model, assembler);
   const std::string unstable = instability(model, eq);
   ResultsRecorder recorder(assembler);
@@ -236,9 +248,9 @@ int statics(const std::string& scene_path, std::string out) {
 /// shapes in the HDF5 file.
 int modes(const std::string& scene_path, std::string out, int count) {
   const Scene scene = readScene(scene_path);
+  out = outputPath(scene_path, out, "_modes.h5");
   const Model model = compileModel(scene);
   const Assembler assembler(model);
-  out = outputPath(scene_path, out, "_modes.h5");
   const StaticResult eq = reportedEquilibrium(scene, model, assembler);
   const ModalResult modal = computeModes(model, eq.q, eq.t, count);
   fmt::print("degrees of freedom: {}, rigid-body modes: {}, stiffness asymmetry: {:.2g}\n", modal.free_dofs,

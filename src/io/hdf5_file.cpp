@@ -1,7 +1,12 @@
 #include "hdf5_file.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 namespace cranesim {
@@ -19,14 +24,53 @@ hid_t linkCreationProperties() {
 
 }  // namespace
 
-Hdf5File::Hdf5File(const std::string& path) {
-  file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (file_ < 0) throw std::runtime_error(fmt::format("cannot create the results file '{}'", path));
+Hdf5File::Hdf5File() {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // failures are reported by the statuses checked here
+  const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_fapl_core(access, 1 << 20, /*backing_store=*/0);
+  file_ = H5Fcreate("results", H5F_ACC_TRUNC, H5P_DEFAULT, access);
+  H5Pclose(access);
+  if (file_ < 0) throw std::runtime_error("HDF5: cannot create a file in memory");
 }
 
 Hdf5File::~Hdf5File() {
   if (file_ >= 0) H5Fclose(file_);
 }
+
+void Hdf5File::save(const std::string& path) {
+  require(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush the file");
+  const ssize_t size = H5Fget_file_image(file_, nullptr, 0);
+  require(size < 0 ? -1 : 0, "take the file's image");
+  std::vector<char> image(static_cast<std::size_t>(size));
+  require(H5Fget_file_image(file_, image.data(), image.size()) < 0 ? -1 : 0, "take the file's image");
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const auto fail = [&](const char* what) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    throw std::runtime_error(fmt::format("{}: {}", what, why));
+  };
+  if (fd < 0) fail("cannot create it");
+  for (std::size_t done = 0; done < image.size();) {
+    const ssize_t n = ::write(fd, image.data() + done, image.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) fail("cannot write it");
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) fail("cannot sync it to disk");
+  if (::close(fd) != 0) fail("cannot close it");
+}
+
+namespace hdf5_detail {
+
+void abandon(const std::string& partial, const std::string& path, const std::string& why) {
+  std::error_code ignored;
+  std::filesystem::remove(partial, ignored);
+  const bool older = std::filesystem::exists(path, ignored);
+  throw std::runtime_error(fmt::format("cannot write '{}': {}{}", path, why,
+                                       older ? " (the older file there is kept)" : ""));
+}
+
+}  // namespace hdf5_detail
 
 void Hdf5File::ensureGroup(const std::string& path) {
   if (H5Lexists(file_, path.c_str(), H5P_DEFAULT) > 0) return;

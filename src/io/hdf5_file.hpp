@@ -1,8 +1,13 @@
 #pragma once
-// Thin RAII helpers over the HDF5 C API for writing numeric datasets and string attributes.
+// Thin RAII helpers over the HDF5 C API for writing numeric datasets and string attributes, and
+// the one way results files are written. A file is assembled in memory (HDF5's core driver) and
+// then written to disk by plain, checked POSIX calls under a temporary name, synced and renamed:
+// HDF5 itself never meets a failing disk (a full disk used to crash it at exit), and a failed
+// write never replaces an older good file.
 
 #include <hdf5.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -10,7 +15,7 @@ namespace cranesim {
 
 class Hdf5File {
  public:
-  explicit Hdf5File(const std::string& path);  // creates (truncates)
+  Hdf5File();  // an empty file in memory
   ~Hdf5File();
   Hdf5File(const Hdf5File&) = delete;
   Hdf5File& operator=(const Hdf5File&) = delete;
@@ -22,9 +27,34 @@ class Hdf5File {
   void attribute(const std::string& object, const std::string& name, double value);
   void attribute(const std::string& object, const std::string& name, long value);
   void ensureGroup(const std::string& path);
+  /// Writes the file's image to `path` (created or truncated) and syncs it to disk; throws when
+  /// any step fails.
+  void save(const std::string& path);
 
  private:
   hid_t file_ = -1;
 };
+
+/// Writes `path` by `write(Hdf5File&)`: the image saved to `path`.partial, then renamed over
+/// `path`. On any failure the partial file is removed and the error rethrown naming `path`: an
+/// older file at `path` stays as it was.
+template <class Write> void writeResultsFile(const std::string& path, const Write& write);
+
+namespace hdf5_detail {
+/// Removes `partial` and throws a runtime_error "cannot write `path`: why (…kept)".
+[[noreturn]] void abandon(const std::string& partial, const std::string& path, const std::string& why);
+}  // namespace hdf5_detail
+
+template <class Write> void writeResultsFile(const std::string& path, const Write& write) {
+  const std::string partial = path + ".partial";
+  try {
+    Hdf5File file;
+    write(file);
+    file.save(partial);
+    std::filesystem::rename(partial, path);
+  } catch (const std::exception& e) {
+    hdf5_detail::abandon(partial, path, e.what());
+  }
+}
 
 }  // namespace cranesim

@@ -1,7 +1,6 @@
 #include "cranesim/io/modes_writer.hpp"
 
 #include <array>
-#include <filesystem>
 
 #include "cranesim/version.hpp"
 #include "hdf5_file.hpp"
@@ -42,9 +41,7 @@ Vec3 jointDisplacement(const Model& model, const VecX& q, int joint, const VecX&
 
 void writeModes(const std::string& path, const Model& model, const VecX& q_eq, const ModalResult& modes,
                 const ModesMetadata& meta) {
-  const std::string partial = path + ".partial";
-  {
-    Hdf5File file(partial);
+  writeResultsFile(path, [&](Hdf5File& file) {
     file.attribute("/", "engine_version", std::string(kVersion));
     file.attribute("/", "scene_path", meta.scene_path);
     file.attribute("/", "scene_text", meta.scene_text);
@@ -84,8 +81,7 @@ void writeModes(const std::string& path, const Model& model, const VecX& q_eq, c
     file.writeDoubles("/equilibrium/joint_positions", {nj, 3}, positions.data());
     file.writeStrings("/model/joints", {nj}, joints);
     file.writeStrings("/model/velocity_labels", {nv}, velocityLabels(model));
-  }
-  std::filesystem::rename(partial, path);
+  });
 }
 
 }  // namespace cranesim

@@ -1,6 +1,5 @@
 #include "cranesim/io/plan_writer.hpp"
 
-#include <filesystem>
 
 #include "cranesim/version.hpp"
 #include "hdf5_file.hpp"
@@ -135,9 +134,7 @@ void writeVerification(Hdf5File& file, const QuasiStaticPlan& plan) {
 }  // namespace
 
 void writePlan(const std::string& path, const TargetSpec& target, const QuasiStaticPlan& plan, bool map_only) {
-  const std::string partial = path + ".partial";
-  {
-    Hdf5File file(partial);
+  writeResultsFile(path, [&](Hdf5File& file) {
     file.attribute("/", "engine_version", std::string(kVersion));
     file.attribute("/", "target_path", target.path);
     file.attribute("/", "target_text", target.text);
@@ -154,8 +151,7 @@ void writePlan(const std::string& path, const TargetSpec& target, const QuasiSta
                                         std::pair{"trajectory_s", plan.trajectory_s}, std::pair{"controls_s", plan.controls_s},
                                         std::pair{"inversion_s", plan.inversion_s}, std::pair{"verification_s", plan.verification_s}})
       file.attribute("/timing", name, seconds);
-  }
-  std::filesystem::rename(partial, path);
+  });
 }
 
 }  // namespace cranesim

@@ -1,7 +1,6 @@
 #include "cranesim/io/results_writer.hpp"
 
 #include <cstdio>
-#include <filesystem>
 
 #include "cranesim/version.hpp"
 #include "hdf5_file.hpp"
@@ -90,9 +89,7 @@ std::vector<double> ResultsRecorder::stateColumn(int k) const {
 
 void ResultsRecorder::write(const std::string& path, const Metadata& meta, const SimulationOutcome& outcome) const {
   const Model& model = assembler_.model();
-  const std::string partial = path + ".partial";
-  {
-    Hdf5File file(partial);
+  writeResultsFile(path, [&](Hdf5File& file) {
     const hsize_t N = time_.size();
     const int width = model.nq + model.nv + model.m;
     file.attribute("/", "engine_version", std::string(kVersion));
@@ -173,8 +170,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     file.attribute("/solver", "atol", model.solver.atol);
     file.attribute("/solver", "last_step_size", st.last_step_size);
     file.attribute("/solver", "last_order", static_cast<long>(st.last_order));
-  }
-  std::filesystem::rename(partial, path);
+  });
 }
 
 }  // namespace cranesim

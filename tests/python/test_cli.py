@@ -362,3 +362,75 @@ def test_static_refuses_an_unstable_equilibrium(method: str, code: int, tmp_path
     else:
         assert "stability: stable" in result.stderr
         assert status == "complete"
+
+
+# Output and signals (issue 19): the output path is checked before any work, a failed write never
+# replaces an older result, and SIGTERM / SIGHUP end a run as Ctrl-C does, results kept.
+
+def test_output_that_is_the_scene_is_refused(short_pendulum: Path, tmp_path: Path):
+    scene = tmp_path / "scene.yaml"
+    scene.write_text(short_pendulum.read_text(encoding="utf-8"), encoding="utf-8")
+    result = crane_sim("run", scene, "-o", scene, "--quiet", cwd=tmp_path)
+    assert result.returncode == EXIT_BAD_INPUT
+    assert "-o" in result.stderr and "input file itself" in result.stderr
+    assert scene.read_text(encoding="utf-8") == short_pendulum.read_text(encoding="utf-8")
+
+
+def test_output_that_is_a_directory_is_refused(short_pendulum: Path, tmp_path: Path):
+    (tmp_path / "results").mkdir()
+    result = crane_sim("run", short_pendulum, "-o", tmp_path / "results", "--quiet", cwd=tmp_path)
+    assert result.returncode == EXIT_BAD_INPUT
+    assert "is a directory" in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["results"]
+
+
+def test_output_that_cannot_be_written_is_refused_before_the_run(short_pendulum: Path, tmp_path: Path):
+    # /proc takes no new files, not even from root.
+    result = crane_sim("static", short_pendulum, "-o", "/proc/cranesim_results.h5", cwd=tmp_path)
+    assert result.returncode == EXIT_BAD_INPUT, result.stderr
+    assert "cannot write the results next to '/proc/cranesim_results.h5'" in result.stderr
+    assert "static equilibrium" not in result.stderr  # refused before any work
+
+
+def test_a_failed_write_keeps_the_older_results(short_pendulum: Path, tmp_path: Path):
+    import resource
+    import signal
+
+    out = tmp_path / "pendulum.h5"
+    assert crane_sim("run", short_pendulum, "-o", out, "--quiet", cwd=tmp_path).returncode == 0
+    good = out.read_bytes()
+
+    def small_disk():  # writes beyond 4 KiB fail with EFBIG, as on a full disk
+        resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+
+    result = subprocess.run([str(BINARY), "run", str(short_pendulum), "-o", str(out), "--quiet"], capture_output=True,
+                            text=True, cwd=tmp_path, timeout=30, preexec_fn=small_disk)
+    assert result.returncode == EXIT_SOLVER_FAILURE, result.stderr
+    assert f"cannot write '{out}'" in result.stderr and "older file there is kept" in result.stderr
+    assert out.read_bytes() == good
+    assert not Path(f"{out}.partial").exists()
+
+
+@pytest.mark.parametrize("signal_name", ["SIGTERM", "SIGHUP", "SIGINT"])
+def test_a_signal_ends_the_run_with_its_results(signal_name: str, tmp_path: Path):
+    import signal
+    import time
+
+    text, count = re.subn(r"^(\s+t_end:).*$", r"\1 1.0e6", PENDULUM.read_text(encoding="utf-8"), flags=re.MULTILINE)
+    assert count == 1
+    scene = tmp_path / "long.yaml"
+    scene.write_text(text, encoding="utf-8")
+    out = tmp_path / "long.h5"
+    process = subprocess.Popen([str(BINARY), "run", str(scene), "-o", str(out), "--quiet"], stderr=subprocess.PIPE,
+                               text=True, cwd=tmp_path)
+    time.sleep(1.0)
+    number = getattr(signal, signal_name)
+    process.send_signal(number)
+    _, stderr = process.communicate(timeout=30)
+    assert process.returncode == 128 + number, stderr
+    attributes = results_attributes(out)
+    assert attributes["status"] == "incomplete"
+    assert attributes["message"].startswith("interrupted at t = ")
+    with h5py.File(out, "r") as f:
+        assert f["time"].shape[0] > 10 and 0.0 <= attributes["t_reached"] - f["time"][-1] <= 0.01  # one output interval

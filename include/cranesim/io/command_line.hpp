@@ -9,7 +9,9 @@ inline constexpr int kExitSolverFailure = 1;  // results kept, marked incomplete
 inline constexpr int kExitBadInput = 2;       // nothing written
 
 /// `out`, or `<stem of input_path><suffix>` in the working directory when `out` is empty.
-/// Throws SceneError (bad input, reported at "-o") when its directory does not exist.
+/// Throws SceneError (bad input, reported at "-o") before any work when the results could not be
+/// written there: its directory does not exist or cannot be written, it is a directory, or it is
+/// the input file itself.
 std::string outputPath(const std::string& input_path, std::string out, const char* suffix);
 
 }  // namespace cranesim
