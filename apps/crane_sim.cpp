@@ -156,11 +156,25 @@ std::string instability(const Model& model, const StaticResult& eq, bool quiet =
   return {};
 }
 
+/// Refuses, before any work, a run whose results would not fit in memory (`run`, `check`).
+void requireResultsFit(const Scene& scene, const Model& model) {
+  constexpr double kMaxResultsBytes = 4.0 * (1u << 30);
+  const double samples = (scene.solver.t_end - scene.solver.t_start) / scene.output.interval + 1.0;
+  const double bytes = ResultsRecorder::estimatedBytes(model, samples);
+  if (!(bytes <= kMaxResultsBytes))
+    throw SceneError(scene.output.where,
+                     fmt::format("output.interval = {:g} s asks for {:.3g} samples over {:g} s, about {:.3g} GB of results "
+                                 "(at most {:.3g} GB); choose a longer interval",
+                                 scene.output.interval, samples, scene.solver.t_end - scene.solver.t_start, bytes / 1e9,
+                                 kMaxResultsBytes / 1e9));
+}
+
 int run(const std::string& scene_path, std::string out, bool quiet) {
   stopOnSignals();
   const Scene scene = readScene(scene_path);
   out = outputPath(scene_path, out, ".h5");
   const Model model = compileModel(scene);
+  requireResultsFit(scene, model);
   const Assembler assembler(model);
   DynamicState initial;
   if (model.solver.start_from_equilibrium) {
@@ -270,6 +284,7 @@ int modes(const std::string& scene_path, std::string out, int count) {
 int check(const std::string& scene_path) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
+  requireResultsFit(scene, model);
   const Assembler assembler(model);
   AssemblyMove move;
   assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance, &move);

@@ -79,6 +79,14 @@ void ResultsRecorder::sample(double t, const double* y, double drive_work, doubl
   }
 }
 
+double ResultsRecorder::estimatedBytes(const Model& model, double samples) {
+  // Per sample: the state and multipliers, every node's position, rotation, velocity and angular
+  // velocity, every joint's position and rotation, time, energies and residuals (8 numbers);
+  // twice: recorded, then the file's image.
+  const double per_sample = 8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 8.0);
+  return 2.0 * per_sample * samples;
+}
+
 std::vector<double> ResultsRecorder::stateColumn(int k) const {
   const Model& model = assembler_.model();
   const int width = model.nq + model.nv + model.m;

@@ -2,12 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <algorithm>
-#include <fstream>
+#include <filesystem>
 #include <sstream>
 #include <vector>
 
+#include "bounded_yaml.hpp"
 #include "cranesim/model/source_location.hpp"
 #include "yaml_field.hpp"
 
@@ -58,8 +58,8 @@ void applyModification(YAML::Node base, const YamlField& entry, const std::strin
 ComposedScene compose(const std::string& text, const std::string& path, const BaseValidator& validate, int depth) {
   ComposedScene out;
   out.text = text;
+  out.root = loadBoundedYaml(text);
   try {
-    out.root = YAML::Load(text);
     applyMergeKeys(out.root);
   } catch (const YAML::Exception& e) {
     throw SceneError({"<document>", e.mark.line + 1, e.mark.column + 1}, "not valid YAML: " + e.msg);
@@ -72,13 +72,10 @@ ComposedScene compose(const std::string& text, const std::string& path, const Ba
   const YamlField base_field(out.root["base"], "base");
   if (depth >= kMaxBaseDepth) base_field.fail(fmt::format("more than {} nested base scenes (a cycle?)", kMaxBaseDepth));
   const std::filesystem::path base_path = std::filesystem::path(path).parent_path() / base_field.text();
-  std::ifstream in(base_path);
-  if (!in) base_field.fail(fmt::format("cannot open the base scene '{}'", base_path.string()));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+  const std::string base_text = readInputFile(base_path.string(), "base scene", base_field.where());
   const auto composeBase = [&] {
     try {
-      ComposedScene composed = compose(buffer.str(), base_path.string(), validate, depth + 1);
+      ComposedScene composed = compose(base_text, base_path.string(), validate, depth + 1);
       validate(composed, base_path.string());  // the base alone: its errors name its file
       return composed;
     } catch (const SceneError& e) {

@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <set>
-#include <sstream>
 
+#include "bounded_yaml.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/rotation.hpp"
 #include "member_ends.hpp"
@@ -417,6 +416,7 @@ Scene sceneFromYaml(const ComposedScene& composed, const std::string& path) {
   if (const auto o = f.find("output")) {
     o->allowKeys({"interval"});
     s.output.interval = o->positive("interval", s.output.interval);
+    if (o->has("interval")) s.output.where = o->at("interval").where();
   }
   return s;
 }
@@ -428,11 +428,7 @@ Scene parseScene(const std::string& text, const std::string& path) {
 }
 
 Scene readScene(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SceneError({path, 0, 0}, "cannot open the scene file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parseScene(buffer.str(), path);
+  return parseScene(readInputFile(path, "scene file", {path, 0, 0}), path);
 }
 
 }  // namespace cranesim

@@ -4,9 +4,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
+#include "bounded_yaml.hpp"
 #include "cranesim/io/scene_reader.hpp"
 #include "yaml_field.hpp"
 
@@ -115,23 +114,15 @@ void readTrajectory(const YamlField& f, TargetSpec& t) {
 }  // namespace
 
 TargetSpec readTarget(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SceneError({path, 0, 0}, "cannot open the target file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  YAML::Node root;
-  try {
-    root = YAML::Load(buffer.str());
-  } catch (const YAML::Exception& e) {
-    throw SceneError({"<document>", e.mark.line + 1, e.mark.column + 1}, "not valid YAML: " + e.msg);
-  }
+  const std::string text = readInputFile(path, "target file", {path, 0, 0});
+  const YAML::Node root = loadBoundedYaml(text);
   const YamlField f(root, "");
   if (!f.isMap()) f.fail("a target file is a mapping (scene, crane, map, fit, trajectory, …)");
   f.allowKeys({"name", "scene", "crane", "map", "fit", "trajectory", "control_spline", "verification"});
 
   TargetSpec t;
   t.path = path;
-  t.text = buffer.str();
+  t.text = text;
   const YamlField scene = f.at("scene");
   const std::string scene_path = (std::filesystem::path(path).parent_path() / scene.text()).string();
   try {

@@ -417,7 +417,7 @@ def test_a_signal_ends_the_run_with_its_results(signal_name: str, tmp_path: Path
     import signal
     import time
 
-    text, count = re.subn(r"^(\s+t_end:).*$", r"\1 1.0e6", PENDULUM.read_text(encoding="utf-8"), flags=re.MULTILINE)
+    text, count = re.subn(r"^(\s+t_end:).*$", r"\1 1.0e4", PENDULUM.read_text(encoding="utf-8"), flags=re.MULTILINE)
     assert count == 1
     scene = tmp_path / "long.yaml"
     scene.write_text(text, encoding="utf-8")

@@ -32,6 +32,10 @@ class ResultsRecorder final : public SampleSink {
   const std::vector<double>& positionResidual() const { return residual_position_; }
   const std::vector<double>& velocityResidual() const { return residual_velocity_; }
 
+  /// Memory a run's results take while they are recorded and written (the samples and the
+  /// file's image), estimated from the model's size and the number of output samples.
+  static double estimatedBytes(const Model& model, double samples);
+
   struct Metadata {
     std::string scene_path, scene_text, formulation;
     double t_end_requested = 0.0;

@@ -132,6 +132,7 @@ struct SolverSpec {
 
 struct OutputSpec {
   double interval = 0.01;
+  SourceLocation where{"output.interval", 0, 0};  // of the interval, for errors about the output's size
 };
 
 struct Scene {

@@ -1,0 +1,78 @@
+#include "bounded_yaml.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+namespace cranesim {
+namespace {
+
+SourceLocation locationOf(const YAML::Node& node) {
+  const YAML::Mark mark = node.Mark();
+  return {"<document>", mark.line >= 0 ? mark.line + 1 : 0, mark.column >= 0 ? mark.column + 1 : 0};
+}
+
+/// Walks the node graph as every reader of it will (aliases expanded), within the limits.
+class GraphCheck {
+ public:
+  void visit(const YAML::Node& node) {
+    if (++visited_ > kMaxExpandedNodes)
+      throw SceneError(locationOf(node), fmt::format("the YAML's aliases expand to more than {} nodes (an alias bomb?); "
+                                                     "write the repeated parts out or use fewer aliases", kMaxExpandedNodes));
+    for (const YAML::Node& ancestor : ancestors_)
+      if (node.is(ancestor))
+        throw SceneError(locationOf(node), "an alias refers to a node that contains it (a cycle): nothing can read it");
+    if (ancestors_.size() >= static_cast<std::size_t>(kMaxNestingDepth))
+      throw SceneError(locationOf(node), fmt::format("the YAML nests deeper than {} levels", kMaxNestingDepth));
+    if (!node.IsSequence() && !node.IsMap()) return;
+    ancestors_.push_back(node);
+    for (const auto& item : node) {
+      if (node.IsSequence()) {
+        visit(item);
+      } else {
+        visit(item.first);
+        visit(item.second);
+      }
+    }
+    ancestors_.pop_back();
+  }
+
+ private:
+  std::size_t visited_ = 0;
+  std::vector<YAML::Node> ancestors_;
+};
+
+}  // namespace
+
+std::string readInputFile(const std::string& path, const std::string& what, const SourceLocation& location) {
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status)) throw SceneError(location, fmt::format("cannot open the {} '{}'", what, path));
+  if (!std::filesystem::is_regular_file(status))
+    throw SceneError(location, fmt::format("the {} '{}' is not a regular file", what, path));
+  const auto size = std::filesystem::file_size(path, error);
+  if (!error && size > kMaxInputBytes)
+    throw SceneError(location, fmt::format("the {} '{}' has {} bytes, more than the {} any {} needs", what, path, size,
+                                           kMaxInputBytes, what));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(location, fmt::format("cannot open the {} '{}'", what, path));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+YAML::Node loadBoundedYaml(const std::string& text) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError({"<document>", e.mark.line + 1, e.mark.column + 1}, "not valid YAML: " + e.msg);
+  }
+  GraphCheck().visit(root);
+  return root;
+}
+
+}  // namespace cranesim
