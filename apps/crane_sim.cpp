@@ -71,6 +71,33 @@ class ProgressLine {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
 
+/// When a run writes its results so far (ResultsRecorder::writeCheckpoint): 10 s of wall time
+/// after its start and after every checkpoint, or 20 times as long as the last checkpoint took,
+/// whichever is later, so that checkpoints cost at most 5 % of a run. A failed checkpoint is
+/// reported once and the run goes on (its final write reports again).
+class CheckpointClock {
+ public:
+  bool due() const { return seconds(std::chrono::steady_clock::now() - last_) >= wait_; }
+  template <class Write> void write(const Write& write) {
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      write(seconds(start - begin_));
+    } catch (const std::exception& e) {
+      if (!failed_) fmt::print(stderr, "warning: checkpoint not written: {}\n", e.what());
+      failed_ = true;
+    }
+    last_ = std::chrono::steady_clock::now();
+    wait_ = std::max(kMinimumWait, 20.0 * seconds(last_ - start));
+  }
+
+ private:
+  static constexpr double kMinimumWait = 10.0;  // s
+  static double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+  std::chrono::steady_clock::time_point begin_ = std::chrono::steady_clock::now(), last_ = begin_;
+  double wait_ = kMinimumWait;
+  bool failed_ = false;
+};
+
 /// The scene's drawing, posed at its drives and assembled; a move beyond rounding is reported.
 DynamicState drawnState(const Model& model, const Assembler& assembler, bool quiet) {
   AssemblyMove move;
@@ -190,16 +217,19 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   }
 
   ResultsRecorder recorder(assembler);
-  ProgressLine progress(!quiet && isatty(STDERR_FILENO), model.solver.t_start, model.solver.t_end);
-  SimulationControl control;
-  control.on_step = [&](double t) { progress.update(t); };
-  control.stop_requested = &g_interrupted;
-  const SimulationOutcome outcome = simulate(assembler, initial, recorder, control);
-  progress.finish();
-
   const ResultsRecorder::Metadata meta{scene_path, scene.text,
                                        model.solver.formulation == Formulation::GGL ? "ggl" : "baumgarte",
                                        model.solver.t_end};
+  ProgressLine progress(!quiet && isatty(STDERR_FILENO), model.solver.t_start, model.solver.t_end);
+  CheckpointClock checkpoints;
+  SimulationControl control;
+  control.on_step = [&](double t) {
+    progress.update(t);
+    if (recorder.samples() > 0 && checkpoints.due()) checkpoints.write([&](double wall) { recorder.writeCheckpoint(out, meta, wall); });
+  };
+  control.stop_requested = &g_interrupted;
+  const SimulationOutcome outcome = simulate(assembler, initial, recorder, control);
+  progress.finish();
   recorder.write(out, meta, outcome);
 
   const SolverStatistics& st = outcome.statistics;

@@ -1,5 +1,7 @@
 #include "cranesim/io/results_writer.hpp"
 
+#include <fmt/format.h>
+
 #include <cstdio>
 
 #include "cranesim/version.hpp"
@@ -93,6 +95,15 @@ std::vector<double> ResultsRecorder::stateColumn(int k) const {
   std::vector<double> out(time_.size());
   for (std::size_t s = 0; s < time_.size(); ++s) out[s] = state_[s * width + k];
   return out;
+}
+
+void ResultsRecorder::writeCheckpoint(const std::string& path, const Metadata& meta, double wall_time_s) const {
+  SimulationOutcome checkpoint;
+  checkpoint.t_reached = time_.empty() ? 0.0 : time_.back();
+  checkpoint.message = fmt::format("checkpoint at t = {:.6g} s, {:.3g} s into the run: the run was still going when "
+                                   "this was written (solver statistics not recorded)", checkpoint.t_reached, wall_time_s);
+  checkpoint.statistics.wall_time_s = wall_time_s;
+  write(path, meta, checkpoint);
 }
 
 void ResultsRecorder::write(const std::string& path, const Metadata& meta, const SimulationOutcome& outcome) const {

@@ -434,3 +434,29 @@ def test_a_signal_ends_the_run_with_its_results(signal_name: str, tmp_path: Path
     assert attributes["message"].startswith("interrupted at t = ")
     with h5py.File(out, "r") as f:
         assert f["time"].shape[0] > 10 and 0.0 <= attributes["t_reached"] - f["time"][-1] <= 0.01  # one output interval
+
+
+def test_a_run_killed_outright_leaves_its_last_checkpoint(tmp_path: Path):
+    import signal
+    import sys
+    import time
+
+    text, count = re.subn(r"^(\s+t_end:).*$", r"\1 1.0e4", PENDULUM.read_text(encoding="utf-8"), flags=re.MULTILINE)
+    assert count == 1
+    scene = tmp_path / "long.yaml"
+    scene.write_text(text, encoding="utf-8")
+    out = tmp_path / "long.h5"
+    process = subprocess.Popen([str(BINARY), "run", str(scene), "-o", str(out), "--quiet"], stderr=subprocess.PIPE,
+                               text=True, cwd=tmp_path)
+    time.sleep(13.0)  # the first checkpoint is written 10 s into the run
+    process.send_signal(signal.SIGKILL)
+    process.communicate(timeout=30)
+    attributes = results_attributes(out)
+    assert attributes["status"] == "incomplete"
+    assert attributes["message"].startswith("checkpoint at t = ")
+    with h5py.File(out, "r") as f:
+        assert f["time"].shape[0] > 100 and f["time"][-1] == pytest.approx(attributes["t_reached"])
+    report = subprocess.run([sys.executable, str(SOURCE_DIR / "scripts" / "report.py"), str(out)], capture_output=True,
+                            text=True, timeout=60)
+    assert report.returncode == 0, report.stderr
+    assert "status: incomplete" in report.stdout

@@ -40,6 +40,10 @@ class ResultsRecorder final : public SampleSink {
     std::string scene_path, scene_text, formulation;
     double t_end_requested = 0.0;
   };
+  /// Writes the samples so far to `path` as a checkpoint of a run that is still going: status
+  /// incomplete, a message saying so. A run killed outright (SIGKILL, power loss) leaves this.
+  void writeCheckpoint(const std::string& path, const Metadata& meta, double wall_time_s) const;
+
   /// Writes under `path`.partial and renames to `path`; marks the file incomplete when the
   /// run did not finish.
   void write(const std::string& path, const Metadata& meta, const SimulationOutcome& outcome) const;
