@@ -12,6 +12,11 @@
 namespace cranesim {
 namespace {
 
+// Sizes no plan comes near, refused before they exhaust memory or time.
+constexpr long kMaxTrajectorySteps = 100000;
+constexpr long kMaxSplinePoints = 10000;
+constexpr double kMaxSettleTime = 86400.0;  // s
+
 /// {from, to, step} → from, from + step, …, to.
 std::vector<double> readGrid(const YamlField& f) {
   f.allowKeys({"from", "to", "step"});
@@ -101,6 +106,9 @@ void readTrajectory(const YamlField& f, TargetSpec& t) {
   p.R = readDiagonal<2>(f.at("R"));
   p.P_end = readDiagonal<4>(f.at("P_end"));
   p.steps = f.at("steps").integer();
+  if (p.steps > kMaxTrajectorySteps)
+    f.at("steps").fail(fmt::format("{} steps: at most {} steps (Table 8-2 takes 400); the NLP's memory grows with them",
+                                   p.steps, kMaxTrajectorySteps));
   p.sample_time = f.at("sample_time").positive();
   if (const auto h = f.find("receding_horizon")) p.receding_horizon = h->integer();
   p.tolerance = f.positive("tolerance", p.tolerance);
@@ -144,11 +152,20 @@ TargetSpec readTarget(const std::string& path) {
     if (const auto r = c->find("resample_points")) t.resample_points = r->integer();
     if (const auto s = c->find("steady_points")) t.steady_points = s->integer();
     if (t.resample_points < 2) c->at("resample_points").fail("at least 2 points");
+    if (t.resample_points > kMaxSplinePoints)
+      c->at("resample_points").fail(fmt::format("{} points: at most {}", t.resample_points, kMaxSplinePoints));
     if (t.steady_points < 0) c->at("steady_points").fail("must not be negative");
+    if (t.steady_points > kMaxSplinePoints)
+      c->at("steady_points").fail(fmt::format("{} points: at most {}", t.steady_points, kMaxSplinePoints));
   }
   if (const auto v = f.find("verification")) {
     v->allowKeys({"settle_time"});
-    if (const auto s = v->find("settle_time")) t.settle_time = s->nonNegative();
+    if (const auto s = v->find("settle_time")) {
+      t.settle_time = s->nonNegative();
+      if (t.settle_time > kMaxSettleTime)
+        s->fail(fmt::format("{:g} s of settling: at most {:g} s (a day) of simulated time after the last knot",
+                            t.settle_time, kMaxSettleTime));
+    }
   }
   return t;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 
 namespace cranesim {
 namespace {
@@ -107,6 +108,7 @@ double YamlField::nonNegative() const {
 int YamlField::integer() const {
   const double x = number();
   if (x != std::floor(x)) fail(fmt::format("expected an integer, found {}", x));
+  if (std::abs(x) > std::numeric_limits<int>::max()) fail(fmt::format("expected an integer below 2³¹, found {:g}", x));
   return static_cast<int>(x);
 }
 
