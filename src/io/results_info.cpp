@@ -84,6 +84,10 @@ std::string describeResults(const std::string& path) {
   if (H5Fis_hdf5(path.c_str()) <= 0) throw std::runtime_error(fmt::format("'{}' is not an HDF5 file", path));
   const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (file < 0) throw std::runtime_error(fmt::format("cannot open '{}'", path));
+  if (H5Aexists(file, "engine_version") <= 0) {  // every file the tools write carries it
+    H5Fclose(file);
+    throw std::runtime_error(fmt::format("'{}' is an HDF5 file but not one cranesim wrote (no engine_version attribute)", path));
+  }
   std::string out = fmt::format("{}\n  attributes:\n", path);
   H5Aiterate2(file, H5_INDEX_NAME, H5_ITER_INC, nullptr, listAttribute, &out);
   out += "  contents:\n";

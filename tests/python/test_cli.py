@@ -194,6 +194,16 @@ def test_info_not_hdf5(tmp_path: Path):
     assert "not an HDF5 file" in result.stderr
 
 
+def test_info_foreign_hdf5(tmp_path: Path):
+    foreign = tmp_path / "foreign.h5"
+    with h5py.File(foreign, "w") as f:
+        f["x"] = [1, 2, 3]
+    result = crane_sim("info", foreign, cwd=tmp_path)
+    assert result.returncode == EXIT_BAD_INPUT
+    assert "not one cranesim wrote" in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1
+
+
 @pytest.mark.parametrize("command", ["run", "check"])
 def test_missing_scene(command: str, tmp_path: Path):
     scene = tmp_path / "no_such_scene.yaml"
