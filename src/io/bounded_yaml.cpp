@@ -33,6 +33,8 @@ class GraphCheck {
       if (node.IsSequence()) {
         visit(item);
       } else {
+        if (!item.first.IsScalar())  // every reader takes keys as names
+          throw SceneError(locationOf(item.first), "a mapping key must be a name, not a list or mapping");
         visit(item.first);
         visit(item.second);
       }

@@ -3,7 +3,8 @@
 // that are not regular files (a device, a FIFO) or are larger than kMaxInputBytes, YAML whose
 // aliases refer to a node that contains them (a cycle: every walk of it recurses forever), whose
 // aliases expand to more than kMaxExpandedNodes nodes (an "alias bomb": a few lines that stand
-// for 10⁹ nodes), or that nests deeper than kMaxNestingDepth.
+// for 10⁹ nodes), that nests deeper than kMaxNestingDepth, or whose mapping keys are not names
+// (a list as a key: every reader takes keys as strings).
 
 #include <yaml-cpp/yaml.h>
 
