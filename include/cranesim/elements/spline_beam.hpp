@@ -78,10 +78,6 @@ namespace cranesim {
 
 namespace spline_beam_detail {
 
-/// atan2 over doubles, dual numbers (autodiff.hpp) and the jets below.
-inline double atan2s(double y, double x) { return std::atan2(y, x); }
-template <class T, int N> Dual<T, N> atan2s(const Dual<T, N>& y, const Dual<T, N>& x) { return atan2(y, x); }
-
 /// Second-order Taylor jet f(τ) ≈ v + d τ + ½ dd τ² (value, first and second derivative at
 /// τ = 0) over any scalar S, for second derivatives along a path without nesting a third level
 /// of dual numbers (three numbers per jet instead of four, on top of S). Scalar operations only.
@@ -120,10 +116,11 @@ template <class S> Jet2<S> cos(const Jet2<S>& a) {
   const S s = sin(a.v), c = cos(a.v);
   return {c, -(s * a.d), -(s * a.dd) - c * (a.d * a.d)};
 }
-template <class S> Jet2<S> atan2s(const Jet2<S>& y, const Jet2<S>& x) {
+template <class S> Jet2<S> atan2(const Jet2<S>& y, const Jet2<S>& x) {
+  using std::atan2;
   const S m = x.v * x.v + y.v * y.v, n = x.v * y.d - y.v * x.d;  // θ' = n/m
   const S dn = x.v * y.dd - y.v * x.dd, dm = 2.0 * (x.v * x.d + y.v * y.d);
-  return {atan2s(y.v, x.v), n / m, (dn * m - n * dm) / (m * m)};
+  return {atan2(y.v, x.v), n / m, (dn * m - n * dm) / (m * m)};
 }
 
 /// Accumulates M = Σ Gᵀ diag(w) G over 3 × n blocks G. Generic scalars use plain products; for
@@ -248,14 +245,14 @@ struct SplineBeamKernel {
   };
   template <class T>
   Angles<T> sectionAngles(const T (&a)[3], const T (&c)[3], const T& phi12, double xi) const {
-    using spline_beam_detail::atan2s, std::sqrt;
+    using std::atan2, std::sqrt;
     const T rho2 = a[0] * a[0] + a[1] * a[1];
     const T rho = sqrt(rho2);
     const T a2 = rho2 + a[2] * a[2];
     const T drho = (a[0] * c[0] + a[1] * c[1]) / rho;
     return {phi12 * xi,
-            atan2s(T(-a[2]), rho),                    // ψ (3-65)
-            atan2s(a[1], a[0]),                       // θ (3-65)
+            atan2(T(-a[2]), rho),                    // ψ (3-65)
+            atan2(a[1], a[0]),                       // θ (3-65)
             phi12 / length,                           // φ' (3-66, C-114)
             (a[2] * drho - rho * c[2]) / a2,          // ψ'
             (a[0] * c[1] - a[1] * c[0]) / rho2,       // θ'
@@ -264,7 +261,7 @@ struct SplineBeamKernel {
 
   /// Section angles and stretch at ξ from the relative deformation.
   template <class T> SectionState<T> sectionState(const Relative<T>& rel, double xi) const {
-    using spline_beam_detail::atan2s;
+    using std::atan2;
     const HermiteBasis b = hermiteBasis(xi, length);
     T a[3], c[3];  // a = R¹ᵀ r', c = R¹ᵀ r'' (the local position of node 1 is 0, N₀¹' = −N₀²')
     for (int i = 0; i < 3; ++i) {
@@ -273,7 +270,7 @@ struct SplineBeamKernel {
     }
     a[0] = a[0] + rel.s1 * b.dN[1];
     c[0] = c[0] + rel.s1 * b.ddN[1];
-    const Angles<T> g = sectionAngles<T>(a, c, atan2s(rel.R12(2, 1), rel.R12(2, 2)), xi);  // φ₁₂ (3-57)
+    const Angles<T> g = sectionAngles<T>(a, c, atan2(rel.R12(2, 1), rel.R12(2, 2)), xi);  // φ₁₂ (3-57)
     SectionState<T> st;
     st.angles << g.phi, g.psi, g.theta;
     st.dangles << g.dphi, g.dpsi, g.dtheta;
@@ -301,7 +298,7 @@ struct SplineBeamKernel {
   };
   template <class S>
   SectionDerivatives<S> sectionDerivatives(const Relative<S>& rel, double xi, bool strains = true) const {
-    using spline_beam_detail::atan2s, std::cos, std::sin, std::sqrt;
+    using std::atan2, std::cos, std::sin, std::sqrt;
     const HermiteBasis b = hermiteBasis(xi, length);
     Vec3T<S> a, c;
     Eigen::Matrix<S, 3, kLocal> da = Eigen::Matrix<S, 3, kLocal>::Zero(), dc = Eigen::Matrix<S, 3, kLocal>::Zero();
@@ -332,14 +329,14 @@ struct SplineBeamKernel {
     const Vec3T<S> htheta((c(1) - 2.0 * a(0) * dtheta) / rho2, (-c(0) - 2.0 * a(1) * dtheta) / rho2, S(0.0));
 
     const S R20 = rel.R12(2, 0), R21 = rel.R12(2, 1), R22 = rel.R12(2, 2), m = R21 * R21 + R22 * R22;
-    const S phi12 = atan2s(R21, R22);
+    const S phi12 = atan2(R21, R22);
     Eigen::Matrix<S, 1, kLocal> dphi12 = Eigen::Matrix<S, 1, kLocal>::Zero();
     dphi12(3) = S(1.0);
     dphi12(4) = -(R21 * R20) / m;
     dphi12(5) = -(R22 * R20) / m;
 
     SectionDerivatives<S> out;
-    out.alpha << phi12 * xi, atan2s(S(-a(2)), rho), atan2s(a(1), a(0));
+    out.alpha << phi12 * xi, atan2(S(-a(2)), rho), atan2(a(1), a(0));
     out.dalpha.row(0) = dphi12 * S(xi);
     out.dalpha.row(1) = gpsi.transpose().lazyProduct(da);
     out.dalpha.row(2) = gtheta.transpose().lazyProduct(da);
@@ -549,7 +546,7 @@ struct SplineBeamKernel {
         pd[i] = {rel.d(i), d1(i), d2(i)};
         pt[i] = {rel.R12(i, 0), R1d(i, 0), R2d(i, 0)};
       }
-      pphi12 = spline_beam_detail::atan2s(Jet{rel.R12(2, 1), R1d(2, 1), R2d(2, 1)}, Jet{rel.R12(2, 2), R1d(2, 2), R2d(2, 2)});
+      pphi12 = spline_beam_detail::atan2(Jet{rel.R12(2, 1), R1d(2, 1), R2d(2, 1)}, Jet{rel.R12(2, 2), R1d(2, 2), R2d(2, 2)});
       ps1 = {rel.s1, v(6), S(0.0)};
       ps2 = {rel.s2, v(13), S(0.0)};
     }
