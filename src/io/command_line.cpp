@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "cranesim/model/source_location.hpp"
+#include "hdf5_file.hpp"
 
 namespace cranesim {
 
@@ -23,8 +24,8 @@ std::string outputPath(const std::string& input_path, std::string out, const cha
   std::error_code ignored;
   if (fs::equivalent(out, input_path, ignored))
     throw SceneError({"-o", 0, 0}, fmt::format("'{}' is the input file itself; the results would overwrite it", out));
-  // Before any work: the results are written under <out>.partial (hdf5_file.hpp) next to <out>.
-  const std::string partial = out + ".partial";
+  // Before any work: can the results be written where they will be (hdf5_file.hpp)?
+  const std::string partial = partialPath(out);
   const bool existed = fs::exists(partial, ignored);
   const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT, 0644);
   if (fd < 0)

@@ -35,6 +35,9 @@ class Hdf5File {
   hid_t file_ = -1;
 };
 
+/// The temporary name a results file at `path` is written under before it is renamed.
+inline std::string partialPath(const std::string& path) { return path + ".partial"; }
+
 /// Writes `path` by `write(Hdf5File&)`: the image saved to `path`.partial, then renamed over
 /// `path`. On any failure the partial file is removed and the error rethrown naming `path`: an
 /// older file at `path` stays as it was.
@@ -46,7 +49,7 @@ namespace hdf5_detail {
 }  // namespace hdf5_detail
 
 template <class Write> void writeResultsFile(const std::string& path, const Write& write) {
-  const std::string partial = path + ".partial";
+  const std::string partial = partialPath(path);
   try {
     Hdf5File file;
     write(file);
