@@ -422,9 +422,9 @@ def test_a_failed_write_keeps_the_older_results(short_pendulum: Path, tmp_path: 
     assert not Path(f"{out}.partial").exists()
 
 
-@pytest.mark.parametrize("signal_name", ["SIGTERM", "SIGHUP", "SIGINT"])
-def test_a_signal_ends_the_run_with_its_results(signal_name: str, tmp_path: Path):
-    import signal
+def signalled_long_run(tmp_path: Path, number: int, after: float) -> tuple[int, str, Path]:
+    """configs/pendulum.yaml run for 1e4 s (about a minute), sent signal `number` `after` seconds in:
+    the exit code, stderr and the results path."""
     import time
 
     text, count = re.subn(r"^(\s+t_end:).*$", r"\1 1.0e4", PENDULUM.read_text(encoding="utf-8"), flags=re.MULTILINE)
@@ -434,11 +434,19 @@ def test_a_signal_ends_the_run_with_its_results(signal_name: str, tmp_path: Path
     out = tmp_path / "long.h5"
     process = subprocess.Popen([str(BINARY), "run", str(scene), "-o", str(out), "--quiet"], stderr=subprocess.PIPE,
                                text=True, cwd=tmp_path)
-    time.sleep(1.0)
-    number = getattr(signal, signal_name)
+    time.sleep(after)
     process.send_signal(number)
     _, stderr = process.communicate(timeout=30)
-    assert process.returncode == 128 + number, stderr
+    return process.returncode, stderr, out
+
+
+@pytest.mark.parametrize("signal_name", ["SIGTERM", "SIGHUP", "SIGINT"])
+def test_a_signal_ends_the_run_with_its_results(signal_name: str, tmp_path: Path):
+    import signal
+
+    number = getattr(signal, signal_name)
+    returncode, stderr, out = signalled_long_run(tmp_path, number, after=1.0)
+    assert returncode == 128 + number, stderr
     attributes = results_attributes(out)
     assert attributes["status"] == "incomplete"
     assert attributes["message"].startswith("interrupted at t = ")
@@ -449,18 +457,8 @@ def test_a_signal_ends_the_run_with_its_results(signal_name: str, tmp_path: Path
 def test_a_run_killed_outright_leaves_its_last_checkpoint(tmp_path: Path):
     import signal
     import sys
-    import time
 
-    text, count = re.subn(r"^(\s+t_end:).*$", r"\1 1.0e4", PENDULUM.read_text(encoding="utf-8"), flags=re.MULTILINE)
-    assert count == 1
-    scene = tmp_path / "long.yaml"
-    scene.write_text(text, encoding="utf-8")
-    out = tmp_path / "long.h5"
-    process = subprocess.Popen([str(BINARY), "run", str(scene), "-o", str(out), "--quiet"], stderr=subprocess.PIPE,
-                               text=True, cwd=tmp_path)
-    time.sleep(13.0)  # the first checkpoint is written 10 s into the run
-    process.send_signal(signal.SIGKILL)
-    process.communicate(timeout=30)
+    _, _, out = signalled_long_run(tmp_path, signal.SIGKILL, after=13.0)  # the first checkpoint comes 10 s in
     attributes = results_attributes(out)
     assert attributes["status"] == "incomplete"
     assert attributes["message"].startswith("checkpoint at t = ")
