@@ -2,7 +2,8 @@
 
 For the super truss and the condensed crane (configs/crane_combined.yaml, and the same scene
 with the eight lattice sections `fidelity: condensed`), runs crane-sim at every integrator
-setting of the grid (IDAS' BDF maximum order × rtol, atol = rtol · --atol-ratio), `--reps`
+setting of the grid (integrator × rtol, atol = rtol · --atol-ratio; integrators: IDAS' BDF with
+a maximum order, `bdf2`, and the generalized-α method with its ρ∞, `ga0.8`), `--reps`
 times (fewer when the runs so far took over --rep-budget seconds), and records the median
 integration wall time (results' solver/wall_time_s: the equilibrium excluded) against the maximum hook-position error over the whole motion, measured
 against the same model at --ref-rtol (order --ref-order). Also records how much sway the
@@ -13,7 +14,7 @@ Writes a CSV (default benchmarks/results/crane_work_precision.csv, flushed after
 and a plot of wall time against error (same name, .png).
 
     python3 benchmarks/crane_work_precision.py                                # ≈ 1.5 h on 2 cores
-    python3 benchmarks/crane_work_precision.py --fidelities condensed --orders 2 --rtols 1e-4 --reps 1
+    python3 benchmarks/crane_work_precision.py --fidelities condensed --integrators bdf2,ga0.8 --rtols 1e-4 --reps 1
     python3 benchmarks/crane_work_precision.py --merge a.csv b.csv --out all.csv   # one table and plot
 """
 
@@ -39,7 +40,8 @@ def parse_arguments() -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--bin", default=str(ROOT / "build" / "crane-sim"), help="crane-sim binary")
     parser.add_argument("--fidelities", default=",".join(FIDELITIES), help="comma-separated subset of " + ",".join(FIDELITIES))
-    parser.add_argument("--orders", default="5,2", help="IDAS maximum BDF orders")
+    parser.add_argument("--integrators", default="bdf5,bdf2",
+                        help="comma-separated: bdf<maximum order> (IDAS), ga<ρ∞> (generalized-α), e.g. bdf2,ga0.8")
     parser.add_argument("--rtols", default="1e-3,1e-4,1e-5", help="relative tolerances")
     parser.add_argument("--atol-ratio", type=float, default=0.1, help="atol = rtol × this (coordinates and velocities)")
     parser.add_argument("--ref-rtol", type=float, default=1e-8, help="tolerance of the reference run")
@@ -55,9 +57,22 @@ def parse_arguments() -> argparse.Namespace:
     return parser.parse_args()
 
 
-def scene_text(fidelity: str, order: int, rtol: float, atol: float, t_end: float) -> str:
+def integrator_settings(name: str) -> list[str]:
+    """Scene lines of an integrator named bdf<order> or ga<ρ∞>."""
+    if name.startswith("bdf"):
+        return [f"  solver.max_order: {int(name[3:])}"]
+    if name.startswith("ga"):
+        return ["  solver.integrator: generalized_alpha", f"  solver.rho_inf: {float(name[2:]):g}"]
+    raise ValueError(f"unknown integrator '{name}': use bdf<order> or ga<rho_inf>")
+
+
+def integrator_label(name: str) -> str:
+    return f"BDF order ≤ {name[3:]}" if name.startswith("bdf") else f"generalized-α ρ∞ = {name[2:]}"
+
+
+def scene_text(fidelity: str, integrator: str, rtol: float, atol: float, t_end: float) -> str:
     lines = [f"base: {ROOT / 'configs' / 'crane_combined.yaml'}", "modify:", *FIDELITIES[fidelity],
-             f"  solver.max_order: {order}", f"  solver.rtol: {rtol:g}", f"  solver.atol: {atol:g}", f"  solver.t_end: {t_end:g}"]
+             *integrator_settings(integrator), f"  solver.rtol: {rtol:g}", f"  solver.atol: {atol:g}", f"  solver.t_end: {t_end:g}"]
     return "\n".join(lines) + "\n"
 
 
@@ -95,12 +110,13 @@ def plot(rows: list[dict], path: Path) -> None:
 
     fig, ax = plt.subplots(figsize=(7.5, 5))
     colours = {"super_truss": "tab:blue", "condensed": "tab:orange"}
-    markers = {1: "v", 2: "o", 3: "s", 4: "D", 5: "^"}
+    markers = {"bdf1": "v", "bdf2": "o", "bdf3": "s", "bdf4": "D", "bdf5": "^"}
     for fidelity in dict.fromkeys(r["fidelity"] for r in rows):
-        for order in sorted({r["max_order"] for r in rows if r["fidelity"] == fidelity}):
-            sel = sorted((r for r in rows if r["fidelity"] == fidelity and r["max_order"] == order), key=lambda r: r["rtol"])
-            ax.loglog([max(r["hook_error_max_m"], 1e-7) for r in sel], [r["wall_median_s"] for r in sel], "-",
-                      marker=markers.get(order, "x"), color=colours.get(fidelity), label=f"{fidelity.replace('_', ' ')}, BDF order ≤ {order}")
+        for integrator in dict.fromkeys(r["integrator"] for r in rows if r["fidelity"] == fidelity):
+            sel = sorted((r for r in rows if r["fidelity"] == fidelity and r["integrator"] == integrator), key=lambda r: r["rtol"])
+            ax.loglog([max(r["hook_error_max_m"], 1e-7) for r in sel], [r["wall_median_s"] for r in sel],
+                      "-" if integrator.startswith("bdf") else "--", marker=markers.get(integrator, "P"),
+                      color=colours.get(fidelity), label=f"{fidelity.replace('_', ' ')}, {integrator_label(integrator)}")
             for r in sel:
                 ax.annotate(f"{r['rtol']:g}", (max(r["hook_error_max_m"], 1e-7), r["wall_median_s"]), fontsize=7,
                             textcoords="offset points", xytext=(4, 3))
@@ -119,7 +135,7 @@ def plot(rows: list[dict], path: Path) -> None:
     fig.savefig(path, dpi=130)
 
 
-COLUMNS = ["fidelity", "max_order", "rtol", "atol", "t_end_s", "wall_median_s", "process_median_s", "realtime_factor",
+COLUMNS = ["fidelity", "integrator", "rtol", "atol", "t_end_s", "wall_median_s", "process_median_s", "realtime_factor",
            "steps", "residuals", "jacobians", "hook_error_max_m", "hook_error_end_m", "sway_amplitude_ratio", "reps"]
 
 
@@ -133,7 +149,9 @@ def merge(paths: list[str], out: Path) -> None:
     for path in paths:
         with open(path, newline="", encoding="utf-8") as handle:
             for row in csv.DictReader(handle):
-                rows.append({k: (row[k] if k == "fidelity" else int(row[k]) if k in ("max_order", "steps", "residuals", "jacobians", "reps")
+                if "integrator" not in row:  # written before the generalized-α method existed
+                    row["integrator"] = f"bdf{row['max_order']}"
+                rows.append({k: (row[k] if k in ("fidelity", "integrator") else int(row[k]) if k in ("steps", "residuals", "jacobians", "reps")
                                  else float(row[k])) for k in COLUMNS})
     with out.open("w", newline="", encoding="utf-8") as handle:
         writer = csv.DictWriter(handle, fieldnames=COLUMNS)
@@ -151,7 +169,9 @@ def main() -> None:
     for f in fidelities:
         if f not in FIDELITIES:
             sys.exit(f"unknown fidelity '{f}' (known: {', '.join(FIDELITIES)})")
-    orders = [int(o) for o in args.orders.split(",")]
+    integrators = [i for i in args.integrators.split(",") if i]
+    for i in integrators:
+        integrator_settings(i)
     rtols = [float(r) for r in args.rtols.split(",")]
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -162,22 +182,22 @@ def main() -> None:
         for fidelity in fidelities:
             ref_atol = args.ref_rtol * args.atol_ratio
             start = time.perf_counter()
-            t_ref, p_ref, _, _ = run(args.bin, scene_text(fidelity, args.ref_order, args.ref_rtol, ref_atol, args.t_end), Path(tmp), "reference")
+            t_ref, p_ref, _, _ = run(args.bin, scene_text(fidelity, f"bdf{args.ref_order}", args.ref_rtol, ref_atol, args.t_end), Path(tmp), "reference")
             print(f"{fidelity}: reference (order {args.ref_order}, rtol {args.ref_rtol:g}) in {time.perf_counter() - start:.0f} s",
                   file=sys.stderr)
             amplitude_ref = sway_amplitude(t_ref, p_ref, args.settle)
-            for order in orders:
+            for integrator in integrators:
                 for rtol in rtols:
                     walls, processes = [], []
                     while len(walls) < args.reps and (not walls or args.rep_budget <= 0 or sum(processes) < args.rep_budget):
-                        t, p, stats, process = run(args.bin, scene_text(fidelity, order, rtol, rtol * args.atol_ratio, args.t_end), Path(tmp), "case")
+                        t, p, stats, process = run(args.bin, scene_text(fidelity, integrator, rtol, rtol * args.atol_ratio, args.t_end), Path(tmp), "case")
                         walls.append(float(stats["wall_time_s"]))
                         processes.append(process)
                     if t.shape != t_ref.shape or np.max(np.abs(t - t_ref)) > 1e-9:
                         raise RuntimeError(f"{fidelity}: output times differ from the reference's")
                     error = np.linalg.norm(p - p_ref, axis=1)
                     wall = statistics.median(walls)
-                    row = {"fidelity": fidelity, "max_order": order, "rtol": rtol, "atol": rtol * args.atol_ratio, "t_end_s": float(t[-1]),
+                    row = {"fidelity": fidelity, "integrator": integrator, "rtol": rtol, "atol": rtol * args.atol_ratio, "t_end_s": float(t[-1]),
                            "wall_median_s": wall, "process_median_s": statistics.median(processes), "realtime_factor": t[-1] / wall,
                            "steps": int(stats["steps"]), "residuals": int(stats["residual_evaluations"]),
                            "jacobians": int(stats["jacobian_evaluations"]), "hook_error_max_m": float(error.max()),
@@ -186,7 +206,7 @@ def main() -> None:
                     rows.append(row)
                     writer.writerow(formatted(row))
                     handle.flush()
-                    print(f"{fidelity} order {order} rtol {rtol:g}: wall {wall:.2f} s ({t[-1] / wall:.2f}× real time), "
+                    print(f"{fidelity} {integrator} rtol {rtol:g}: wall {wall:.2f} s ({t[-1] / wall:.2f}× real time), "
                           f"{row['steps']} steps, {row['jacobians']} Jacobians, hook error {row['hook_error_max_m']:.2e} m, "
                           f"sway amplitude {row['sway_amplitude_ratio']:.4f} of the reference's", file=sys.stderr)
     plot(rows, out.with_suffix(".png"))

@@ -326,6 +326,7 @@ LoadSpec readLoad(const YamlField& f) {
 
 SolverSpec readSolver(const YamlField& f) {
   f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_order", "initial_step",
+               "integrator", "rho_inf", "fixed_step",
                "baumgarte", "assembly_tolerance", "initial_state", "statics"});
   SolverSpec s;
   if (const auto form = f.find("formulation"))
@@ -342,6 +343,19 @@ SolverSpec readSolver(const YamlField& f) {
   if (s.newton_coefficient >= 1.0) f.at("newton_coefficient").fail("must lie in (0, 1)");
   if (const auto ms = f.find("max_step")) s.max_step = ms->positive();
   if (const auto h0 = f.find("initial_step")) s.initial_step = h0->positive();
+  if (const auto method = f.find("integrator"))
+    s.integrator = method->choice({"bdf", "generalized_alpha"}) == "bdf" ? Integrator::Bdf : Integrator::GeneralizedAlpha;
+  if (const auto rho = f.find("rho_inf")) {
+    if (s.integrator != Integrator::GeneralizedAlpha)
+      rho->fail("rho_inf sets the generalized-α method's high-frequency damping: add integrator: generalized_alpha");
+    s.rho_inf = rho->number();
+    if (!(s.rho_inf >= 0.0 && s.rho_inf <= 1.0)) rho->fail(fmt::format("rho_inf must lie in [0, 1], found {}", s.rho_inf));
+  }
+  if (const auto fixed = f.find("fixed_step")) {
+    if (s.integrator != Integrator::GeneralizedAlpha)
+      fixed->fail("fixed_step is the generalized-α method's (BDF steps are always chosen by its error test): add integrator: generalized_alpha");
+    s.fixed_step = fixed->positive();
+  }
   if (const auto mo = f.find("max_order")) {
     s.max_order = mo->integer();
     if (s.max_order < 1 || s.max_order > 5) mo->fail(fmt::format("max_order must be 1…5, found {}", s.max_order));

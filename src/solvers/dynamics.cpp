@@ -7,10 +7,12 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstring>
 
 #include "cranesim/math/rotation.hpp"
+#include "cranesim/solvers/generalized_alpha.hpp"
 
 namespace cranesim {
 namespace {
@@ -36,16 +38,8 @@ int jacobianCallback(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_V
   return 0;
 }
 
-/// Quadratures: [drive power λ·Φ_t, load power Q·dq].
 int quadratureCallback(sunrealtype t, N_Vector y, N_Vector, N_Vector rq, void* data) {
-  const auto* d = static_cast<IdaUserData*>(data);
-  const Assembler& a = *d->assembler;
-  const double* yy = N_VGetArrayPointer(y);
-  const double* q = yy;
-  const double* v = yy + a.vOffset();
-  double* out = N_VGetArrayPointer(rq);
-  out[0] = a.drivePower(t, q, yy + a.lambdaOffset());
-  out[1] = a.loadPower(t, q, v);
+  workPowers(*static_cast<IdaUserData*>(data)->assembler, t, N_VGetArrayPointer(y), N_VGetArrayPointer(rq));
   return 0;
 }
 
@@ -58,17 +52,19 @@ void check(int flag, const char* what) {
   if (flag < 0) throw std::runtime_error(fmt::format("IDAS set-up failed in {} (flag {})", what, flag));
 }
 
-/// Owns the SUNDIALS objects of one run.
-class Integrator {
+/// IDAS' variable-order BDF with KLU on the assembler's Jacobian; owns the SUNDIALS objects.
+class IdasStepper final : public TimeStepper {
  public:
-  Integrator(const Assembler& assembler, const DynamicState& s) : data_{&assembler, {}} {
+  IdasStepper(const Assembler& assembler, const DynamicState& s) : data_{&assembler, {}}, t_(s.t) {
     const Model& model = assembler.model();
     const int n = assembler.size();
     check(SUNContext_Create(nullptr, &ctx_), "SUNContext_Create");
     y_ = N_VNew_Serial(n, ctx_);
     yp_ = N_VNew_Serial(n, ctx_);
     id_ = N_VNew_Serial(n, ctx_);
-    yq_ = N_VNew_Serial(2, ctx_);
+    dense_ = N_VNew_Serial(n, ctx_);
+    yq_ = N_VNew_Serial(kWorkTerms, ctx_);
+    dense_q_ = N_VNew_Serial(kWorkTerms, ctx_);
     N_VConst(0.0, yq_);
     load(assembler, s);
     mem_ = IDACreate(ctx_);
@@ -103,28 +99,61 @@ class Integrator {
     }
   }
 
-  ~Integrator() {
+  ~IdasStepper() override {
     IDAFree(&mem_);
     SUNLinSolFree(LS_);
     SUNMatDestroy(A_);
-    N_VDestroy(y_);
-    N_VDestroy(yp_);
-    N_VDestroy(id_);
-    N_VDestroy(atol_);
-    N_VDestroy(yq_);
+    for (N_Vector v : {y_, yp_, id_, atol_, yq_, dense_, dense_q_}) N_VDestroy(v);
     SUNContext_Free(&ctx_);
   }
 
-  void restart(const Assembler& assembler, const DynamicState& s) {
-    load(assembler, s);
+  StepOutcome step(double t_stop) override {
+    IDASetStopTime(mem_, t_stop);
+    double t_ret = t_;
+    const int flag = IDASolve(mem_, t_stop, &t_ret, y_, dense_, IDA_ONE_STEP);
+    StepOutcome out;
+    if (flag < 0) {
+      out.failure = data_.last_error.empty() ? fmt::format("IDAS flag {}", flag) : data_.last_error;
+      return out;
+    }
+    t_ = t_ret;
+    out.reached_stop = flag == IDA_TSTOP_RETURN;
+    return out;
+  }
+
+  double time() const override { return t_; }
+  double* state() override { return N_VGetArrayPointer(y_); }
+
+  void interpolate(double t, double* y, double* work) override {
+    IDAGetDky(mem_, t, 0, dense_);
+    IDAGetQuadDky(mem_, t, 0, dense_q_);
+    std::copy_n(N_VGetArrayPointer(dense_), N_VGetLength(dense_), y);
+    std::copy_n(N_VGetArrayPointer(dense_q_), kWorkTerms, work);
+  }
+
+  void work(double* work) override {
+    double t_quadrature = 0.0;
+    IDAGetQuad(mem_, &t_quadrature, dense_q_);
+    std::copy_n(N_VGetArrayPointer(dense_q_), kWorkTerms, work);
+  }
+
+  void restart(const DynamicState& s) override {
+    addCounters(before_restarts_);
+    work(N_VGetArrayPointer(yq_));
+    load(*data_.assembler, s);
+    t_ = s.t;
     check(IDAReInit(mem_, s.t, y_, yp_), "IDAReInit");
     check(IDAQuadReInit(mem_, yq_), "IDAQuadReInit");
   }
 
-  void* mem() { return mem_; }
-  N_Vector y() { return y_; }
-  N_Vector yq() { return yq_; }
-  const std::string& lastError() const { return data_.last_error; }
+  /// IDAS' counters restart with IDAReInit; they are summed over the segments.
+  SolverStatistics statistics() override {
+    SolverStatistics s = before_restarts_;
+    addCounters(s);
+    IDAGetLastStep(mem_, &s.last_step_size);
+    IDAGetLastOrder(mem_, &s.last_order);
+    return s;
+  }
 
  private:
   void load(const Assembler& assembler, const DynamicState& s) {
@@ -140,9 +169,23 @@ class Integrator {
     std::copy(s.a.data(), s.a.data() + model.nv, yp + assembler.vOffset());
   }
 
+  void addCounters(SolverStatistics& s) const {
+    long v = 0;
+    IDAGetNumSteps(mem_, &v), s.steps += v;
+    IDAGetNumResEvals(mem_, &v), s.residual_evaluations += v;
+    IDAGetNumJacEvals(mem_, &v), s.jacobian_evaluations += v;
+    IDAGetNumLinSolvSetups(mem_, &v), s.linear_setups += v;
+    IDAGetNumNonlinSolvIters(mem_, &v), s.nonlinear_iterations += v;
+    IDAGetNumNonlinSolvConvFails(mem_, &v), s.nonlinear_failures += v;
+    IDAGetNumErrTestFails(mem_, &v), s.error_test_failures += v;
+  }
+
   IdaUserData data_;
+  double t_ = 0.0;
+  SolverStatistics before_restarts_;
   SUNContext ctx_ = nullptr;
-  N_Vector y_ = nullptr, yp_ = nullptr, id_ = nullptr, yq_ = nullptr, atol_ = nullptr;
+  N_Vector y_ = nullptr, yp_ = nullptr, id_ = nullptr, atol_ = nullptr, yq_ = nullptr, dense_ = nullptr,
+           dense_q_ = nullptr;
   SUNMatrix A_ = nullptr;
   SUNLinearSolver LS_ = nullptr;
   void* mem_ = nullptr;
@@ -174,20 +217,12 @@ int reparameterise(const Model& model, double* q) {
   return changed;
 }
 
-void collectStatistics(void* mem, SolverStatistics& s) {
-  long v = 0;
-  IDAGetNumSteps(mem, &v), s.steps += v;
-  IDAGetNumResEvals(mem, &v), s.residual_evaluations += v;
-  IDAGetNumJacEvals(mem, &v), s.jacobian_evaluations += v;
-  IDAGetNumLinSolvSetups(mem, &v), s.linear_setups += v;
-  IDAGetNumNonlinSolvIters(mem, &v), s.nonlinear_iterations += v;
-  IDAGetNumNonlinSolvConvFails(mem, &v), s.nonlinear_failures += v;
-  IDAGetNumErrTestFails(mem, &v), s.error_test_failures += v;
-  IDAGetLastStep(mem, &s.last_step_size);
-  IDAGetLastOrder(mem, &s.last_order);
-}
-
 }  // namespace
+
+void workPowers(const Assembler& assembler, double t, const double* y, double* powers) {
+  powers[0] = assembler.drivePower(t, y, y + assembler.lambdaOffset());
+  powers[1] = assembler.loadPower(t, y, y + assembler.vOffset());
+}
 
 SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initial, SampleSink& sink,
                            const SimulationControl& control) {
@@ -196,58 +231,52 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
   const double t_end = model.solver.t_end, dt_out = model.output.interval;
   const std::vector<double> breakpoints = model.breakpoints();
 
-  SimulationOutcome outcome;
-  Integrator ida(assembler, initial);
-  N_Vector dense = N_VClone(ida.y());
-  // Counters restart with IDAReInit; they are summed over segments.
-  SolverStatistics total;
+  const std::unique_ptr<TimeStepper> stepper =
+      model.solver.integrator == Integrator::GeneralizedAlpha
+          ? makeGeneralizedAlphaStepper(assembler, initial, model.solver.rho_inf)
+          : std::unique_ptr<TimeStepper>(std::make_unique<IdasStepper>(assembler, initial));
+  SolverStatistics counts;  // what the stepper does not count itself
+  std::vector<double> sample(assembler.size());
+  std::array<double, kWorkTerms> work{};
 
   double t = initial.t;
-  N_Vector quadrature = N_VClone(ida.yq());
   long stalled_steps = 0;
   long next_sample = 1;
   bool sampled_end = false;
-  sink.sample(t, N_VGetArrayPointer(ida.y()), 0.0, 0.0);
+  sink.sample(t, stepper->state(), 0.0, 0.0);
   std::size_t next_break = 0;
   while (next_break < breakpoints.size() && breakpoints[next_break] <= t) ++next_break;
 
   const auto finish = [&](bool complete, std::string message) {
-    collectStatistics(ida.mem(), total);
+    SimulationOutcome outcome;
     outcome.complete = complete;
     outcome.message = std::move(message);
     outcome.t_reached = t;
-    outcome.statistics = total;
-    outcome.statistics.wall_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    N_VDestroy(dense);
-    N_VDestroy(quadrature);
+    outcome.statistics = stepper->statistics();
+    outcome.statistics.reparameterisations = counts.reparameterisations;
+    outcome.statistics.restarts = counts.restarts;
+    outcome.statistics.max_step_constraint_residual = counts.max_step_constraint_residual;
+    outcome.statistics.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     return outcome;
   };
 
   while (t < t_end) {
     const double t_stop = next_break < breakpoints.size() ? breakpoints[next_break] : t_end;
-    IDASetStopTime(ida.mem(), t_stop);
-    double t_ret = t;
-    const int flag = IDASolve(ida.mem(), t_stop, &t_ret, ida.y(), dense, IDA_ONE_STEP);
-    if (flag < 0) {
-      const std::string why = ida.lastError().empty() ? fmt::format("IDAS flag {}", flag) : ida.lastError();
-      return finish(false, fmt::format("solver failure at t = {:.6g} s: {}", t, why));
-    }
-    // Samples up to t_ret, interpolated by IDAS' dense output; the last one exactly at t_end.
-    const bool segment_end = flag == IDA_TSTOP_RETURN;
+    const StepOutcome step = stepper->step(t_stop);
+    if (!step.failure.empty()) return finish(false, fmt::format("solver failure at t = {:.6g} s: {}", t, step.failure));
+    const double t_ret = stepper->time();
+    // Samples up to t_ret, interpolated within the step; the last one exactly at t_end.
     const double eps = 1e-12 * std::max(1.0, std::abs(t_ret));
     while (!sampled_end) {
       double ts = initial.t + static_cast<double>(next_sample) * dt_out;
       if (ts > t_end - eps) ts = t_end;
       if (ts > t_ret + eps) break;
-      IDAGetDky(ida.mem(), std::min(ts, t_ret), 0, dense);
-      IDAGetQuadDky(ida.mem(), std::min(ts, t_ret), 0, quadrature);
-      const double* work = N_VGetArrayPointer(quadrature);
-      sink.sample(ts, N_VGetArrayPointer(dense), work[0], work[1]);
+      stepper->interpolate(std::min(ts, t_ret), sample.data(), work.data());
+      sink.sample(ts, sample.data(), work[0], work[1]);
       ++next_sample;
       sampled_end = ts == t_end;
     }
-    // IDAS' step limit does not apply in one-step mode: stop a run whose step size collapsed.
+    // The integrators' step limits do not apply step by step: stop a run whose step size collapsed.
     stalled_steps = t_ret - t > kStallFraction * std::max(1.0, std::abs(t_ret)) ? 0 : stalled_steps + 1;
     if (stalled_steps > kMaxStalledSteps) {
       t = t_ret;
@@ -256,29 +285,23 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
                                        t, t_ret - t, kMaxStalledSteps));
     }
     t = t_ret;
-    if (model.m > 0) {
-      const double* yy = N_VGetArrayPointer(ida.y());
-      total.max_step_constraint_residual =
-          std::max(total.max_step_constraint_residual, assembler.constraintResidual(t, yy));
-    }
+    double* y = stepper->state();
+    if (model.m > 0)
+      counts.max_step_constraint_residual = std::max(counts.max_step_constraint_residual, assembler.constraintResidual(t, y));
     if (control.on_step) control.on_step(t);
     if (control.stop_requested && control.stop_requested->load())
       return finish(false, fmt::format("interrupted at t = {:.6g} s", t));
 
-    double* y = N_VGetArrayPointer(ida.y());
     const int changed = reparameterise(model, y);
-    if ((segment_end || changed > 0) && t < t_end) {
-      if (segment_end) ++next_break;
-      collectStatistics(ida.mem(), total);
-      total.reparameterisations += changed;
-      ++total.restarts;
-      double t_quadrature = 0.0;
-      IDAGetQuad(ida.mem(), &t_quadrature, ida.yq());
+    if ((step.reached_stop || changed > 0) && t < t_end) {
+      if (step.reached_stop) ++next_break;
+      counts.reparameterisations += changed;
+      ++counts.restarts;
       DynamicState s = stateOf(assembler, t, y);
       try {
         // A velocity drive may jump at a breakpoint: project dq onto the coming segment's
         // velocity constraints, then solve its accelerations and multipliers.
-        if (segment_end && model.m > 0) {
+        if (step.reached_stop && model.m > 0) {
           const ConstraintState C = assembler.constraints(t, s.q.data(), s.v.data(), Limit::Right);
           const MatX G = MatX(C.G);
           s.v -= G.transpose() * (G * G.transpose()).ldlt().solve(C.phi_dot);
@@ -287,7 +310,7 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
       } catch (const std::exception& e) {
         return finish(false, e.what());
       }
-      ida.restart(assembler, s);
+      stepper->restart(s);
     }
   }
   return finish(true, "");

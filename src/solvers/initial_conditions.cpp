@@ -1,7 +1,6 @@
 #include "cranesim/solvers/initial_conditions.hpp"
 
 #include <fmt/format.h>
-#include <klu.h>
 
 #include <algorithm>
 #include <limits>
@@ -80,48 +79,7 @@ void solveAccelerations(const Assembler& assembler, DynamicState& s, const Const
   AccelerationSolver().solve(assembler, s, C, limit);
 }
 
-/// KLU's analysis of one pattern and the latest factorisation on it.
-struct AccelerationSolver::Factorisation {
-  klu_common common;
-  klu_symbolic* symbolic = nullptr;
-  klu_numeric* numeric = nullptr;
-  std::vector<int> outer, inner;  // the pattern `symbolic` was analysed for
-
-  Factorisation() { klu_defaults(&common); }
-  ~Factorisation() { release(); }
-  void release() {
-    if (numeric) klu_free_numeric(&numeric, &common);
-    if (symbolic) klu_free_symbolic(&symbolic, &common);
-  }
-  bool analysed(const Eigen::SparseMatrix<double>& A) const {
-    return symbolic && std::equal(outer.begin(), outer.end(), A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1) &&
-           std::equal(inner.begin(), inner.end(), A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-  }
-  /// Factorises A (compressed, column-major); false when it is singular.
-  bool factorise(Eigen::SparseMatrix<double>& A) {
-    int* Ap = A.outerIndexPtr();
-    int* Ai = A.innerIndexPtr();
-    if (!analysed(A)) {
-      release();
-      outer.assign(Ap, Ap + A.outerSize() + 1);
-      inner.assign(Ai, Ai + A.nonZeros());
-      symbolic = klu_analyze(static_cast<int>(A.rows()), Ap, Ai, &common);
-      if (!symbolic) return false;
-    }
-    // The previous pivot sequence serves while KLU's cheap condition estimate min|u_ii| / max|u_ii|
-    // stays above ε^(2/3), SUNDIALS' own test for its KLU solver; else pivot anew. (On the
-    // crane's 600 output samples it stays near 6e-8: every sample refactors.)
-    if (numeric && klu_refactor(Ap, Ai, A.valuePtr(), symbolic, numeric, &common) && klu_rcond(symbolic, numeric, &common) &&
-        common.rcond > kRefactorConditionLimit)
-      return true;
-    if (numeric) klu_free_numeric(&numeric, &common);
-    numeric = klu_factor(Ap, Ai, A.valuePtr(), symbolic, &common);
-    return numeric != nullptr && common.status == KLU_OK;
-  }
-  static constexpr double kRefactorConditionLimit = 3.7e-11;  // ε^(2/3)
-};
-
-AccelerationSolver::AccelerationSolver() : lu_(std::make_unique<Factorisation>()) {}
+AccelerationSolver::AccelerationSolver() = default;
 AccelerationSolver::~AccelerationSolver() = default;
 AccelerationSolver::AccelerationSolver(AccelerationSolver&&) noexcept = default;
 AccelerationSolver& AccelerationSolver::operator=(AccelerationSolver&&) noexcept = default;
@@ -145,12 +103,12 @@ void AccelerationSolver::solve(const Assembler& assembler, DynamicState& s, cons
     }
   matrix_.resize(nv + m, nv + m);
   matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
-  if (!lu_->factorise(matrix_))
+  if (!lu_.factorise(nv + m, matrix_.outerIndexPtr(), matrix_.innerIndexPtr(), matrix_.valuePtr()))
     throw std::runtime_error(fmt::format("t = {} s: the saddle-point matrix [M Gᵀ; G 0] is singular "
                                          "(a body without mass or inertia in a free direction?)", s.t));
   VecX x(nv + m);
   x << -F, -C.gamma;
-  klu_solve(lu_->symbolic, lu_->numeric, nv + m, 1, x.data(), &lu_->common);
+  lu_.solve(x.data());
   s.a = x.head(nv);
   s.lambda = x.tail(m);
   s.qdot = assembler.coordinateRates(s.q.data(), s.v.data());

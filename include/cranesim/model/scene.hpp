@@ -94,6 +94,8 @@ enum class Formulation { GGL, Baumgarte };
 
 enum class StaticMethod { Newton, Relaxation };
 
+enum class Integrator { Bdf, GeneralizedAlpha };
+
 struct SolverSpec {
   Formulation formulation = Formulation::GGL;
   double t_start = 0.0;
@@ -111,7 +113,15 @@ struct SolverSpec {
   /// λ·Φ_t carries the multipliers' Newton-level noise, and controlling it costs many steps.
   bool work_error_control = false;
   double max_step = 0.0;  // 0: unlimited
-  int max_order = 5;
+  /// IDAS' variable-order BDF, or the generalized-α method (solvers/generalized_alpha.hpp).
+  Integrator integrator = Integrator::Bdf;
+  int max_order = 5;  // BDF only
+  /// Generalized-α only: the spectral radius at infinite frequency, 0 (BDF2-like, most high-
+  /// frequency dissipation) … 1 (trapezoidal rule, none).
+  double rho_inf = 0.8;
+  /// Generalized-α only: steps of exactly this size (s; breakpoints and Newton failures may cut
+  /// one), without the error test; 0: steps chosen by the error test.
+  double fixed_step = 0.0;
   double initial_step = 0.0;  // 0: chosen by IDAS
   double baumgarte_alpha = 10.0;
   double baumgarte_beta = 1.0;

@@ -1,37 +1,20 @@
 #pragma once
-// Time integration of the multibody DAE with SUNDIALS IDAS (variable-order BDF) and the KLU
-// sparse direct solver, with the assembler's exact Jacobian.
+// Time integration of the multibody DAE with SUNDIALS IDAS (variable-order BDF) or the
+// generalized-α method (solver.integrator), both with the assembler's exact Jacobian and the
+// KLU sparse direct solver.
 //
 // The run restarts the integrator (with freshly solved accelerations and multipliers) at
 // every drive breakpoint, where a profile's second derivative jumps, and whenever a rotation
-// vector is re-parameterised (DESIGN §4). Work of drives and loads is integrated as IDAS
+// vector is re-parameterised (DESIGN §4). Work of drives and loads is integrated as
 // quadratures for the energy balance.
 
 #include <atomic>
 #include <functional>
 #include <string>
 
-#include "cranesim/solvers/initial_conditions.hpp"
+#include "cranesim/solvers/time_stepper.hpp"
 
 namespace cranesim {
-
-struct SolverStatistics {
-  long steps = 0;
-  long residual_evaluations = 0;
-  long jacobian_evaluations = 0;
-  long linear_setups = 0;
-  long nonlinear_iterations = 0;
-  long nonlinear_failures = 0;
-  long error_test_failures = 0;
-  long reparameterisations = 0;
-  long restarts = 0;
-  /// max |Φ| over the accepted steps: the drift of the formulation itself, free of the
-  /// interpolation error that samples between steps carry.
-  double max_step_constraint_residual = 0.0;
-  double last_step_size = 0.0;
-  int last_order = 0;
-  double wall_time_s = 0.0;
-};
 
 /// Receives the solution at every output time. `y` is the DAE state [q, dq, λ(, μ)].
 struct SampleSink {

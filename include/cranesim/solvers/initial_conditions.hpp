@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cranesim/assembly/assembler.hpp"
+#include "cranesim/math/sparse_lu.hpp"
 
 namespace cranesim {
 
@@ -60,10 +61,9 @@ class AccelerationSolver {
              const Eigen::SparseMatrix<double>& mass, Limit limit);
 
  private:
-  struct Factorisation;  // KLU's symbolic and numeric objects
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SparseMatrix<double> matrix_;
-  std::unique_ptr<Factorisation> lu_;
+  SparseLU lu_;
 };
 
 /// Recomputes a, λ and q̇ for a state whose q and v are already consistent. `limit`: Right
