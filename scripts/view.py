@@ -1,0 +1,380 @@
+"""Interactive 3-D replay of a cranesim run as ONE self-contained HTML page.
+
+The page opens offline in any current browser (no server, no network): three.js and its
+OrbitControls (Debian's package libjs-three, revision 111, MIT licence) are inlined, and the
+run rides along as float32 arrays in base64, decimated to --frames frames.
+
+It shows the rigid bodies (each as a translucent box of the body's mass and inertia when the
+scene gives them, and always as its joint skeleton: origin → joints), the flexible members
+along their nodes (ropes as lines, beams and truss tubes as tubes), the load and its trace, a
+ground grid with its spacing, orbit / pan / zoom, a time slider with play, pause and speed, a
+camera that follows the load, and side plots (load position, energies, rope end forces) whose
+cursor follows the time. Time, camera and follow mode live in the URL's fragment, e.g.
+crane.html#t=12.5, so a link opens the page at a moment.
+
+Example:
+
+    python scripts/view.py run.h5 -o run.html --frames 600
+"""
+
+import argparse
+import base64
+import html
+import json
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from cranesim_results import Results, ResultsError, run_command
+from mechanism_drawing import MechanismGeometry, body_of
+
+HERE = Path(__file__).resolve().parent
+PAGE_TEMPLATE = HERE / "view_page" / "page.html"
+PAGE_SCRIPT = HERE / "view_page" / "replay.js"
+THREE_DIRECTORIES = (Path("/usr/share/javascript/three"),)
+THREE_FILES = ("three.min.js", "examples/js/controls/OrbitControls.js")
+THREE_REVISION = "111"  # Debian bookworm's libjs-three 111+dfsg1; the page is written for it
+DEFAULT_FRAMES = 1000
+
+
+def parse_arguments() -> argparse.Namespace:
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    parser.add_argument("results", help="results file (.h5) written by crane-sim run")
+    parser.add_argument("-o", "--output", help="output page (default: <results>.html)")
+    parser.add_argument(
+        "--frames", type=int, default=DEFAULT_FRAMES,
+        help=f"at most this many frames, evenly spread over the run (default: {DEFAULT_FRAMES})",
+    )
+    parser.add_argument(
+        "--load", metavar="BODY",
+        help="body whose origin is the load (traced, followed, plotted; default: 'load' if the "
+             "run has it, else the last body)",
+    )
+    args = parser.parse_args()
+    if args.frames < 2:
+        parser.error("--frames must be at least 2")
+    return args
+
+
+# ---------------------------------------------------------------------------------------------
+# What the scene text says about shapes (best effort: the engine validated the scene already)
+
+def scene_description(scene_text: str) -> dict:
+    """The scene with its `base` scenes and `modify` paths resolved, as plain data.
+
+    scene_text is the scene followed by its base scenes (each after a line
+    '# ---- base scene: PATH ----'). Returns {} when it cannot be read.
+    """
+    try:
+        import yaml
+    except ImportError:
+        return {}
+    parts = re.split(r"^# ---- base scene: .* ----$", scene_text, flags=re.MULTILINE)
+    try:
+        documents = [yaml.safe_load(part) or {} for part in parts]
+    except yaml.YAMLError:
+        return {}
+    scene: dict = {}
+    for document in reversed(documents):  # the deepest base first
+        if not isinstance(document, dict):
+            return {}
+        scene.update({k: v for k, v in document.items() if k not in ("base", "modify")})
+        for path, value in (document.get("modify") or {}).items():
+            apply_modification(scene, str(path).split("."), value)
+    return scene
+
+
+def apply_modification(node, keys: list[str], value) -> None:
+    """Set node[k1][k2]… = value, where a list's item is named by its `name` field."""
+    for i, key in enumerate(keys):
+        last = i == len(keys) - 1
+        if isinstance(node, list):
+            items = [item for item in node if isinstance(item, dict) and item.get("name") == key]
+            if not items:
+                return
+            if last:
+                node[node.index(items[0])] = value
+                return
+            node = items[0]
+        elif isinstance(node, dict):
+            if last:
+                node[key] = value
+                return
+            node = node.get(key)
+        else:
+            return
+
+
+def named_items(scene: dict, key: str) -> dict:
+    items = scene.get(key) or []
+    if not isinstance(items, list):
+        return {}
+    return {str(item["name"]): item for item in items if isinstance(item, dict) and "name" in item}
+
+
+def inertia_box(body: dict) -> dict | None:
+    """Edges and placement of the uniform box with the body's mass and inertia about its centroid.
+
+    A box of edges a, b, c has I = m/12 (b² + c², …), so a² = 6 (I2 + I3 − I1) / m. Returns
+    {"centroid": [3], "axes": 3×3 (columns: principal axes in body axes), "edges": [3]} or None.
+    """
+    try:
+        mass = float(body["mass"])
+        inertia = np.asarray(body["inertia"], dtype=float)
+        centroid = np.asarray(body.get("centroid", [0, 0, 0]), dtype=float).reshape(3)
+    except (KeyError, TypeError, ValueError):
+        return None
+    if inertia.shape == (3,):
+        tensor = np.diag(inertia)
+    elif inertia.shape == (6,):
+        xx, yy, zz, xy, xz, yz = inertia
+        tensor = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+    elif inertia.shape == (3, 3):
+        tensor = inertia
+    else:
+        return None
+    if mass <= 0 or not np.all(np.isfinite(tensor)):
+        return None
+    principal, axes = np.linalg.eigh((tensor + tensor.T) / 2)
+    squares = 6.0 / mass * (principal.sum() - 2.0 * principal)
+    edges = np.sqrt(np.clip(squares, 0.0, None))
+    if not np.all(np.isfinite(edges)) or edges.max() <= 0:
+        return None
+    edges = np.maximum(edges, 0.02 * edges.max())  # a rod or a plate stays visible
+    return {"centroid": centroid.tolist(), "axes": axes.tolist(), "edges": edges.tolist()}
+
+
+def member_radius(member: dict, trusses: dict) -> float | None:
+    """Outer radius of a member's tube: its section's, or its truss' main tubes'."""
+    section = member.get("section")
+    if member.get("type") == "truss":
+        truss = trusses.get(str(member.get("truss")), {})
+        section = ((truss.get("tubes") or {}).get("main")) if isinstance(truss, dict) else None
+    if not isinstance(section, dict):
+        return None
+    for key in ("outer_radius", "radius"):
+        if isinstance(section.get(key), (int, float)):
+            return float(section[key])
+    if isinstance(section.get("area"), (int, float)) and section["area"] > 0:
+        return float(np.sqrt(section["area"] / np.pi))
+    return None
+
+
+# ---------------------------------------------------------------------------------------------
+# Reading the run
+
+def check_results_file(results: Results) -> None:
+    """One-line refusal of an HDF5 file that is not a cranesim results file."""
+    analysis = results.attribute("analysis")
+    contents = results.attribute("contents")
+    if analysis == "modes":
+        raise ResultsError(f"{results.path} is a modes file (crane-sim modes); view.py shows "
+                           "results files of crane-sim run only")
+    if contents in ("plan", "map"):
+        raise ResultsError(f"{results.path} is a {contents} file (crane-opt); view its "
+                           "verification run instead: the <plan>_simulation.h5 beside it")
+    missing = [path for path in ("time", "model/bodies", "model/joints") if not results.has(path)]
+    if results.attribute("engine_version") is None or missing:
+        what = f"no {', '.join('/' + path for path in missing)}" if missing else "no engine_version"
+        raise ResultsError(f"{results.path} is not a cranesim results file ({what})")
+
+
+def frame_samples(sample_count: int, frames: int) -> np.ndarray:
+    """At most `frames` sample indices evenly spread over the run, first and last included."""
+    if sample_count <= frames:
+        return np.arange(sample_count)
+    return np.unique(np.round(np.linspace(0, sample_count - 1, frames)).astype(int))
+
+
+def encode(array) -> str:
+    """float32, little-endian, base64: what the page decodes into a Float32Array."""
+    return base64.b64encode(np.ascontiguousarray(array, dtype="<f4").tobytes()).decode("ascii")
+
+
+def nice_spacing(length: float) -> float:
+    """1, 2 or 5 × 10^k near length / 10: the ground grid's spacing."""
+    raw = max(length, 1e-9) / 10
+    power = 10.0 ** np.floor(np.log10(raw))
+    return float(min((step * power for step in (1, 2, 5, 10)), key=lambda s: abs(s - raw)))
+
+
+def choose_load(bodies: list[str], requested: str | None) -> int:
+    if requested is not None:
+        if requested not in bodies:
+            raise ResultsError(f"--load {requested}: no such body; bodies: {', '.join(bodies)}")
+        return bodies.index(requested)
+    if "load" in bodies:
+        return bodies.index("load")
+    return len(bodies) - 1  # -1: no body at all
+
+
+def rope_end_forces(results: Results, rope_members: set[str], samples: np.ndarray) -> list:
+    """|force| of each constraint that holds an end of a rope: the rope's end tension."""
+    if not rope_members or not results.has("lambda") or not results.has("model/constraint_rows"):
+        return []
+    rows = list(results.names("model/constraint_rows"))
+    names = results.names("model/constraints")
+    ends = results.names("model/constraint_joints").reshape(-1, 2)
+    lambdas = results.get("lambda")[samples]
+    curves = []
+    for name, joints in zip(names, ends):
+        if not any(body_of(j) in rope_members and j.split(".", 1)[1] in ("start", "end")
+                   for j in joints):
+            continue
+        columns = [rows.index(f"{name}/{c}") for c in "xyz" if f"{name}/{c}" in rows]
+        if len(columns) == 3:
+            curves.append({"label": f"{name} |F|", "values": encode(
+                np.linalg.norm(lambdas[:, columns], axis=1))})
+    return curves
+
+
+def page_data(results: Results, frames: int, load_name: str | None) -> dict:
+    check_results_file(results)
+    geometry = MechanismGeometry.load(results)
+    bodies = list(results.names("model/bodies"))
+    joints = list(results.names("model/joints"))
+    samples = frame_samples(geometry.time.size, frames)
+    time = geometry.time[samples]
+
+    scene = scene_description(results.attribute("scene_text") or "")
+    body_specs = named_items(scene, "bodies")
+    member_specs = named_items(scene, "members")
+    trusses = named_items(scene, "trusses")
+
+    # Points: body origins first, then joints; segments index them.
+    points = np.concatenate([geometry.body_origins, geometry.joint_positions], axis=1)[samples]
+    finite = points[np.all(np.isfinite(points), axis=-1)]
+    low, high = (finite.min(axis=0), finite.max(axis=0)) if finite.size else (np.zeros(3),) * 2
+    size = float(np.linalg.norm(high - low)) or 1.0
+    body_count = len(bodies)
+
+    skeleton = [[int(b), body_count + int(j), int(b)] for b, j in geometry.segment_ends]
+    ropes, tubes = [], []
+    rope_members = set()
+    for a, b in geometry.member_segments:
+        member = body_of(joints[a])
+        spec = member_specs.get(member, {})
+        if spec.get("type") == "rope":
+            rope_members.add(member)
+            ropes.append([body_count + int(a), body_count + int(b)])
+        else:
+            radius = member_radius(spec, trusses)
+            tubes.append([body_count + int(a), body_count + int(b), radius or 0.0])
+
+    rotations = (np.stack([results.get(f"bodies/{name}/rotation") for name in bodies], axis=1)
+                 [samples].reshape(len(samples), -1) if bodies else np.empty((len(samples), 0)))
+    load = choose_load(bodies, load_name)
+    series = []
+    if load >= 0:
+        origin = geometry.body_origins[samples, load]
+        series.append({"title": f"load ({bodies[load]}) position", "unit": "m", "curves": [
+            {"label": axis, "values": encode(origin[:, i])} for i, axis in enumerate("xyz")]})
+    energy = {name: results.get(f"energy/{name}")[samples]
+              for name in ("kinetic", "potential", "drive_work", "load_work", "balance")
+              if results.has(f"energy/{name}")}
+    if energy:
+        curves = [{"label": "kinetic" if name == "kinetic" else f"Δ{name.replace('_', ' ')}",
+                   "values": encode(values - (0 if name == "kinetic" else values[0]))}
+                  for name, values in energy.items() if name != "balance"]
+        series.append({"title": "energies (changes from the start)", "unit": "J",
+                       "curves": curves})
+        if "balance" in energy:
+            series.append({"title": "energy balance K + P − W (change)", "unit": "J",
+                           "curves": [{"label": "balance − balance(0)", "values": encode(
+                               energy["balance"] - energy["balance"][0])}]})
+    forces = rope_end_forces(results, rope_members, samples)
+    if forces:
+        series.append({"title": "rope end forces", "unit": "N", "curves": forces})
+
+    gravity = np.asarray(scene.get("gravity", [0, 0, -9.81]), dtype=float).reshape(-1)
+    up = -gravity / np.linalg.norm(gravity) if gravity.size == 3 and np.any(gravity) else [0, 0, 1]
+    return {
+        "file": results.path.name,
+        "scene": str(scene.get("name") or results.attribute("scene_path") or ""),
+        "status": results.status,
+        "message": results.message,
+        "engine_version": results.attribute("engine_version"),
+        "t_end_requested": results.attribute("t_end_requested"),
+        "sample_count": int(geometry.time.size),
+        "frame_count": int(len(samples)),
+        "body_names": bodies,
+        "joint_names": joints,
+        "point_count": int(points.shape[1]),
+        "time": encode(time),
+        "points": encode(points),
+        "rotations": encode(rotations),
+        "skeleton": skeleton,
+        "ground_points": [body_count + int(j) for j in geometry.ground_joints],
+        "ropes": ropes,
+        "tubes": tubes,
+        "boxes": [inertia_box(body_specs.get(name, {})) for name in bodies],
+        "load": load,
+        "load_name": bodies[load] if load >= 0 else None,
+        "bounds": [low.tolist(), high.tolist()],
+        "size": size,
+        "grid_spacing": nice_spacing(float(np.max(high - low))),
+        "up": list(map(float, up)),
+        "series": series,
+    }
+
+
+# ---------------------------------------------------------------------------------------------
+# Writing the page
+
+def three_sources() -> tuple[str, list[str]]:
+    """(revision, [three.min.js, OrbitControls.js] texts) from Debian's libjs-three."""
+    for directory in THREE_DIRECTORIES:
+        paths = [directory / name for name in THREE_FILES]
+        if all(path.is_file() for path in paths):
+            texts = [path.read_text(encoding="utf-8") for path in paths]
+            match = re.search(r'REVISION\s*=\s*"(\w+)"', texts[0])
+            revision = match[1] if match else "?"
+            if revision != THREE_REVISION:
+                print(f"warning: three.js revision {revision} in {directory}; the page was "
+                      f"written and tested for revision {THREE_REVISION}", file=sys.stderr)
+            return revision, texts
+    raise ResultsError("three.js not found (" + ", ".join(
+        str(d / f) for d in THREE_DIRECTORIES for f in THREE_FILES)
+        + "): install Debian's package libjs-three (scripts/install_deps.sh does)")
+
+
+def inline_script(text: str) -> str:
+    """Text safe inside <script>…</script>."""
+    return re.sub(r"</(script)", r"<\\/\1", text, flags=re.IGNORECASE)
+
+
+def write_page(data: dict, output: Path) -> int:
+    revision, (three, orbit_controls) = three_sources()
+    data["three_revision"] = revision
+    template = PAGE_TEMPLATE.read_text(encoding="utf-8")
+    replacements = {
+        "{{TITLE}}": html.escape(f"{data['file']} · cranesim replay"),
+        "{{THREE}}": inline_script(three),
+        "{{ORBIT_CONTROLS}}": inline_script(orbit_controls),
+        "{{REPLAY}}": inline_script(PAGE_SCRIPT.read_text(encoding="utf-8")),
+        "{{DATA}}": json.dumps(data, separators=(",", ":")).replace("</", "<\\/"),
+    }
+    page = re.sub("|".join(map(re.escape, replacements)), lambda m: replacements[m[0]], template)
+    output.write_text(page, encoding="utf-8")
+    return output.stat().st_size
+
+
+def main() -> None:
+    args = parse_arguments()
+    results_path = Path(args.results)
+    output = Path(args.output or results_path.with_suffix(".html"))
+    with Results(results_path) as results:
+        data = page_data(results, args.frames, args.load)
+    size = write_page(data, output)
+    time = np.frombuffer(base64.b64decode(data["time"]), dtype="<f4")
+    status = "" if data["status"] == "complete" else f", status {data['status']}"
+    print(f"wrote {output} ({size / 1e6:.2f} MB, {data['frame_count']} frames of "
+          f"{data['sample_count']} samples, t = {time[0]:.6g} .. {time[-1]:.6g} s{status})")
+
+
+if __name__ == "__main__":
+    sys.exit(run_command(main))

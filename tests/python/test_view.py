@@ -1,0 +1,248 @@
+"""scripts/view.py: the 3-D replay page, rendered in a real browser (headless Chromium).
+
+A short run of configs/pendulum.yaml becomes a page; Chromium opens it at two times given in
+the URL's fragment, once for the DOM (--dump-dom) and once for a screenshot. The page must load
+without a JavaScript error, draw something, show the rod where the results file has it (the
+screen position the page reports, from three.js' projection, against the projection of the
+HDF5 value through the camera matrices the page reports, and the load marker's colour in the
+screenshot at that place), and the two moments must look different where the rod moved.
+
+Needs Debian's chromium and libjs-three (scripts/install_deps.sh installs both); a missing
+browser fails the test. Environment: CRANESIM_BIN (default <repo>/build/crane-sim) and
+CRANESIM_SOURCE_DIR.
+"""
+
+import base64
+import html.parser
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+from conftest import INCOMPLETE_MESSAGE
+
+SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
+BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
+VIEW = SOURCE_DIR / "scripts" / "view.py"
+WINDOW = (1000, 700)
+VIEW_SIZE = (640, 480)  # fixed in the URL: the DOM dump and the screenshot see one camera
+TIMES = (0.3, 0.8)
+LOAD_COLOUR = np.array([0xE4, 0x57, 0x2E])  # the page's load marker, drawn over everything
+BACKGROUND = np.array([0xEE, 0xF2, 0xF6])
+
+
+def chromium() -> str:
+    path = shutil.which("chromium") or shutil.which("chromium-browser")
+    if path is None:
+        pytest.fail("chromium not found on PATH: the replay page is tested in a real browser; "
+                    "install Debian's package chromium (scripts/install_deps.sh does)")
+    return path
+
+
+def browser_command(profile: Path, url: str, *mode: str) -> list[str]:
+    return [chromium(), "--headless", "--no-sandbox", "--use-angle=swiftshader",
+            "--enable-unsafe-swiftshader", "--force-device-scale-factor=1", "--hide-scrollbars",
+            f"--window-size={WINDOW[0]},{WINDOW[1]}", f"--user-data-dir={profile}",
+            "--virtual-time-budget=5000", *mode, url]
+
+
+def run_browsers(commands: list[list[str]]) -> list[str]:
+    """Run the browser commands two at a time; their standard outputs."""
+    outputs = []
+    for pair in (commands[i:i + 2] for i in range(0, len(commands), 2)):
+        processes = [subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                      text=True) for command in pair]
+        for process in processes:
+            stdout, stderr = process.communicate(timeout=60)
+            assert process.returncode == 0, stderr[-2000:]
+            outputs.append(stdout)
+    return outputs
+
+
+class StatusParser(html.parser.HTMLParser):
+    """The page's <title> and the attributes of its #status and #incomplete elements."""
+
+    def __init__(self):
+        super().__init__()
+        self.title, self.status, self.incomplete, self._in = "", {}, None, None
+
+    def handle_starttag(self, tag, attrs):
+        attributes = dict(attrs)
+        if tag == "title":
+            self._in = "title"
+        elif attributes.get("id") == "status":
+            self.status = attributes
+        elif attributes.get("id") == "incomplete":
+            self.incomplete = {"hidden": "hidden" in attributes, "text": ""}
+            self._in = "incomplete"
+
+    def handle_endtag(self, tag):
+        self._in = None
+
+    def handle_data(self, text):
+        if self._in == "title":
+            self.title += text
+        elif self._in == "incomplete":
+            self.incomplete["text"] += text
+
+
+def parse_dom(dom: str) -> StatusParser:
+    parser = StatusParser()
+    parser.feed(dom)
+    return parser
+
+
+def numbers(text: str) -> np.ndarray:
+    return np.array([float(value) for value in text.split(",")])
+
+
+def read_png(path: Path) -> np.ndarray:
+    from PIL import Image  # matplotlib's dependency
+    with Image.open(path) as image:
+        return np.asarray(image.convert("RGB")).astype(int)
+
+
+def make_page(tmp_path: Path, results: Path, *options: str) -> Path:
+    page = tmp_path / (results.stem + ".html")
+    run = subprocess.run([sys.executable, str(VIEW), str(results), "-o", str(page), *options],
+                         capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, run.stderr
+    assert "wrote" in run.stdout
+    return page
+
+
+def page_data(page: Path) -> dict:
+    match = re.search(r'<script type="application/json" id="cranesim-data">(.*?)</script>',
+                      page.read_text(encoding="utf-8"), flags=re.DOTALL)
+    return json.loads(match[1])
+
+
+def decode(text: str) -> np.ndarray:
+    return np.frombuffer(base64.b64decode(text), dtype="<f4")
+
+
+@pytest.fixture(scope="module")
+def pendulum_run(tmp_path_factory) -> Path:
+    if not BINARY.is_file():
+        pytest.fail(f"crane-sim not found at {BINARY}: build it first or set CRANESIM_BIN")
+    directory = tmp_path_factory.mktemp("view")
+    base = SOURCE_DIR / "configs" / "pendulum.yaml"
+    (directory / "short.yaml").write_text(f"base: {base}\nmodify:\n  solver.t_end: 1.0\n")
+    run = subprocess.run([str(BINARY), "run", "short.yaml", "-o", "pendulum.h5", "--quiet"],
+                         cwd=directory, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    return directory / "pendulum.h5"
+
+
+def test_page_shows_the_pendulum_where_the_results_have_it(pendulum_run, tmp_path):
+    page = make_page(tmp_path, pendulum_run)
+    text = page.read_text(encoding="utf-8")
+    assert "<script src" not in text and "<link" not in text  # self-contained
+    with h5py.File(pendulum_run, "r") as results:
+        time = results["time"][()]
+        rod = results["bodies/rod/position"][()]
+
+    commands, shots = [], []
+    for k, t in enumerate(TIMES):
+        url = f"{page.as_uri()}#t={t}&size={VIEW_SIZE[0]}x{VIEW_SIZE[1]}"
+        shots.append(tmp_path / f"shot{k}.png")
+        commands.append(browser_command(tmp_path / f"dom{k}", url, "--dump-dom"))
+        commands.append(browser_command(tmp_path / f"png{k}", url, f"--screenshot={shots[-1]}"))
+    outputs = run_browsers(commands)
+
+    images, load_pixels = [], []
+    for k, t in enumerate(TIMES):
+        dom = parse_dom(outputs[2 * k])
+        assert dom.status.get("data-state") == "ready", (dom.title, dom.status.get("data-error"))
+        assert dom.title.startswith("cranesim replay: ready"), dom.title
+        assert float(dom.status["data-t"]) == pytest.approx(t)
+
+        # The rod's origin (the load: the run's last body) from the file, at t …
+        sample = int(np.argmin(np.abs(time - t)))
+        assert time[sample] == pytest.approx(t)
+        world = rod[sample]
+        np.testing.assert_allclose(numbers(dom.status["data-load-world"]), world, atol=1e-5)
+        # … through the page's camera (three.js stores matrices column by column) …
+        view = numbers(dom.status["data-view-matrix"]).reshape(4, 4).T
+        projection = numbers(dom.status["data-projection-matrix"]).reshape(4, 4).T
+        clip = projection @ view @ np.append(world, 1.0)
+        ndc = clip[:3] / clip[3]
+        left, top, width, height = numbers(dom.status["data-canvas"])
+        assert (width, height) == VIEW_SIZE
+        expected = np.array([left + (ndc[0] + 1) / 2 * width, top + (1 - ndc[1]) / 2 * height])
+        # … is where the page says it drew it,
+        reported = numbers(dom.status["data-load-px"])
+        np.testing.assert_allclose(reported, expected, atol=2.0)
+        assert 0 < expected[0] < width and 0 < expected[1] < height
+
+        # and the screenshot has the load marker's colour there.
+        image = read_png(shots[k])
+        assert image.shape[:2] == (WINDOW[1], WINDOW[0])
+        x, y = np.round(expected).astype(int)
+        assert np.abs(image[y, x] - LOAD_COLOUR).max() < 40, (image[y, x], (x, y))
+        # The 3-D view is not blank: well beyond the background colour's share.
+        canvas = image[int(top):int(top + height), int(left):int(left + width)]
+        drawn = np.abs(canvas - BACKGROUND).max(axis=-1) > 30
+        assert drawn.mean() > 0.01, f"only {drawn.mean():.2%} of the canvas is drawn"
+        images.append(image)
+        load_pixels.append((x, y))
+
+    # The two moments differ, and where the load was at one time it is not at the other.
+    assert np.linalg.norm(np.subtract(*load_pixels)) > 20
+    for k, (x, y) in enumerate(load_pixels):
+        other = images[1 - k]
+        assert np.abs(other[y, x] - LOAD_COLOUR).max() > 60, "the load did not move on screen"
+        patch = (slice(y - 10, y + 11), slice(x - 10, x + 11))
+        assert np.abs(images[0][patch] - images[1][patch]).max() > 60
+
+
+def test_incomplete_run_is_shown_with_its_status(incomplete_results_file, tmp_path):
+    page = make_page(tmp_path, incomplete_results_file)
+    data = page_data(page)
+    with h5py.File(incomplete_results_file, "r") as results:
+        last = results["time"][-1]
+    assert data["status"] == "incomplete" and data["message"] == INCOMPLETE_MESSAGE
+    assert decode(data["time"])[-1] == pytest.approx(last)
+    (dom,) = run_browsers([browser_command(tmp_path / "profile", page.as_uri() + "#t=100",
+                                           "--dump-dom")])
+    dom = parse_dom(dom)
+    assert dom.status.get("data-state") == "ready", dom.status.get("data-error")
+    assert float(dom.status["data-t"]) == pytest.approx(last, rel=1e-6)  # clamped to the last
+    assert dom.incomplete is not None and not dom.incomplete["hidden"]
+    assert "INCOMPLETE" in dom.incomplete["text"] and INCOMPLETE_MESSAGE in dom.incomplete["text"]
+
+
+def test_frames_are_decimated_evenly_with_the_last_sample(pendulum_run, tmp_path):
+    data = page_data(make_page(tmp_path, pendulum_run, "--frames", "25"))
+    with h5py.File(pendulum_run, "r") as results:
+        time = results["time"][()]
+        rod = results["bodies/rod/position"][()]
+    frames = decode(data["time"])
+    assert len(frames) == 25 == data["frame_count"] and data["sample_count"] == len(time)
+    assert frames[0] == pytest.approx(time[0]) and frames[-1] == pytest.approx(time[-1])
+    samples = np.searchsorted(time, frames - 1e-6)
+    np.testing.assert_allclose(time[samples], frames, atol=1e-6)
+    points = decode(data["points"]).reshape(25, data["point_count"], 3)
+    np.testing.assert_allclose(points[:, data["load"]], rod[samples], atol=1e-5)
+
+
+def test_a_file_that_is_not_a_results_file_is_refused(tmp_path):
+    other = tmp_path / "other.h5"
+    with h5py.File(other, "w") as file:
+        file["x"] = [1.0, 2.0]
+    text = tmp_path / "text.h5"
+    text.write_text("not hdf5\n")
+    for path in (other, text, tmp_path / "missing.h5"):
+        run = subprocess.run([sys.executable, str(VIEW), str(path), "-o", str(tmp_path / "x.html")],
+                             capture_output=True, text=True, timeout=60)
+        assert run.returncode == 2, run.stderr
+        assert len(run.stderr.strip().splitlines()) == 1 and "Traceback" not in run.stderr
+        assert path.name in run.stderr
+        assert not (tmp_path / "x.html").exists()
