@@ -535,6 +535,7 @@
   }
 
   if (!window.cranesimErrors.length) {
+    status.setAttribute("data-ready-ms", String(performance.now()));  // since navigation start
     status.setAttribute("data-state", "ready");
     document.title = "cranesim replay: ready · t = " + state.t.toFixed(3) + " s · " + (data.scene || data.file);
   }
