@@ -271,7 +271,8 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
     series = []
     if load >= 0:
         origin = geometry.body_origins[samples, load]
-        series.append({"title": f"load ({bodies[load]}) position", "unit": "m", "curves": [
+        title = "load position" if bodies[load] == "load" else f"load ({bodies[load]}) position"
+        series.append({"title": title, "unit": "m", "curves": [
             {"label": axis, "values": encode(origin[:, i])} for i, axis in enumerate("xyz")]})
     energy = {name: results.get(f"energy/{name}")[samples]
               for name in ("kinetic", "potential", "drive_work", "load_work", "balance")

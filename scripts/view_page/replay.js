@@ -299,6 +299,13 @@
     if (loadMarker) loadMarker.position.fromArray(points, 3 * load);
     setTime(values.t !== undefined && isFinite(+values.t) ? +values.t : t0);
     state.follow = following;
+    if (state.follow && loadMarker && cam.length !== 6) centreOnLoad();
+  }
+  function centreOnLoad() {  // look at the load from where the camera looks now
+    var shift = loadMarker.position.clone().sub(controls.target);
+    camera.position.add(shift);
+    controls.target.add(shift);
+    controls.update();
   }
 
   // ---- side plots ---------------------------------------------------------------------------
@@ -308,11 +315,22 @@
     heading.textContent = spec.title + " [" + spec.unit + "]";
     this.canvas = document.createElement("canvas");
     var ratio = window.devicePixelRatio || 1;
-    this.canvas.width = 320 * ratio;
-    this.canvas.height = 164 * ratio;
     this.ratio = ratio;
-    document.getElementById("plots").append(heading, this.canvas);
     this.curves = spec.curves.map(function (c) { return { label: c.label, values: decode(c.values) }; });
+    // The legend below the time axis, in as many lines as its labels need.
+    var measure = this.canvas.getContext("2d"), x = 58, line = 0;
+    measure.font = "10px system-ui, sans-serif";
+    this.curves.forEach(function (curve) {
+      var width = measure.measureText(curve.label).width;
+      if (x > 58 && x + width > 318) { x = 58; line++; }
+      curve.legend = [x, line];
+      x += width + 10;
+    });
+    var height = 160 + 14 * line;
+    this.canvas.width = 320 * ratio;
+    this.canvas.height = height * ratio;
+    this.canvas.style.height = height + "px";
+    document.getElementById("plots").append(heading, this.canvas);
     var lo = Infinity, hi = -Infinity;
     this.curves.forEach(function (c) {
       c.values.forEach(function (v) { if (isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); } });
@@ -367,11 +385,9 @@
       g.stroke();
     });
     g.textAlign = "left";
-    var x = box.left;
     this.curves.forEach(function (curve, k) {
       g.fillStyle = plotColours[k % plotColours.length];
-      g.fillText(curve.label, x, box.bottom + 26);
-      x += g.measureText(curve.label).width + 10;
+      g.fillText(curve.label, curve.legend[0], box.bottom + 26 + 14 * curve.legend[1]);
     });
   };
   Plot.prototype.cursor = function (t) {
@@ -422,7 +438,12 @@
   slider.addEventListener("input", function () { pause(); setTime(+slider.value); });
   slider.addEventListener("change", writeHash);
   speedSelect.addEventListener("change", function () { state.speed = +speedSelect.value; writeHash(); });
-  followBox.addEventListener("change", function () { state.follow = followBox.checked; writeHash(); });
+  followBox.addEventListener("change", function () {
+    state.follow = followBox.checked;
+    if (state.follow && loadMarker) centreOnLoad();
+    needsRender = true;
+    writeHash();
+  });
   boxesBox.addEventListener("change", function () {
     boxes.forEach(function (box) { box.mesh.visible = boxesBox.checked; });
     needsRender = true;
@@ -433,12 +454,7 @@
   });
   document.getElementById("reset").addEventListener("click", function () {
     defaultCamera();
-    if (state.follow && loadMarker) {
-      var shift = loadMarker.position.clone().sub(centre);
-      camera.position.add(shift);
-      controls.target.add(shift);
-      controls.update();
-    }
+    if (state.follow && loadMarker) centreOnLoad();
     writeHash();
     needsRender = true;
   });

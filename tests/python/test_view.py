@@ -203,6 +203,26 @@ def test_page_shows_the_pendulum_where_the_results_have_it(pendulum_run, tmp_pat
         assert np.abs(images[0][patch] - images[1][patch]).max() > 60
 
 
+def test_follow_camera_keeps_the_load_in_the_middle(pendulum_run, tmp_path):
+    # #bench=N draws N frames from the start to the end of the run, as playing does.
+    page = make_page(tmp_path, pendulum_run)
+    size = f"size={VIEW_SIZE[0]}x{VIEW_SIZE[1]}"
+    outputs = run_browsers([
+        browser_command(tmp_path / f"profile{k}", f"{page.as_uri()}#t=0.2&{size}&bench=12{follow}",
+                        "--dump-dom") for k, follow in enumerate(("&follow=1", ""))])
+    middle = np.array(VIEW_SIZE) / 2
+    for output, following in zip(outputs, (True, False)):
+        dom = parse_dom(output)
+        assert dom.status.get("data-state") == "ready", dom.status.get("data-error")
+        assert float(dom.status["data-t"]) == pytest.approx(1.0)
+        assert float(dom.status["data-bench-fps"]) > 0
+        distance = np.linalg.norm(numbers(dom.status["data-load-px"]) - middle)
+        if following:
+            assert distance < 1.0
+        else:
+            assert distance > 20
+
+
 def test_incomplete_run_is_shown_with_its_status(incomplete_results_file, tmp_path):
     page = make_page(tmp_path, incomplete_results_file)
     data = page_data(page)
