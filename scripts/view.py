@@ -171,12 +171,11 @@ def check_results_file(results: Results) -> None:
     """One-line refusal of an HDF5 file that is not a cranesim results file."""
     analysis = results.attribute("analysis")
     contents = results.attribute("contents")
-    if analysis == "modes":
-        raise ResultsError(f"{results.path} is a modes file (crane-sim modes); view.py shows "
-                           "results files of crane-sim run only")
     if contents in ("plan", "map"):
         raise ResultsError(f"{results.path} is a {contents} file (crane-opt); view its "
                            "verification run instead: the <plan>_simulation.h5 beside it")
+    if analysis == "modes" and results.attribute("engine_version") is not None:
+        return
     missing = [path for path in ("time", "model/bodies", "model/joints") if not results.has(path)]
     if results.attribute("engine_version") is None or missing:
         what = f"no {', '.join('/' + path for path in missing)}" if missing else "no engine_version"
@@ -232,8 +231,158 @@ def rope_end_forces(results: Results, rope_members: set[str], samples: np.ndarra
     return curves
 
 
+JOINT_INDEX = re.compile(r"^(?P<member>[^.]+)\.(?:n(?P<node>\d+)|s(?P<section>\d+)n(?P<end>\d+)|"
+                         r"c(?P<chord>\d+)k(?P<station>\d+))$")
+
+
+def segments_from_names(joints: list[str], scene: dict) -> tuple[list, list, list, list]:
+    """(bodies, skeleton [origin, joint, body index], ropes [a, b], tubes [a, b, radius]) from
+    joint names: the bodies are the owners of the joints <body>.origin.
+
+    For files without /model/member_segments (modes files): a body's origin joins each of its
+    joints; a member's nodes n0, n1, … join in order; a truss' chords run from end section 1
+    through the internal nodes c<chord>k1, k2, … to end section 2 (its main_beams say which
+    end nodes), and each end section's cross beams join its nodes (as the scene's truss says,
+    else in a ring).
+    """
+    index = {name: i for i, name in enumerate(joints)}
+    members = named_items(scene, "members")
+    trusses = named_items(scene, "trusses")
+    bodies = [name[: -len(".origin")] for name in joints
+              if name.endswith(".origin") and not name.startswith("ground.")]
+    skeleton = [[index[f"{body}.origin"], i, b] for b, body in enumerate(bodies)
+                for i, name in enumerate(joints)
+                if body_of(name) == body and name != f"{body}.origin"]
+    nodes, ends, chords = {}, {}, {}
+    for i, name in enumerate(joints):
+        match = JOINT_INDEX.match(name)
+        if match is None:
+            continue
+        member = match["member"]
+        if match["node"] is not None:
+            nodes.setdefault(member, []).append((int(match["node"]), i))
+        elif match["section"] is not None:
+            ends.setdefault(member, {})[(int(match["section"]), int(match["end"]))] = i
+        else:
+            chords.setdefault(member, {}).setdefault(int(match["chord"]), []).append(
+                (int(match["station"]), i))
+    ropes, tubes = [], []
+
+    def add(member: str, a: int, b: int) -> None:
+        spec = members.get(member, {})
+        if spec.get("type") == "rope":
+            ropes.append([a, b])
+        else:
+            tubes.append([a, b, member_radius(spec, trusses) or 0.0])
+
+    for member, chain in nodes.items():
+        chain = [i for _, i in sorted(chain)]
+        for a, b in zip(chain, chain[1:]):
+            add(member, a, b)
+    for member, section_nodes in ends.items():
+        truss = trusses.get(str(members.get(member, {}).get("truss")), {})
+        sections = truss.get("sections") if isinstance(truss, dict) else None
+        for section in (1, 2):
+            numbers = sorted(k for s_, k in section_nodes if s_ == section)
+            try:
+                pairs = sections[section - 1]["cross_beams"]
+            except (TypeError, IndexError, KeyError):
+                pairs = list(zip(numbers, numbers[1:] + numbers[:1])) if len(numbers) > 2 else (
+                    [numbers] if len(numbers) == 2 else [])
+            for a, b in pairs:
+                if (section, a) in section_nodes and (section, b) in section_nodes:
+                    add(member, section_nodes[(section, a)], section_nodes[(section, b)])
+        main_beams = truss.get("main_beams") if isinstance(truss, dict) else None
+        if not main_beams:
+            main_beams = [[k, k] for s_, k in section_nodes if s_ == 1 and (2, k) in section_nodes]
+        for chord, (a, b) in enumerate(main_beams, start=1):
+            if (1, a) not in section_nodes or (2, b) not in section_nodes:
+                continue
+            inside = [i for _, i in sorted(chords.get(member, {}).get(chord, []))]
+            chain = [section_nodes[(1, a)], *inside, section_nodes[(2, b)]]
+            for p, q in zip(chain, chain[1:]):
+                add(member, p, q)
+    return bodies, skeleton, ropes, tubes
+
+
+def bounds_of(points: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    finite = points.reshape(-1, 3)
+    finite = finite[np.all(np.isfinite(finite), axis=-1)]
+    low, high = (finite.min(axis=0), finite.max(axis=0)) if finite.size else (np.zeros(3),) * 2
+    return low, high, float(np.linalg.norm(high - low)) or 1.0
+
+
+def up_direction(scene: dict) -> list[float]:
+    gravity = np.asarray(scene.get("gravity", [0, 0, -9.81]), dtype=float).reshape(-1)
+    if gravity.size == 3 and np.any(gravity):
+        return list(map(float, -gravity / np.linalg.norm(gravity)))
+    return [0.0, 0.0, 1.0]
+
+
+def modes_page_data(results: Results, load_name: str | None) -> dict:
+    """A modes file (crane-sim modes): each mode shape about the equilibrium, to animate."""
+    for path in ("model/joints", "equilibrium/joint_positions", "modes/joint_displacements",
+                 "modes/frequency"):
+        if not results.has(path):
+            raise ResultsError(f"{results.path} is a modes file without /{path}")
+    joints = list(results.names("model/joints"))
+    equilibrium = results.get("equilibrium/joint_positions").reshape(len(joints), 3)
+    displacements = results.get("modes/joint_displacements").reshape(-1, len(joints), 3)
+    frequency = results.get("modes/frequency").reshape(-1)
+    if len(frequency) == 0:
+        raise ResultsError(f"{results.path} holds no modes")
+    largest = np.linalg.norm(displacements, axis=-1).max(axis=-1)
+    shapes = displacements / np.where(largest > 0, largest, 1.0)[:, None, None]
+    scene = scene_description(results.attribute("scene_text") or "")
+    bodies, skeleton, ropes, tubes = segments_from_names(joints, scene)
+    if load_name is not None and f"{load_name}.origin" not in joints:
+        raise ResultsError(f"--load {load_name}: no joint '{load_name}.origin' in {results.path}")
+    load_body = load_name or ("load" if "load.origin" in joints else (bodies[-1] if bodies else None))
+    load = joints.index(f"{load_body}.origin") if load_body else -1
+    low, high, size = bounds_of(equilibrium)
+    return {
+        "kind": "modes",
+        "file": results.path.name,
+        "scene": str(scene.get("name") or results.attribute("scene_path") or ""),
+        "status": results.status,
+        "message": results.message,
+        "engine_version": results.attribute("engine_version"),
+        "t_end_requested": None,
+        "sample_count": 1,
+        "frame_count": 2,
+        "body_names": bodies,
+        "joint_names": joints,
+        "point_count": len(joints),
+        "time": encode([0.0, 1.0]),                      # one cycle of the shown mode
+        "points": encode(np.stack([equilibrium, equilibrium])),
+        "rotations": encode(np.empty((2, 0))),
+        "skeleton": skeleton,
+        "ground_points": [i for i, name in enumerate(joints) if body_of(name) == "ground"],
+        "ropes": ropes,
+        "tubes": tubes,
+        "boxes": [None] * len(bodies),
+        "load": load,
+        "load_name": load_body,
+        "bounds": [low.tolist(), high.tolist()],
+        "size": size,
+        "grid_spacing": nice_spacing(float(np.max(high - low))),
+        "up": up_direction(scene),
+        "series": [],
+        "modes": {
+            "frequency": frequency.tolist(),
+            "omega_squared": results.get("modes/omega_squared").reshape(-1).tolist()
+            if results.has("modes/omega_squared") else None,
+            "rigid_modes": results.attribute("rigid_modes"),
+            "shapes": encode(shapes),                    # modes × joints × 3, largest = 1
+            "amplitude": 0.05 * size,
+        },
+    }
+
+
 def page_data(results: Results, frames: int, load_name: str | None) -> dict:
     check_results_file(results)
+    if results.attribute("analysis") == "modes":
+        return modes_page_data(results, load_name)
     geometry = MechanismGeometry.load(results)
     bodies = list(results.names("model/bodies"))
     joints = list(results.names("model/joints"))
@@ -247,9 +396,7 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
 
     # Points: body origins first, then joints; segments index them.
     points = np.concatenate([geometry.body_origins, geometry.joint_positions], axis=1)[samples]
-    finite = points[np.all(np.isfinite(points), axis=-1)]
-    low, high = (finite.min(axis=0), finite.max(axis=0)) if finite.size else (np.zeros(3),) * 2
-    size = float(np.linalg.norm(high - low)) or 1.0
+    low, high, size = bounds_of(points)
     body_count = len(bodies)
 
     skeleton = [[int(b), body_count + int(j), int(b)] for b, j in geometry.segment_ends]
@@ -291,9 +438,8 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
     if forces:
         series.append({"title": "rope end forces", "unit": "N", "curves": forces})
 
-    gravity = np.asarray(scene.get("gravity", [0, 0, -9.81]), dtype=float).reshape(-1)
-    up = -gravity / np.linalg.norm(gravity) if gravity.size == 3 and np.any(gravity) else [0, 0, 1]
     return {
+        "kind": "results",
         "file": results.path.name,
         "scene": str(scene.get("name") or results.attribute("scene_path") or ""),
         "status": results.status,
@@ -318,7 +464,7 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
         "bounds": [low.tolist(), high.tolist()],
         "size": size,
         "grid_spacing": nice_spacing(float(np.max(high - low))),
-        "up": list(map(float, up)),
+        "up": up_direction(scene),
         "series": series,
     }
 
@@ -371,8 +517,12 @@ def main() -> None:
     with Results(results_path) as results:
         data = page_data(results, args.frames, args.load)
     size = write_page(data, output)
-    time = np.frombuffer(base64.b64decode(data["time"]), dtype="<f4")
     status = "" if data["status"] == "complete" else f", status {data['status']}"
+    if data["kind"] == "modes":
+        print(f"wrote {output} ({size / 1e6:.2f} MB, {len(data['modes']['frequency'])} modes of "
+              f"{data['point_count']} joints{status})")
+        return
+    time = np.frombuffer(base64.b64decode(data["time"]), dtype="<f4")
     print(f"wrote {output} ({size / 1e6:.2f} MB, {data['frame_count']} frames of "
           f"{data['sample_count']} samples, t = {time[0]:.6g} .. {time[-1]:.6g} s{status})")
 

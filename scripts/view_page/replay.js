@@ -29,6 +29,11 @@
   var t0 = times[0], t1 = times[frames - 1];
   var size = data.size;
   var current = new Float32Array(pointCount * 3);  // the points at the shown time
+  // A modes file: the equilibrium (as two equal frames) and the mode shapes, each scaled so
+  // its largest joint displacement is 1; the time runs over one cycle of the chosen mode.
+  var modes = data.kind === "modes" ? data.modes : null;
+  var shapes = modes ? decode(modes.shapes) : null;
+  var modeIndex = 0, amplitude = modes ? modes.amplitude : 0;
 
   // ---- scene, camera, renderer --------------------------------------------------------------
   var view = document.getElementById("view");
@@ -219,6 +224,11 @@
     for (var i = 0; i < pointCount * 3; i++) {
       current[i] = (1 - w) * points[base + i] + w * points[nextBase + i];
     }
+    if (modes) {
+      var deflection = amplitude * Math.sin(2 * Math.PI * (state.t - t0) / (t1 - t0));
+      var offset = modeIndex * pointCount * 3;
+      for (var j = 0; j < pointCount * 3; j++) current[j] += deflection * shapes[offset + j];
+    }
     tubeSets.forEach(function (set) { set.update(); });
     data.ropes.forEach(function (s, k) {
       for (var c = 0; c < 3; c++) {
@@ -247,7 +257,8 @@
       }
     }
     slider.value = String(state.t);
-    clock.textContent = "t = " + state.t.toFixed(2) + " s / " + t1.toFixed(2) + " s";
+    clock.textContent = modes ? "phase " + state.t.toFixed(2) + " of a cycle"
+                              : "t = " + state.t.toFixed(2) + " s / " + t1.toFixed(2) + " s";
     plots.forEach(function (plot) { plot.cursor(state.t); });
     needsRender = true;
   }
@@ -266,6 +277,7 @@
     var numbers = [p.x, p.y, p.z, q.x, q.y, q.z].map(function (v) { return +v.toPrecision(6); });
     var hash = "#t=" + +state.t.toFixed(4) + "&cam=" + numbers.join(",");
     if (state.follow) hash += "&follow=1";
+    if (modes) hash += "&mode=" + (modeIndex + 1) + "&amp=" + +amplitude.toPrecision(4);
     if (state.speed !== 1) hash += "&speed=" + state.speed;
     if (history.replaceState) history.replaceState(null, "", hash);
   }
@@ -289,6 +301,12 @@
       controls.update();
     }
     state.follow = values.follow === "1";
+    if (modes) {
+      var mode = Math.round(+values.mode);
+      if (mode >= 1 && mode <= modes.frequency.length) modeIndex = mode - 1;
+      if (values.amp !== undefined && isFinite(+values.amp) && +values.amp >= 0) amplitude = +values.amp;
+      showMode();
+    }
     followBox.checked = state.follow;
     if (values.speed && isFinite(+values.speed) && +values.speed > 0) {
       state.speed = +values.speed;
@@ -419,6 +437,77 @@
   slider.step = String((t1 - t0) / Math.max(1000, 4 * frames) || 1);
   var plots = data.series.map(function (spec) { return new Plot(spec); });
 
+  // ---- modes: which mode, how large; a table of all modes ------------------------------------
+  var modeSelect = null, amplitudeInput = null, amplitudeText = null, modeRows = [];
+  function modeName(k) {
+    var f = modes.frequency[k];
+    return Math.abs(f) < 1e-9 || (modes.rigid_modes && k < modes.rigid_modes && Math.abs(f) < 1e-3)
+      ? "rigid" : formatNumber(f) + " Hz";
+  }
+  function showMode() {
+    if (!modes) return;
+    modeSelect.value = String(modeIndex);
+    amplitudeInput.value = String(amplitude);
+    amplitudeText.textContent = formatNumber(amplitude) + " m";
+    modeRows.forEach(function (row, k) { row.style.background = k === modeIndex ? "#dde8f6" : ""; });
+    var f = modes.frequency[modeIndex];
+    document.getElementById("scale-line").textContent =
+      "mode " + (modeIndex + 1) + ": " + modeName(modeIndex) +
+      (f > 0 ? " (period " + formatNumber(1 / f) + " s)" : f < 0 ? " (unstable: ω² < 0)" : "") +
+      " · one cycle per second at speed 1 · the joint that moves most moves " +
+      formatNumber(amplitude) + " m · grid " + spacing + " m";
+    setTime(state.t);
+  }
+  if (modes) {
+    var bar = document.getElementById("controls"), speedLabel = document.getElementById("speed").parentNode;
+    var modeLabel = document.createElement("label");
+    modeLabel.textContent = "mode ";
+    modeSelect = document.createElement("select");
+    modeSelect.id = "mode";
+    modes.frequency.forEach(function (f, k) {
+      var option = document.createElement("option");
+      option.value = String(k);
+      option.textContent = (k + 1) + ": " + modeName(k);
+      modeSelect.append(option);
+    });
+    modeLabel.append(modeSelect);
+    var amplitudeLabel = document.createElement("label");
+    amplitudeLabel.textContent = "amplitude ";
+    amplitudeInput = document.createElement("input");
+    amplitudeInput.type = "range";
+    amplitudeInput.id = "amplitude";
+    amplitudeInput.min = "0";
+    amplitudeInput.max = String(0.25 * size);
+    amplitudeInput.step = String(0.0025 * size);
+    amplitudeText = document.createElement("span");
+    amplitudeLabel.append(amplitudeInput, " ", amplitudeText);
+    bar.insertBefore(modeLabel, speedLabel);
+    bar.insertBefore(amplitudeLabel, speedLabel);
+    modeSelect.addEventListener("change", function () { modeIndex = +modeSelect.value; showMode(); writeHash(); });
+    amplitudeInput.addEventListener("input", function () { amplitude = +amplitudeInput.value; showMode(); });
+    amplitudeInput.addEventListener("change", writeHash);
+    ["boxes", "trace"].forEach(function (id) { document.getElementById(id).parentNode.hidden = true; });
+    if (traceAll) traceAll.visible = tracePast.visible = false;
+    slider.setAttribute("aria-label", "phase");
+    // The table of modes in the side panel.
+    var heading = document.createElement("h2");
+    heading.textContent = modes.frequency.length + " modes about the equilibrium (click one)";
+    var table = document.createElement("table");
+    table.style.cssText = "border-collapse:collapse;font-size:12px;width:100%";
+    table.innerHTML = "<tr><th align=left>mode</th><th align=right>frequency</th><th align=right>period</th></tr>";
+    modes.frequency.forEach(function (f, k) {
+      var row = table.insertRow();
+      row.style.cursor = "pointer";
+      row.insertCell().textContent = String(k + 1);
+      var cell = row.insertCell(); cell.align = "right"; cell.textContent = modeName(k);
+      cell = row.insertCell(); cell.align = "right";
+      cell.textContent = f > 0 && modeName(k) !== "rigid" ? formatNumber(1 / f) + " s" : "–";
+      row.addEventListener("click", function () { modeIndex = k; showMode(); writeHash(); });
+      modeRows.push(row);
+    });
+    document.getElementById("plots").append(heading, table);
+  }
+
   function pause() { state.playing = false; playButton.textContent = "Play"; }
   function play() {
     if (state.t >= t1) setTime(t0);
@@ -467,10 +556,12 @@
 
   // ---- page text ----------------------------------------------------------------------------
   document.getElementById("scene-name").textContent = data.scene || data.file;
-  document.getElementById("file-line").textContent =
-    data.file + " · cranesim " + data.engine_version + " · " + data.frame_count + " frames of " +
-    data.sample_count + " samples · t = " + t0.toFixed(2) + " … " + t1.toFixed(2) + " s" +
-    (data.load_name ? " · load: " + data.load_name + " (red, its path purple)" : "");
+  document.getElementById("file-line").textContent = modes
+    ? data.file + " · cranesim " + data.engine_version + " · vibration modes about the equilibrium" +
+      (data.load_name ? " · load: " + data.load_name + " (red)" : "")
+    : data.file + " · cranesim " + data.engine_version + " · " + data.frame_count + " frames of " +
+      data.sample_count + " samples · t = " + t0.toFixed(2) + " … " + t1.toFixed(2) + " s" +
+      (data.load_name ? " · load: " + data.load_name + " (red, its path purple)" : "");
   if (data.status !== "complete") {
     var incomplete = document.getElementById("incomplete");
     incomplete.textContent = "Run " + data.status.toUpperCase() + (data.message ? ": " + data.message : "") +
@@ -478,8 +569,12 @@
       (data.t_end_requested != null ? " of " + data.t_end_requested + " s" : "") + ")";
     incomplete.hidden = false;
   }
-  document.getElementById("legend-note").textContent =
-    "Click a plot to go to that time. Bodies: skeleton from origin to joints" +
+  document.getElementById("legend-note").textContent = modes
+    ? "Each mode shape (the joints' displacements in the modes file) is scaled so the joint that " +
+      "moves most moves by the amplitude. Bodies: skeleton from origin to joints; ropes: lines; " +
+      "other members: tubes between their nodes (a full-member truss without its lacing). three.js r" +
+      data.three_revision + "."
+    : "Click a plot to go to that time. Bodies: skeleton from origin to joints" +
     (boxes.length ? ", and the box of equal mass and inertia" : "") +
     "; ropes: lines; other members: tubes between their nodes. three.js r" + data.three_revision + ".";
 
@@ -523,6 +618,7 @@
     if (state.playing) {
       if (lastTick !== null) {
         var t = state.t + (now - lastTick) / 1000 * state.speed;
+        if (modes && t >= t1) t = t0 + (t - t0) % (t1 - t0);  // a mode cycles for ever
         setTime(t);
         if (t >= t1) { pause(); writeHash(); }
       }

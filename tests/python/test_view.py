@@ -223,6 +223,31 @@ def test_follow_camera_keeps_the_load_in_the_middle(pendulum_run, tmp_path):
             assert distance > 20
 
 
+def test_modes_page_moves_the_load_along_its_mode_shape(tmp_path):
+    if not BINARY.is_file():
+        pytest.fail(f"crane-sim not found at {BINARY}: build it first or set CRANESIM_BIN")
+    modes_file = tmp_path / "rope_modes.h5"
+    run = subprocess.run([str(BINARY), "modes", str(SOURCE_DIR / "configs" / "rope_pendulum.yaml"),
+                          "-n", "6", "-o", str(modes_file)], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, run.stderr
+    page = make_page(tmp_path, modes_file)
+    assert page_data(page)["kind"] == "modes"
+    with h5py.File(modes_file, "r") as modes:
+        joints = list(modes["model/joints"].asstr()[()])
+        ball = joints.index("ball.origin")
+        equilibrium = modes["equilibrium/joint_positions"][ball]
+        displacements = modes["modes/joint_displacements"][()]
+    # Mode 4 (the swing) at a quarter cycle: the joint that moves most is 0.5 m away.
+    shape = displacements[3] / np.linalg.norm(displacements[3], axis=-1).max()
+    url = f"{page.as_uri()}#t=0.25&mode=4&amp=0.5&size={VIEW_SIZE[0]}x{VIEW_SIZE[1]}"
+    (output,) = run_browsers([browser_command(tmp_path / "profile", url, "--dump-dom")])
+    dom = parse_dom(output)
+    assert dom.status.get("data-state") == "ready", dom.status.get("data-error")
+    np.testing.assert_allclose(numbers(dom.status["data-load-world"]),
+                               equilibrium + 0.5 * shape[ball], atol=1e-4)
+    assert np.linalg.norm(0.5 * shape[ball]) > 0.1  # the swing moves the ball, visibly
+
+
 def test_incomplete_run_is_shown_with_its_status(incomplete_results_file, tmp_path):
     page = make_page(tmp_path, incomplete_results_file)
     data = page_data(page)
