@@ -171,9 +171,11 @@ def check_results_file(results: Results) -> None:
     """One-line refusal of an HDF5 file that is not a cranesim results file."""
     analysis = results.attribute("analysis")
     contents = results.attribute("contents")
-    if contents in ("plan", "map"):
-        raise ResultsError(f"{results.path} is a {contents} file (crane-opt); view its "
-                           "verification run instead: the <plan>_simulation.h5 beside it")
+    if contents == "map":
+        raise ResultsError(f"{results.path} is a map file (crane-opt map): it holds no run to "
+                           "show; plot it with scripts/plot_plan.py")
+    if contents == "plan":
+        return
     if analysis == "modes" and results.attribute("engine_version") is not None:
         return
     missing = [path for path in ("time", "model/bodies", "model/joints") if not results.has(path)]
@@ -379,10 +381,73 @@ def modes_page_data(results: Results, load_name: str | None) -> dict:
     }
 
 
+def plan_page_data(plan: Results, frames: int, load_name: str | None) -> dict:
+    """A plan file (crane-opt plan): its verification run replayed, with the planned path, the
+    simulated end point's path, the start and the target, and the tracking error."""
+    simulation_path = plan.path.with_name(plan.path.stem + "_simulation.h5")
+    if not simulation_path.is_file():
+        raise ResultsError(f"{plan.path} is a plan file, but its verification run "
+                           f"{simulation_path.name} is not beside it")
+    for path in ("verification/t", "verification/planned", "verification/simulated",
+                 "trajectory/origin", "trajectory/start", "trajectory/target"):
+        if not plan.has(path):
+            raise ResultsError(f"{plan.path} is a plan file without /{path}")
+    with Results(simulation_path) as simulation:
+        data = page_data(simulation, frames, load_name)
+    if data["kind"] != "results":
+        raise ResultsError(f"{simulation_path} is not a results file")
+    t = plan.get("verification/t")
+    planned_xz = plan.get("verification/planned").reshape(-1, 2)
+    simulated = plan.get("verification/simulated").reshape(-1, 3)
+    # The plan lives in the crane's x-z plane (y = 0), as plot_plan.py draws it.
+    planned = np.column_stack([planned_xz[:, 0], np.zeros(len(planned_xz)), planned_xz[:, 1]])
+    frame_time = np.frombuffer(base64.b64decode(data["time"]), dtype="<f4").astype(float)
+    at_frames = np.column_stack([np.interp(frame_time, t, planned[:, i]) for i in range(3)])
+    simulated_at_frames = np.column_stack([np.interp(frame_time, t, simulated[:, i])
+                                           for i in range(3)])
+    origin = plan.get("trajectory/origin").reshape(-1)
+    start, target = (plan.get(f"trajectory/{name}").reshape(-1)[:2] + origin
+                     for name in ("start", "target"))
+    attributes = {name: plan.attribute(name, "verification")
+                  for name in ("max_error", "rms_error", "residual_sway", "final_error",
+                               "status", "message")}
+    error = np.linalg.norm(simulated_at_frames[:, [0, 2]] - at_frames[:, [0, 2]], axis=1)
+    data["series"][:0] = [
+        {"title": "end point: planned against simulated", "unit": "m", "curves": [
+            {"label": "x planned (dashed)", "values": encode(at_frames[:, 0]), "colour": 0,
+             "dashed": True},
+            {"label": "x simulated", "values": encode(simulated_at_frames[:, 0]), "colour": 0},
+            {"label": "z planned (dashed)", "values": encode(at_frames[:, 2]), "colour": 2,
+             "dashed": True},
+            {"label": "z simulated", "values": encode(simulated_at_frames[:, 2]), "colour": 2}]},
+        {"title": "tracking error ‖simulated − planned‖ in x, z", "unit": "m",
+         "curves": [{"label": "error", "values": encode(error)}]},
+    ]
+    target_name = ""
+    try:
+        import yaml
+        target_name = str((yaml.safe_load(plan.attribute("target_text") or "") or {}).get("name", ""))
+    except Exception:  # the name is decoration; the plan is shown without it
+        pass
+    data["plan"] = {
+        "file": plan.path.name,
+        "name": target_name,
+        "planned": encode(at_frames),            # the planned end point at each frame
+        "planned_path": encode(planned),
+        "simulated_path": encode(simulated),
+        "start": [float(start[0]), 0.0, float(start[1])],
+        "target": [float(target[0]), 0.0, float(target[1])],
+        "verification": attributes,
+    }
+    return data
+
+
 def page_data(results: Results, frames: int, load_name: str | None) -> dict:
     check_results_file(results)
     if results.attribute("analysis") == "modes":
         return modes_page_data(results, load_name)
+    if results.attribute("contents") == "plan":
+        return plan_page_data(results, frames, load_name)
     geometry = MechanismGeometry.load(results)
     bodies = list(results.names("model/bodies"))
     joints = list(results.names("model/joints"))
@@ -518,6 +583,8 @@ def main() -> None:
         data = page_data(results, args.frames, args.load)
     size = write_page(data, output)
     status = "" if data["status"] == "complete" else f", status {data['status']}"
+    if "plan" in data:
+        status += f", the verification run of {data['plan']['file']}"
     if data["kind"] == "modes":
         print(f"wrote {output} ({size / 1e6:.2f} MB, {len(data['modes']['frequency'])} modes of "
               f"{data['point_count']} joints{status})")

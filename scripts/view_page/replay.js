@@ -193,6 +193,35 @@
     scene.add(traceAll, tracePast);
   }
 
+  // A plan: the planned end-point path (dashed), the simulated one (green), start (green block),
+  // target (black block) and the planned end point now (a black marker drawn over everything).
+  var plan = data.plan || null, plannedMarker = null, planned = null;
+  if (plan) {
+    var pathLine = function (values, material) {
+      var geometry = new THREE.BufferGeometry();
+      geometry.setAttribute("position", new THREE.BufferAttribute(decode(values), 3));
+      var line = new THREE.Line(geometry, material);
+      line.computeLineDistances();
+      scene.add(line);
+      return line;
+    };
+    pathLine(plan.planned_path, new THREE.LineDashedMaterial(
+      { color: 0x000000, dashSize: 0.01 * size, gapSize: 0.006 * size }));
+    pathLine(plan.simulated_path, new THREE.LineBasicMaterial({ color: 0x2ca02c }));
+    [[plan.start, 0x2ca02c], [plan.target, 0x111111]].forEach(function (end) {
+      var block = new THREE.Mesh(new THREE.BoxBufferGeometry(1, 1, 1),
+                                 new THREE.MeshLambertMaterial({ color: end[1] }));
+      block.scale.setScalar(0.012 * size);
+      block.position.fromArray(end[0]);
+      scene.add(block);
+    });
+    planned = decode(plan.planned);
+    plannedMarker = new THREE.Mesh(new THREE.SphereBufferGeometry(0.008 * size, 16, 12),
+                                   new THREE.MeshBasicMaterial({ color: 0x111111, depthTest: false }));
+    plannedMarker.renderOrder = 11;
+    scene.add(plannedMarker);
+  }
+
   // ---- the state at a time ------------------------------------------------------------------
   var state = { t: t0, frame: 0, playing: false, speed: 1, follow: false };
   var qa = new THREE.Quaternion(), qb = new THREE.Quaternion(), rotation = new THREE.Matrix4();
@@ -238,6 +267,10 @@
     });
     ropeGeometry.attributes.position.needsUpdate = true;
     groundBlocks.forEach(function (g) { g.mesh.position.fromArray(current, 3 * g.point); });
+    if (plannedMarker) {
+      a.fromArray(planned, 3 * frame);
+      plannedMarker.position.fromArray(planned, 3 * next).sub(a).multiplyScalar(w).add(a);
+    }
     boxes.forEach(function (box) {
       bodyQuaternion(frame, box.body, qa);
       bodyQuaternion(next, box.body, qb);
@@ -334,7 +367,10 @@
     this.canvas = document.createElement("canvas");
     var ratio = window.devicePixelRatio || 1;
     this.ratio = ratio;
-    this.curves = spec.curves.map(function (c) { return { label: c.label, values: decode(c.values) }; });
+    this.curves = spec.curves.map(function (c, k) {
+      return { label: c.label, values: decode(c.values), dashed: !!c.dashed,
+               colour: plotColours[(c.colour !== undefined ? c.colour : k) % plotColours.length] };
+    });
     // The legend below the time axis, in as many lines as its labels need.
     var measure = this.canvas.getContext("2d"), x = 58, line = 0;
     measure.font = "10px system-ui, sans-serif";
@@ -392,9 +428,10 @@
     g.textAlign = "center";
     g.fillText(formatNumber(t0) + " s", box.left, box.bottom + 12);
     g.fillText(formatNumber(t1) + " s", box.right - 8, box.bottom + 12);
-    this.curves.forEach(function (curve, k) {
-      g.strokeStyle = plotColours[k % plotColours.length];
+    this.curves.forEach(function (curve) {
+      g.strokeStyle = curve.colour;
       g.lineWidth = 1.3;
+      g.setLineDash(curve.dashed ? [5, 3] : []);
       g.beginPath();
       for (var i = 0; i < frames; i++) {
         var px = plot.x(times[i]), py = plot.y(curve.values[i]);
@@ -402,9 +439,10 @@
       }
       g.stroke();
     });
+    g.setLineDash([]);
     g.textAlign = "left";
-    this.curves.forEach(function (curve, k) {
-      g.fillStyle = plotColours[k % plotColours.length];
+    this.curves.forEach(function (curve) {
+      g.fillStyle = curve.colour;
       g.fillText(curve.label, curve.legend[0], box.bottom + 26 + 14 * curve.legend[1]);
     });
   };
@@ -562,6 +600,17 @@
     : data.file + " · cranesim " + data.engine_version + " · " + data.frame_count + " frames of " +
       data.sample_count + " samples · t = " + t0.toFixed(2) + " … " + t1.toFixed(2) + " s" +
       (data.load_name ? " · load: " + data.load_name + " (red, its path purple)" : "");
+  if (plan) {
+    var v = plan.verification, planLine = document.createElement("div");
+    planLine.textContent = "plan " + plan.file + (plan.name ? " (" + plan.name + ")" : "") +
+      ": planned path dashed, planned end point now black, simulated path green, start green, " +
+      "target black · verification " + (v.status || "?") + ": tracking error max " +
+      formatNumber(v.max_error) + " m, rms " + formatNumber(v.rms_error) + " m; residual sway " +
+      formatNumber(v.residual_sway) + " m; final error " + formatNumber(v.final_error) + " m";
+    planLine.id = "plan-line";
+    planLine.style.maxWidth = "640px";
+    document.getElementById("info").insertBefore(planLine, document.getElementById("incomplete"));
+  }
   if (data.status !== "complete") {
     var incomplete = document.getElementById("incomplete");
     incomplete.textContent = "Run " + data.status.toUpperCase() + (data.message ? ": " + data.message : "") +
@@ -602,6 +651,9 @@
     status.setAttribute("data-canvas", [rect.left, rect.top, rect.width, rect.height].join(","));
     status.setAttribute("data-view-matrix", camera.matrixWorldInverse.elements.join(","));
     status.setAttribute("data-projection-matrix", camera.projectionMatrix.elements.join(","));
+    if (plannedMarker) {
+      status.setAttribute("data-planned-world", plannedMarker.position.toArray().join(","));
+    }
     if (loadMarker) {
       projected.copy(loadMarker.position);
       status.setAttribute("data-load-world", projected.toArray().join(","));

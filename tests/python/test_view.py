@@ -8,8 +8,8 @@ HDF5 value through the camera matrices the page reports, and the load marker's c
 screenshot at that place), and the two moments must look different where the rod moved.
 
 Needs Debian's chromium and libjs-three (scripts/install_deps.sh installs both); a missing
-browser fails the test. Environment: CRANESIM_BIN (default <repo>/build/crane-sim) and
-CRANESIM_SOURCE_DIR.
+browser fails the test. Environment: CRANESIM_BIN (default <repo>/build/crane-sim), CRANEOPT_BIN
+(default <repo>/build/crane-opt) and CRANESIM_SOURCE_DIR.
 """
 
 import base64
@@ -30,6 +30,7 @@ from conftest import INCOMPLETE_MESSAGE
 
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
+OPT_BINARY = Path(os.environ.get("CRANEOPT_BIN", SOURCE_DIR / "build" / "crane-opt")).resolve()
 VIEW = SOURCE_DIR / "scripts" / "view.py"
 WINDOW = (1000, 700)
 VIEW_SIZE = (640, 480)  # fixed in the URL: the DOM dump and the screenshot see one camera
@@ -223,29 +224,52 @@ def test_follow_camera_keeps_the_load_in_the_middle(pendulum_run, tmp_path):
             assert distance > 20
 
 
-def test_modes_page_moves_the_load_along_its_mode_shape(tmp_path):
-    if not BINARY.is_file():
-        pytest.fail(f"crane-sim not found at {BINARY}: build it first or set CRANESIM_BIN")
-    modes_file = tmp_path / "rope_modes.h5"
-    run = subprocess.run([str(BINARY), "modes", str(SOURCE_DIR / "configs" / "rope_pendulum.yaml"),
-                          "-n", "6", "-o", str(modes_file)], capture_output=True, text=True, timeout=60)
-    assert run.returncode == 0, run.stderr
-    page = make_page(tmp_path, modes_file)
-    assert page_data(page)["kind"] == "modes"
+def test_modes_and_plan_files_become_pages(tmp_path):
+    for binary in (BINARY, OPT_BINARY):
+        if not binary.is_file():
+            pytest.fail(f"{binary.name} not found at {binary}: build it first or set "
+                        "CRANESIM_BIN / CRANEOPT_BIN")
+    modes_file, plan_file = tmp_path / "rope_modes.h5", tmp_path / "jib_plan.h5"
+    for command in ([BINARY, "modes", SOURCE_DIR / "configs" / "rope_pendulum.yaml", "-n", "6",
+                     "-o", modes_file],
+                    [OPT_BINARY, "plan", SOURCE_DIR / "configs" / "target_luffing_jib.yaml",
+                     "-o", plan_file, "--quiet"]):
+        run = subprocess.run(list(map(str, command)), capture_output=True, text=True, timeout=120)
+        assert run.returncode == 0, run.stderr
+    modes_page, plan_page = make_page(tmp_path, modes_file), make_page(tmp_path, plan_file)
+    assert page_data(modes_page)["kind"] == "modes"
+    assert page_data(plan_page)["plan"]["file"] == plan_file.name
+    size = f"size={VIEW_SIZE[0]}x{VIEW_SIZE[1]}"
+    # Mode 4 (the swing) at a quarter cycle, where the joint that moves most is 0.5 m away;
+    # the plan's verification run at 12 s.
+    outputs = run_browsers([
+        browser_command(tmp_path / "modes", f"{modes_page.as_uri()}#t=0.25&mode=4&amp=0.5&{size}",
+                        "--dump-dom"),
+        browser_command(tmp_path / "plan", f"{plan_page.as_uri()}#t=12&{size}", "--dump-dom")])
+    modes_dom, plan_dom = map(parse_dom, outputs)
+    for dom in (modes_dom, plan_dom):
+        assert dom.status.get("data-state") == "ready", dom.status.get("data-error")
+
     with h5py.File(modes_file, "r") as modes:
         joints = list(modes["model/joints"].asstr()[()])
         ball = joints.index("ball.origin")
         equilibrium = modes["equilibrium/joint_positions"][ball]
-        displacements = modes["modes/joint_displacements"][()]
-    # Mode 4 (the swing) at a quarter cycle: the joint that moves most is 0.5 m away.
-    shape = displacements[3] / np.linalg.norm(displacements[3], axis=-1).max()
-    url = f"{page.as_uri()}#t=0.25&mode=4&amp=0.5&size={VIEW_SIZE[0]}x{VIEW_SIZE[1]}"
-    (output,) = run_browsers([browser_command(tmp_path / "profile", url, "--dump-dom")])
-    dom = parse_dom(output)
-    assert dom.status.get("data-state") == "ready", dom.status.get("data-error")
-    np.testing.assert_allclose(numbers(dom.status["data-load-world"]),
+        swing = modes["modes/joint_displacements"][3]
+    shape = swing / np.linalg.norm(swing, axis=-1).max()
+    np.testing.assert_allclose(numbers(modes_dom.status["data-load-world"]),
                                equilibrium + 0.5 * shape[ball], atol=1e-4)
     assert np.linalg.norm(0.5 * shape[ball]) > 0.1  # the swing moves the ball, visibly
+
+    with h5py.File(plan_file, "r") as plan:
+        t = plan["verification/t"][()]
+        planned = plan["verification/planned"][()]
+        simulated = plan["verification/simulated"][()]
+    k = int(np.argmin(np.abs(t - 12)))
+    assert t[k] == pytest.approx(12)
+    np.testing.assert_allclose(numbers(plan_dom.status["data-planned-world"]),
+                               [planned[k, 0], 0, planned[k, 1]], atol=1e-4)
+    # The load's origin is the hook here, whose path the plan calls the simulated end point.
+    np.testing.assert_allclose(numbers(plan_dom.status["data-load-world"]), simulated[k], atol=1e-4)
 
 
 def test_incomplete_run_is_shown_with_its_status(incomplete_results_file, tmp_path):
@@ -284,7 +308,12 @@ def test_a_file_that_is_not_a_results_file_is_refused(tmp_path):
         file["x"] = [1.0, 2.0]
     text = tmp_path / "text.h5"
     text.write_text("not hdf5\n")
-    for path in (other, text, tmp_path / "missing.h5"):
+    crane_opt_files = []
+    for contents in ("map", "plan"):  # a map holds no run; this plan has no verification run
+        crane_opt_files.append(tmp_path / f"lonely_{contents}.h5")
+        with h5py.File(crane_opt_files[-1], "w") as file:
+            file.attrs.update({"engine_version": "0.1.0", "contents": contents})
+    for path in (other, text, tmp_path / "missing.h5", *crane_opt_files):
         run = subprocess.run([sys.executable, str(VIEW), str(path), "-o", str(tmp_path / "x.html")],
                              capture_output=True, text=True, timeout=60)
         assert run.returncode == 2, run.stderr
