@@ -1,7 +1,7 @@
 """Interactive 3-D replay of a cranesim run as ONE self-contained HTML page.
 
-The page opens offline in any current browser (no server, no network): three.js and its
-OrbitControls (Debian's package libjs-three, revision 111, MIT licence) are inlined, and the
+The page opens offline in any current browser (no server, no network): three.js with its
+OrbitControls and Lut (Debian's package libjs-three, revision 111, MIT licence) are inlined, and the
 run rides along as float32 arrays in base64, decimated to --frames frames.
 
 It shows the rigid bodies (each as a translucent box of the body's mass and inertia when the
@@ -34,7 +34,7 @@ HERE = Path(__file__).resolve().parent
 PAGE_TEMPLATE = HERE / "view_page" / "page.html"
 PAGE_SCRIPT = HERE / "view_page" / "replay.js"
 THREE_DIRECTORIES = (Path("/usr/share/javascript/three"),)
-THREE_FILES = ("three.min.js", "examples/js/controls/OrbitControls.js")
+THREE_FILES = ("three.min.js", "examples/js/controls/OrbitControls.js", "examples/js/math/Lut.js")
 THREE_REVISION = "111"  # Debian bookworm's libjs-three 111+dfsg1; the page is written for it
 DEFAULT_FRAMES = 1000
 
@@ -213,24 +213,27 @@ def choose_load(bodies: list[str], requested: str | None) -> int:
     return len(bodies) - 1  # -1: no body at all
 
 
-def rope_end_forces(results: Results, rope_members: set[str], samples: np.ndarray) -> list:
-    """|force| of each constraint that holds an end of a rope: the rope's end tension."""
-    if not rope_members or not results.has("lambda") or not results.has("model/constraint_rows"):
-        return []
-    rows = list(results.names("model/constraint_rows"))
+def constraint_forces(results: Results, samples: np.ndarray) -> dict:
+    """{constraint: (its two joints, |force| per sample)} for every constraint with x, y, z rows
+    (spherical, revolute, fixed, …): the magnitude of the force it transmits."""
+    if not results.has("lambda") or not results.has("model/constraint_rows"):
+        return {}
+    rows = {name: i for i, name in enumerate(results.names("model/constraint_rows"))}
     names = results.names("model/constraints")
     ends = results.names("model/constraint_joints").reshape(-1, 2)
     lambdas = results.get("lambda")[samples]
-    curves = []
+    forces = {}
     for name, joints in zip(names, ends):
-        if not any(body_of(j) in rope_members and j.split(".", 1)[1] in ("start", "end")
-                   for j in joints):
-            continue
-        columns = [rows.index(f"{name}/{c}") for c in "xyz" if f"{name}/{c}" in rows]
-        if len(columns) == 3:
-            curves.append({"label": f"{name} |F|", "values": encode(
-                np.linalg.norm(lambdas[:, columns], axis=1))})
-    return curves
+        columns = [rows.get(f"{name}/{c}") for c in "xyz"]
+        if None not in columns:
+            forces[name] = (tuple(joints), np.linalg.norm(lambdas[:, columns], axis=1))
+    return forces
+
+
+def holds_end_of(joints: tuple, members: set[str]) -> list[str]:
+    """The members of `members` whose start or end is one of the joints."""
+    return [body_of(j) for j in joints
+            if body_of(j) in members and j.split(".", 1)[1] in ("start", "end")]
 
 
 JOINT_INDEX = re.compile(r"^(?P<member>[^.]+)\.(?:n(?P<node>\d+)|s(?P<section>\d+)n(?P<end>\d+)|"
@@ -273,9 +276,9 @@ def segments_from_names(joints: list[str], scene: dict) -> tuple[list, list, lis
     def add(member: str, a: int, b: int) -> None:
         spec = members.get(member, {})
         if spec.get("type") == "rope":
-            ropes.append([a, b])
+            ropes.append([a, b, -1])
         else:
-            tubes.append([a, b, member_radius(spec, trusses) or 0.0])
+            tubes.append([a, b, member_radius(spec, trusses) or 0.0, -1])
 
     for member, chain in nodes.items():
         chain = [i for _, i in sorted(chain)]
@@ -464,18 +467,30 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
     low, high, size = bounds_of(points)
     body_count = len(bodies)
 
+    # Ropes and strut ties carry only axial force: the force at the constraints that hold
+    # their ends is their end tension (or compression), which colours them.
+    forces = constraint_forces(results, samples)
+    two_force = {name for name, spec in member_specs.items()
+                 if spec.get("type") in ("rope", "strut_tie")}
+    member_force = {}
+    for joints_held, magnitude in forces.values():
+        for member in holds_end_of(joints_held, two_force):
+            member_force.setdefault(member, []).append(magnitude)
+    force_members = sorted(member_force, key=lambda m: list(member_specs).index(m))
+
     skeleton = [[int(b), body_count + int(j), int(b)] for b, j in geometry.segment_ends]
     ropes, tubes = [], []
     rope_members = set()
     for a, b in geometry.member_segments:
         member = body_of(joints[a])
         spec = member_specs.get(member, {})
+        coloured = force_members.index(member) if member in force_members else -1
         if spec.get("type") == "rope":
             rope_members.add(member)
-            ropes.append([body_count + int(a), body_count + int(b)])
+            ropes.append([body_count + int(a), body_count + int(b), coloured])
         else:
             radius = member_radius(spec, trusses)
-            tubes.append([body_count + int(a), body_count + int(b), radius or 0.0])
+            tubes.append([body_count + int(a), body_count + int(b), radius or 0.0, coloured])
 
     rotations = (np.stack([results.get(f"bodies/{name}/rotation") for name in bodies], axis=1)
                  [samples].reshape(len(samples), -1) if bodies else np.empty((len(samples), 0)))
@@ -499,9 +514,16 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
             series.append({"title": "energy balance K + P − W (change)", "unit": "J",
                            "curves": [{"label": "balance − balance(0)", "values": encode(
                                energy["balance"] - energy["balance"][0])}]})
-    forces = rope_end_forces(results, rope_members, samples)
-    if forces:
-        series.append({"title": "rope end forces", "unit": "N", "curves": forces})
+    rope_ends = [{"label": f"{name} |F|", "values": encode(magnitude)}
+                 for name, (joints_held, magnitude) in forces.items()
+                 if holds_end_of(joints_held, rope_members)]
+    if rope_ends:
+        series.append({"title": "rope end forces", "unit": "N", "curves": rope_ends})
+    member_forces = None
+    if force_members:
+        values = np.stack([np.mean(member_force[m], axis=0) for m in force_members], axis=1)
+        member_forces = {"members": force_members, "values": encode(values),
+                         "range": [float(values.min()), float(values.max())]}
 
     return {
         "kind": "results",
@@ -531,6 +553,7 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
         "grid_spacing": nice_spacing(float(np.max(high - low))),
         "up": up_direction(scene),
         "series": series,
+        "member_forces": member_forces,  # frames × members: mean |F| at their ends, N
     }
 
 
@@ -538,7 +561,7 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
 # Writing the page
 
 def three_sources() -> tuple[str, list[str]]:
-    """(revision, [three.min.js, OrbitControls.js] texts) from Debian's libjs-three."""
+    """(revision, [three.min.js, OrbitControls.js, Lut.js] texts) from Debian's libjs-three."""
     for directory in THREE_DIRECTORIES:
         paths = [directory / name for name in THREE_FILES]
         if all(path.is_file() for path in paths):
@@ -560,13 +583,14 @@ def inline_script(text: str) -> str:
 
 
 def write_page(data: dict, output: Path) -> int:
-    revision, (three, orbit_controls) = three_sources()
+    revision, (three, orbit_controls, colour_map) = three_sources()
     data["three_revision"] = revision
     template = PAGE_TEMPLATE.read_text(encoding="utf-8")
     replacements = {
         "{{TITLE}}": html.escape(f"{data['file']} · cranesim replay"),
         "{{THREE}}": inline_script(three),
         "{{ORBIT_CONTROLS}}": inline_script(orbit_controls),
+        "{{COLOUR_MAP}}": inline_script(colour_map),
         "{{REPLAY}}": inline_script(PAGE_SCRIPT.read_text(encoding="utf-8")),
         "{{DATA}}": json.dumps(data, separators=(",", ":")).replace("</", "<\\/"),
     }

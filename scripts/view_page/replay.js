@@ -124,21 +124,63 @@
                                 bodyColours[body % bodyColours.length]));
     }
   }
-  // Flexible members other than ropes: tubes of their section's radius (at least 0.15 % of the
-  // scene, so a 10 cm tube on a 100 m crane stays visible).
-  if (data.tubes.length) {
-    tubeSets.push(new TubeSet(data.tubes, data.tubes.map(function (s) {
-      return Math.max(s[2], 0.0015 * size);
-    }), 0x6b7480));
+  // Ropes and strut ties may be coloured by the force at their ends (data.member_forces:
+  // frames × members, N), through three.js' colour map (Lut) from its minimum to its maximum.
+  var memberForces = data.member_forces || null, forceValues = null, lut = null;
+  var forceNow = [], colourByForce = !!memberForces;
+  var plainTube = new THREE.Color(0x6b7480), plainRope = new THREE.Color(0x202020);
+  if (memberForces) {
+    forceValues = decode(memberForces.values);
+    lut = new THREE.Lut("rainbow", 256);
+    var range = memberForces.range;
+    lut.setMin(range[0]);
+    lut.setMax(range[1] > range[0] ? range[1] : range[0] + 1);
   }
+  function forceColour(member, plain) {
+    return colourByForce && member >= 0 ? lut.getColor(forceNow[member]) : plain;
+  }
+
+  // Flexible members other than ropes: tubes of their section's radius (at least 0.15 % of the
+  // scene, so a 10 cm tube on a 100 m crane stays visible); one set per coloured member.
+  var memberTubeSets = [];
+  var tubeGroups = {};
+  data.tubes.forEach(function (s) { (tubeGroups[s[3]] = tubeGroups[s[3]] || []).push(s); });
+  Object.keys(tubeGroups).forEach(function (key) {
+    var group = tubeGroups[key];
+    var set = new TubeSet(group, group.map(function (s) { return Math.max(s[2], 0.0015 * size); }),
+                          0x6b7480);
+    tubeSets.push(set);
+    if (+key >= 0) memberTubeSets.push({ set: set, member: +key });
+  });
   // Ropes: lines through their nodes.
   var ropePositions = new Float32Array(data.ropes.length * 6);
+  var ropeColours = new Float32Array(data.ropes.length * 6);
   var ropeGeometry = new THREE.BufferGeometry();
   ropeGeometry.setAttribute("position",
                             new THREE.BufferAttribute(ropePositions, 3).setUsage(THREE.DynamicDrawUsage));
-  var ropes = new THREE.LineSegments(ropeGeometry, new THREE.LineBasicMaterial({ color: 0x202020 }));
+  ropeGeometry.setAttribute("color",
+                            new THREE.BufferAttribute(ropeColours, 3).setUsage(THREE.DynamicDrawUsage));
+  var ropes = new THREE.LineSegments(ropeGeometry,
+                                     new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
   ropes.frustumCulled = false;
   scene.add(ropes);
+  function colourMembers(frame, next, w) {
+    if (memberForces) {
+      var count = memberForces.members.length;
+      for (var m = 0; m < count; m++) {
+        forceNow[m] = (1 - w) * forceValues[frame * count + m] + w * forceValues[next * count + m];
+      }
+    }
+    memberTubeSets.forEach(function (entry) {
+      entry.set.mesh.material.color.copy(forceColour(entry.member, plainTube));
+    });
+    data.ropes.forEach(function (s, k) {
+      var colour = forceColour(s[2], plainRope);
+      colour.toArray(ropeColours, 6 * k);
+      colour.toArray(ropeColours, 6 * k + 3);
+    });
+    ropeGeometry.attributes.color.needsUpdate = true;
+  }
 
   // Ground joints: small dark blocks.
   var groundGeometry = new THREE.BoxBufferGeometry(1, 1, 1);
@@ -266,6 +308,7 @@
       }
     });
     ropeGeometry.attributes.position.needsUpdate = true;
+    colourMembers(frame, next, w);
     groundBlocks.forEach(function (g) { g.mesh.position.fromArray(current, 3 * g.point); });
     if (plannedMarker) {
       a.fromArray(planned, 3 * frame);
@@ -591,6 +634,39 @@
     var values = readHash();
     if (values.t !== undefined && Math.abs(+values.t - state.t) > 1e-9) applyHash();
   });
+
+  // ---- colour legend of the member forces ---------------------------------------------------
+  if (memberForces) {
+    var legend = document.createElement("div");
+    legend.id = "force-legend";
+    legend.style.cssText = "position:absolute;left:10px;bottom:10px;display:flex;gap:6px;" +
+      "align-items:stretch;font-size:11px;background:rgba(255,255,255,0.8);padding:4px 6px";
+    var bar = lut.createCanvas();
+    bar.style.cssText = "width:12px;height:110px;border:1px solid #999";
+    var labels = document.createElement("div");
+    labels.style.cssText = "display:flex;flex-direction:column;justify-content:space-between";
+    var top = document.createElement("span"), bottom = document.createElement("span");
+    top.textContent = formatNumber(memberForces.range[1]) + " N";
+    bottom.textContent = formatNumber(memberForces.range[0]) + " N";
+    var title = document.createElement("span");
+    title.textContent = "end force |F| of ropes and strut ties (" + memberForces.members.join(", ") + ")";
+    title.style.maxWidth = "170px";
+    labels.append(top, title, bottom);
+    legend.append(bar, labels);
+    view.append(legend);
+    status.setAttribute("data-force-range", memberForces.range.join(","));
+    var forceLabel = document.createElement("label"), forceBox = document.createElement("input");
+    forceBox.type = "checkbox";
+    forceBox.id = "colour-force";
+    forceBox.checked = true;
+    forceLabel.append(forceBox, " colour by force");
+    document.getElementById("controls").insertBefore(forceLabel, document.getElementById("reset"));
+    forceBox.addEventListener("change", function () {
+      colourByForce = forceBox.checked;
+      legend.hidden = !colourByForce;
+      setTime(state.t);
+    });
+  }
 
   // ---- page text ----------------------------------------------------------------------------
   document.getElementById("scene-name").textContent = data.scene || data.file;

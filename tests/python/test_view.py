@@ -270,6 +270,9 @@ def test_modes_and_plan_files_become_pages(tmp_path):
                                [planned[k, 0], 0, planned[k, 1]], atol=1e-4)
     # The load's origin is the hook here, whose path the plan calls the simulated end point.
     np.testing.assert_allclose(numbers(plan_dom.status["data-load-world"]), simulated[k], atol=1e-4)
+    # Its ropes are coloured by their end forces, over the range the page data holds.
+    np.testing.assert_allclose(numbers(plan_dom.status["data-force-range"]),
+                               page_data(plan_page)["member_forces"]["range"])
 
 
 def test_incomplete_run_is_shown_with_its_status(incomplete_results_file, tmp_path):
@@ -300,6 +303,30 @@ def test_frames_are_decimated_evenly_with_the_last_sample(pendulum_run, tmp_path
     np.testing.assert_allclose(time[samples], frames, atol=1e-6)
     points = decode(data["points"]).reshape(25, data["point_count"], 3)
     np.testing.assert_allclose(points[:, data["load"]], rod[samples], atol=1e-5)
+
+
+def test_rope_colour_is_the_force_at_its_ends(tmp_path):
+    if not BINARY.is_file():
+        pytest.fail(f"crane-sim not found at {BINARY}: build it first or set CRANESIM_BIN")
+    base = SOURCE_DIR / "configs" / "rope_pendulum.yaml"
+    (tmp_path / "short.yaml").write_text(f"base: {base}\nmodify:\n  solver.t_end: 0.5\n")
+    run = subprocess.run([str(BINARY), "run", "short.yaml", "-o", "rope.h5", "--quiet"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    data = page_data(make_page(tmp_path, tmp_path / "rope.h5"))
+    forces = data["member_forces"]
+    assert forces["members"] == ["rope"]
+    with h5py.File(tmp_path / "rope.h5", "r") as results:
+        rows = list(results["model/constraint_rows"].asstr()[()])
+        lambdas = results["lambda"][()]
+    # The rope hangs from 'top' and holds the ball at 'hook' (spherical constraints).
+    ends = [np.linalg.norm(lambdas[:, [rows.index(f"{c}/{a}") for a in "xyz"]], axis=1)
+            for c in ("top", "hook")]
+    values = decode(forces["values"]).reshape(data["frame_count"], 1)[:, 0]
+    np.testing.assert_allclose(values, (ends[0] + ends[1]) / 2, rtol=1e-6)
+    assert forces["range"] == pytest.approx([values.min(), values.max()], rel=1e-6)
+    assert values.min() > 5e3  # the 1 t ball's weight, and more while it swings
+    assert all(rope[2] == 0 for rope in data["ropes"]) and len(data["ropes"]) == 4
 
 
 def test_a_file_that_is_not_a_results_file_is_refused(tmp_path):
