@@ -355,6 +355,7 @@
     if (state.follow) hash += "&follow=1";
     if (modes) hash += "&mode=" + (modeIndex + 1) + "&amp=" + +amplitude.toPrecision(4);
     if (state.speed !== 1) hash += "&speed=" + state.speed;
+    if (fixedSize) hash += "&size=" + fixedSize[1] + "x" + fixedSize[2];
     if (history.replaceState) history.replaceState(null, "", hash);
   }
   function defaultCamera() {

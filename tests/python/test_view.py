@@ -204,13 +204,16 @@ def test_page_shows_the_pendulum_where_the_results_have_it(pendulum_run, tmp_pat
         assert np.abs(images[0][patch] - images[1][patch]).max() > 60
 
 
-def test_follow_camera_keeps_the_load_in_the_middle(pendulum_run, tmp_path):
+def test_follow_camera_and_camera_from_the_link(pendulum_run, tmp_path):
     # #bench=N draws N frames from the start to the end of the run, as playing does.
     page = make_page(tmp_path, pendulum_run)
     size = f"size={VIEW_SIZE[0]}x{VIEW_SIZE[1]}"
+    # Without following, the camera of the link: at (2, -3, 1) looking at (0, 0, -0.5).
+    camera, target = np.array([2.0, -3.0, 1.0]), np.array([0.0, 0.0, -0.5])
+    link = "&cam=" + ",".join(map(str, [*camera, *target]))
     outputs = run_browsers([
-        browser_command(tmp_path / f"profile{k}", f"{page.as_uri()}#t=0.2&{size}&bench=12{follow}",
-                        "--dump-dom") for k, follow in enumerate(("&follow=1", ""))])
+        browser_command(tmp_path / f"profile{k}", f"{page.as_uri()}#t=0.2&{size}&bench=12{extra}",
+                        "--dump-dom") for k, extra in enumerate(("&follow=1", link))])
     middle = np.array(VIEW_SIZE) / 2
     for output, following in zip(outputs, (True, False)):
         dom = parse_dom(output)
@@ -222,6 +225,11 @@ def test_follow_camera_keeps_the_load_in_the_middle(pendulum_run, tmp_path):
             assert distance < 1.0
         else:
             assert distance > 20
+            view = numbers(dom.status["data-view-matrix"]).reshape(4, 4).T
+            np.testing.assert_allclose(-view[:3, :3].T @ view[:3, 3], camera, atol=1e-6)
+            looking = -view[2, :3]  # the camera looks along its −z axis
+            np.testing.assert_allclose(looking, (target - camera) / np.linalg.norm(target - camera),
+                                       atol=1e-6)
 
 
 def test_modes_and_plan_files_become_pages(tmp_path):
