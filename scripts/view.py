@@ -1,20 +1,27 @@
 """Interactive 3-D replay of a cranesim run as ONE self-contained HTML page.
 
 The page opens offline in any current browser (no server, no network): three.js with its
-OrbitControls and Lut (Debian's package libjs-three, revision 111, MIT licence) are inlined, and the
-run rides along as float32 arrays in base64, decimated to --frames frames.
+OrbitControls and Lut (Debian's package libjs-three, revision 111, MIT licence) is inlined, and
+the run rides along as float32 arrays in base64, decimated to --frames frames.
 
 It shows the rigid bodies (each as a translucent box of the body's mass and inertia when the
 scene gives them, and always as its joint skeleton: origin → joints), the flexible members
-along their nodes (ropes as lines, beams and truss tubes as tubes), the load and its trace, a
-ground grid with its spacing, orbit / pan / zoom, a time slider with play, pause and speed, a
-camera that follows the load, and side plots (load position, energies, rope end forces) whose
-cursor follows the time. Time, camera and follow mode live in the URL's fragment, e.g.
-crane.html#t=12.5, so a link opens the page at a moment.
+along their nodes (ropes as lines, beams and truss tubes as tubes; ropes and strut ties
+coloured by their end force), the load and its trace, a ground grid with its spacing, orbit /
+pan / zoom, a time slider with play, pause and speed, a camera that follows the load, and side
+plots (load position, energies, rope end forces) whose cursor follows the time. Time, camera
+and follow mode live in the URL's fragment, e.g. crane.html#t=12.5, so a link opens the page
+at a moment.
 
-Example:
+A modes file (crane-sim modes) becomes a page that animates each mode shape about the
+equilibrium; a plan file (crane-opt plan) one that replays its verification run
+(<plan>_simulation.h5 beside it) with the planned and simulated paths, start and target.
+
+Examples:
 
     python scripts/view.py run.h5 -o run.html --frames 600
+    python scripts/view.py modes.h5 -o modes.html
+    python scripts/view.py plan.h5 -o plan.html
 """
 
 import argparse
@@ -43,7 +50,8 @@ def parse_arguments() -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
-    parser.add_argument("results", help="results file (.h5) written by crane-sim run")
+    parser.add_argument("results", help="results (crane-sim run), modes (crane-sim modes) or plan "
+                                        "(crane-opt plan) file, .h5")
     parser.add_argument("-o", "--output", help="output page (default: <results>.html)")
     parser.add_argument(
         "--frames", type=int, default=DEFAULT_FRAMES,
@@ -168,7 +176,7 @@ def member_radius(member: dict, trusses: dict) -> float | None:
 # Reading the run
 
 def check_results_file(results: Results) -> None:
-    """One-line refusal of an HDF5 file that is not a cranesim results file."""
+    """One-line refusal of an HDF5 file that is not a cranesim results, modes or plan file."""
     analysis = results.attribute("analysis")
     contents = results.attribute("contents")
     if contents == "map":
