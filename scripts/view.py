@@ -332,6 +332,68 @@ def up_direction(scene: dict) -> list[float]:
     return [0.0, 0.0, 1.0]
 
 
+def rotation_matrix(rotation_vector: np.ndarray) -> np.ndarray:
+    """Rodrigues' formula: the rotation by |φ| about φ/|φ| (the rotation vector of /q)."""
+    angle = float(np.linalg.norm(rotation_vector))
+    if angle < 1e-12:
+        return np.eye(3)
+    x, y, z = rotation_vector / angle
+    axis = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+    return np.eye(3) + np.sin(angle) * axis + (1 - np.cos(angle)) * axis @ axis
+
+
+def inertia_tensor(inertia) -> np.ndarray | None:
+    values = np.asarray(inertia, dtype=float)
+    if values.shape == (3,):
+        return np.diag(values)
+    if values.shape == (6,):
+        xx, yy, zz, xy, xz, yz = values
+        return np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+    return values if values.shape == (3, 3) else None
+
+
+def kinetic_energy_shares(results: Results, scene: dict) -> list | None:
+    """Per mode, [[part, share of the mode's kinetic energy], …], largest first.
+
+    The shapes are mass-normalised (φᵀMφ = 1) and each body has its own coordinates, so a rigid
+    body's share is m |v + R (ω × c)|² + ωᵀ I ω, with v, ω the shape's origin velocity
+    (inertial) and angular velocity (body axes), R the body's rotation at the equilibrium, c its
+    centroid and I its inertia about the centroid (from the scene); the flexible members share
+    the rest. None when the file or the scene does not give what this needs.
+    """
+    if not (results.has("modes/shapes") and results.has("model/velocity_labels")
+            and results.has("equilibrium/q")):
+        return None
+    labels = {name: i for i, name in enumerate(results.names("model/velocity_labels"))}
+    q = results.get("equilibrium/q").reshape(-1)
+    shapes = results.get("modes/shapes")
+    if len(q) != len(labels) or shapes.ndim != 2 or shapes.shape[1] != len(labels):
+        return None
+    parts = []
+    for name, body in named_items(scene, "bodies").items():
+        columns = [labels.get(f"{name}.{c}") for c in ("r_x", "r_y", "r_z", "theta_x", "theta_y",
+                                                       "theta_z")]
+        try:
+            mass = float(body["mass"])
+            inertia = inertia_tensor(body["inertia"])
+            centroid = np.asarray(body.get("centroid", [0, 0, 0]), dtype=float).reshape(3)
+        except (KeyError, TypeError, ValueError):
+            return None
+        if None in columns or inertia is None:
+            return None
+        rotation = rotation_matrix(q[columns[3:]])
+        velocity, omega = shapes[:, columns[:3]], shapes[:, columns[3:]]
+        centroid_velocity = velocity + np.cross(omega, centroid) @ rotation.T
+        parts.append((name, mass * np.sum(centroid_velocity**2, axis=1)
+                      + np.einsum("ki,ij,kj->k", omega, inertia, omega)))
+    body_columns = 6 * len(parts)
+    if len(labels) > body_columns:
+        rest = 1.0 - sum(share for _, share in parts)
+        parts.append(("flexible members", np.clip(rest, 0.0, None)))
+    return [sorted(([name, float(share[k])] for name, share in parts), key=lambda p: -p[1])
+            for k in range(shapes.shape[0])]
+
+
 def modes_page_data(results: Results, load_name: str | None) -> dict:
     """A modes file (crane-sim modes): each mode shape about the equilibrium, to animate."""
     for path in ("model/joints", "equilibrium/joint_positions", "modes/joint_displacements",
@@ -386,6 +448,7 @@ def modes_page_data(results: Results, load_name: str | None) -> dict:
             "omega_squared": results.get("modes/omega_squared").reshape(-1).tolist()
             if results.has("modes/omega_squared") else None,
             "rigid_modes": results.attribute("rigid_modes"),
+            "energy_shares": kinetic_energy_shares(results, scene),
             "shapes": encode(shapes),                    # modes × joints × 3, largest = 1
             "amplitude": 0.05 * size,
         },

@@ -526,6 +526,12 @@
     return Math.abs(f) < 1e-9 || (modes.rigid_modes && k < modes.rigid_modes && Math.abs(f) < 1e-3)
       ? "rigid" : formatNumber(f) + " Hz";
   }
+  function energyShares(k, limit) {  // "load 99.7 %, flexible members 0.3 %" (shares ≥ 0.05 %)
+    var shares = modes.energy_shares ? modes.energy_shares[k] : null;
+    if (!shares) return "";
+    return shares.filter(function (part) { return part[1] >= 5e-4; }).slice(0, limit || 99)
+      .map(function (part) { return part[0] + " " + (100 * part[1]).toFixed(1) + " %"; }).join(", ");
+  }
   function showMode() {
     if (!modes) return;
     modeSelect.value = String(modeIndex);
@@ -537,7 +543,8 @@
       "mode " + (modeIndex + 1) + ": " + modeName(modeIndex) +
       (f > 0 ? " (period " + formatNumber(1 / f) + " s)" : f < 0 ? " (unstable: ω² < 0)" : "") +
       " · one cycle per second at speed 1 · the joint that moves most moves " +
-      formatNumber(amplitude) + " m · grid " + spacing + " m";
+      formatNumber(amplitude) + " m · grid " + spacing + " m" +
+      (modes.energy_shares ? " · kinetic energy: " + energyShares(modeIndex) : "");
     setTime(state.t);
   }
   if (modes) {
@@ -576,7 +583,8 @@
     heading.textContent = modes.frequency.length + " modes about the equilibrium (click one)";
     var table = document.createElement("table");
     table.style.cssText = "border-collapse:collapse;font-size:12px;width:100%";
-    table.innerHTML = "<tr><th align=left>mode</th><th align=right>frequency</th><th align=right>period</th></tr>";
+    table.innerHTML = "<tr><th align=left>mode</th><th align=right>frequency</th><th align=right>period</th>" +
+      (modes.energy_shares ? "<th align=left>&nbsp;kinetic energy</th>" : "") + "</tr>";
     modes.frequency.forEach(function (f, k) {
       var row = table.insertRow();
       row.style.cursor = "pointer";
@@ -584,6 +592,11 @@
       var cell = row.insertCell(); cell.align = "right"; cell.textContent = modeName(k);
       cell = row.insertCell(); cell.align = "right";
       cell.textContent = f > 0 && modeName(k) !== "rigid" ? formatNumber(1 / f) + " s" : "–";
+      if (modes.energy_shares) {
+        cell = row.insertCell();
+        cell.textContent = "\u00a0" + energyShares(k, 1);
+        cell.title = energyShares(k);
+      }
       row.addEventListener("click", function () { modeIndex = k; showMode(); writeHash(); });
       modeRows.push(row);
     });

@@ -283,6 +283,53 @@ def test_modes_and_plan_files_become_pages(tmp_path):
                                page_data(plan_page)["member_forces"]["range"])
 
 
+# A bar hanging from a spherical hinge at its top, its centroid off its axis, drawn tilted: at
+# the equilibrium its rotation is not about the vertical, so a share that used the wrong frame
+# for the centroid's velocity would not add up.
+OFFSET_BAR = """name: tilted bar with an offset centroid
+ground:
+  joints: [{name: pivot, position: [0, 0, 0]}]
+bodies:
+  - name: bar
+    mass: 2.0
+    centroid: [0.3, 0.1, 0.5]
+    inertia: [0.2, 0.15, 0.07]
+    position: [-0.3535533905932737, 0.3535533905932737, -0.8660254037844387]
+    rotation: {axis: [1, 1, 0], angle_deg: 30}
+    joints: [{name: top, position: [0, 0, 1]}]
+constraints:
+  - {name: hinge, type: spherical, joints: [ground.pivot, bar.top]}
+solver:
+  t_end: 1
+"""
+
+
+def test_modes_kinetic_energy_shares_add_up(tmp_path):
+    """Mass-normalised shapes: the parts' shares of a mode's kinetic energy add up to 1, and
+    scenes of rigid bodies only leave nothing to the members."""
+    if not BINARY.is_file():
+        pytest.fail(f"crane-sim not found at {BINARY}: build it first or set CRANESIM_BIN")
+    (tmp_path / "offset_bar.yaml").write_text(OFFSET_BAR)
+    shares = {}
+    for scene in (tmp_path / "offset_bar.yaml", SOURCE_DIR / "configs" / "double_jib_pendulum.yaml",
+                  SOURCE_DIR / "configs" / "rope_pendulum.yaml"):
+        modes_file = tmp_path / f"{scene.stem}.h5"
+        run = subprocess.run([str(BINARY), "modes", str(scene), "-n", "6", "-o", str(modes_file)],
+                             capture_output=True, text=True, timeout=60)
+        assert run.returncode == 0, run.stderr
+        shares[scene.stem] = page_data(make_page(tmp_path, modes_file))["modes"]["energy_shares"]
+    for scene, bodies in (("offset_bar", {"bar"}), ("double_jib_pendulum", {"jib", "link1", "link2"})):
+        assert len(shares[scene]) >= 3
+        for mode in shares[scene]:
+            assert {name for name, _ in mode} == bodies
+            assert sum(share for _, share in mode) == pytest.approx(1.0, abs=1e-9)
+    # The swing of the 1000 kg ball on its 24.5 kg rope: the rope takes about a third of its
+    # mass' share, ρAL/3 / (m + ρAL/3) = 0.8 %.
+    swing = dict(shares["rope_pendulum"][3])
+    assert swing["ball"] + swing["flexible members"] == pytest.approx(1.0, abs=1e-9)
+    assert swing["flexible members"] == pytest.approx(24.5 / 3 / (1000 + 24.5 / 3), rel=0.05)
+
+
 def test_incomplete_run_is_shown_with_its_status(incomplete_results_file, tmp_path):
     page = make_page(tmp_path, incomplete_results_file)
     data = page_data(page)
