@@ -44,6 +44,7 @@ THREE_DIRECTORIES = (Path("/usr/share/javascript/three"),)
 THREE_FILES = ("three.min.js", "examples/js/controls/OrbitControls.js", "examples/js/math/Lut.js")
 THREE_REVISION = "111"  # Debian bookworm's libjs-three 111+dfsg1; the page is written for it
 DEFAULT_FRAMES = 1000
+LARGE_PAGE = 20e6  # bytes: above this a page takes many seconds to open; view.py says so
 
 
 def parse_arguments() -> argparse.Namespace:
@@ -677,6 +678,12 @@ def main() -> None:
     with Results(results_path) as results:
         data = page_data(results, args.frames, args.load)
     size = write_page(data, output)
+    if size > LARGE_PAGE and data["kind"] == "results":
+        per_frame = len(data["points"]) * 0.75 / data["frame_count"]  # base64 → bytes
+        fitting = max(2, int((LARGE_PAGE - (size - per_frame * data["frame_count"] / 0.75))
+                             * 0.75 / per_frame))
+        print(f"warning: {output} is {size / 1e6:.0f} MB, slow to open; --frames {fitting} "
+              f"keeps it near {LARGE_PAGE / 1e6:.0f} MB", file=sys.stderr)
     status = "" if data["status"] == "complete" else f", status {data['status']}"
     if "plan" in data:
         status += f", the verification run of {data['plan']['file']}"
