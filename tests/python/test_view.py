@@ -119,6 +119,13 @@ def make_page(tmp_path: Path, results: Path, *options: str) -> Path:
     return page
 
 
+def data_of(results: Path, frames: int = 1000) -> dict:
+    """What view.py embeds in a page, computed in this process (no page, no browser)."""
+    import view
+    with view.Results(results) as opened:
+        return view.page_data(opened, frames, None)
+
+
 def page_data(page: Path) -> dict:
     match = re.search(r'<script type="application/json" id="cranesim-data">(.*?)</script>',
                       page.read_text(encoding="utf-8"), flags=re.DOTALL)
@@ -127,6 +134,11 @@ def page_data(page: Path) -> dict:
 
 def decode(text: str) -> np.ndarray:
     return np.frombuffer(base64.b64decode(text), dtype="<f4")
+
+
+@pytest.fixture(scope="module")
+def pendulum_page(pendulum_run) -> Path:
+    return make_page(pendulum_run.parent, pendulum_run)
 
 
 @pytest.fixture(scope="module")
@@ -142,8 +154,8 @@ def pendulum_run(tmp_path_factory) -> Path:
     return directory / "pendulum.h5"
 
 
-def test_page_shows_the_pendulum_where_the_results_have_it(pendulum_run, tmp_path):
-    page = make_page(tmp_path, pendulum_run)
+def test_page_shows_the_pendulum_where_the_results_have_it(pendulum_run, pendulum_page, tmp_path):
+    page = pendulum_page
     text = page.read_text(encoding="utf-8")
     assert "<script src" not in text and "<link" not in text  # self-contained
     with h5py.File(pendulum_run, "r") as results:
@@ -204,9 +216,9 @@ def test_page_shows_the_pendulum_where_the_results_have_it(pendulum_run, tmp_pat
         assert np.abs(images[0][patch] - images[1][patch]).max() > 60
 
 
-def test_follow_camera_and_camera_from_the_link(pendulum_run, tmp_path):
+def test_follow_camera_and_camera_from_the_link(pendulum_page, tmp_path):
     # #bench=N draws N frames from the start to the end of the run, as playing does.
-    page = make_page(tmp_path, pendulum_run)
+    page = pendulum_page
     size = f"size={VIEW_SIZE[0]}x{VIEW_SIZE[1]}"
     # Without following, the camera of the link: at (2, -3, 1) looking at (0, 0, -0.5).
     camera, target = np.array([2.0, -3.0, 1.0]), np.array([0.0, 0.0, -0.5])
@@ -317,7 +329,7 @@ def test_modes_kinetic_energy_shares_add_up(tmp_path):
         run = subprocess.run([str(BINARY), "modes", str(scene), "-n", "6", "-o", str(modes_file)],
                              capture_output=True, text=True, timeout=60)
         assert run.returncode == 0, run.stderr
-        shares[scene.stem] = page_data(make_page(tmp_path, modes_file))["modes"]["energy_shares"]
+        shares[scene.stem] = data_of(modes_file)["modes"]["energy_shares"]
     for scene, bodies in (("offset_bar", {"bar"}), ("double_jib_pendulum", {"jib", "link1", "link2"})):
         assert len(shares[scene]) >= 3
         for mode in shares[scene]:
@@ -347,7 +359,7 @@ def test_incomplete_run_is_shown_with_its_status(incomplete_results_file, tmp_pa
 
 
 def test_frames_are_decimated_evenly_with_the_last_sample(pendulum_run, tmp_path):
-    data = page_data(make_page(tmp_path, pendulum_run, "--frames", "25"))
+    data = data_of(pendulum_run, frames=25)
     with h5py.File(pendulum_run, "r") as results:
         time = results["time"][()]
         rod = results["bodies/rod/position"][()]
@@ -368,7 +380,7 @@ def test_rope_colour_is_the_force_at_its_ends(tmp_path):
     run = subprocess.run([str(BINARY), "run", "short.yaml", "-o", "rope.h5", "--quiet"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
-    data = page_data(make_page(tmp_path, tmp_path / "rope.h5"))
+    data = data_of(tmp_path / "rope.h5")
     forces = data["member_forces"]
     assert forces["members"] == ["rope"]
     with h5py.File(tmp_path / "rope.h5", "r") as results:
