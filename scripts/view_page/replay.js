@@ -365,7 +365,7 @@
     var side = new THREE.Vector3(0.55, -1, 0);  // from the front right, a little above
     if (Math.abs(up.z) < 0.99) side.sub(up.clone().multiplyScalar(side.dot(up)));
     side.normalize().add(up.clone().multiplyScalar(0.35)).normalize();
-    camera.position.copy(centre).add(side.multiplyScalar(1.05 * distance));
+    camera.position.copy(centre).add(side.multiplyScalar(1.15 * distance));
     controls.target.copy(centre);
     controls.update();
   }
@@ -530,7 +530,10 @@
     var shares = modes.energy_shares ? modes.energy_shares[k] : null;
     if (!shares) return "";
     return shares.filter(function (part) { return part[1] >= 5e-4; }).slice(0, limit || 99)
-      .map(function (part) { return part[0] + " " + (100 * part[1]).toFixed(1) + " %"; }).join(", ");
+      .map(function (part) {
+        var name = limit && part[0] === "flexible members" ? "members" : part[0];  // table: short
+        return name + " " + (100 * part[1]).toFixed(1) + " %";
+      }).join(", ");
   }
   function showMode() {
     if (!modes) return;
