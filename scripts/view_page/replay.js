@@ -791,6 +791,8 @@
     status.setAttribute("data-bench-fps", String(bench / ((performance.now() - start) / 1000)));
   }
 
+  if (readHash().play === "1") play();  // #play=1: a link that starts playing
+
   if (!window.cranesimErrors.length) {
     status.setAttribute("data-ready-ms", String(performance.now()));  // since navigation start
     status.setAttribute("data-state", "ready");

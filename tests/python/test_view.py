@@ -68,11 +68,13 @@ def run_browsers(commands: list[list[str]]) -> list[str]:
 
 
 class StatusParser(html.parser.HTMLParser):
-    """The page's <title> and the attributes of its #status and #incomplete elements."""
+    """The page's <title>, the attributes of its #status and #incomplete elements, and the
+    text of its play button."""
 
     def __init__(self):
         super().__init__()
         self.title, self.status, self.incomplete, self._in = "", {}, None, None
+        self.play_button = ""
 
     def handle_starttag(self, tag, attrs):
         attributes = dict(attrs)
@@ -83,6 +85,8 @@ class StatusParser(html.parser.HTMLParser):
         elif attributes.get("id") == "incomplete":
             self.incomplete = {"hidden": "hidden" in attributes, "text": ""}
             self._in = "incomplete"
+        elif attributes.get("id") == "play":
+            self._in = "play"
 
     def handle_endtag(self, tag):
         self._in = None
@@ -92,6 +96,8 @@ class StatusParser(html.parser.HTMLParser):
             self.title += text
         elif self._in == "incomplete":
             self.incomplete["text"] += text
+        elif self._in == "play":
+            self.play_button += text
 
 
 def parse_dom(dom: str) -> StatusParser:
@@ -342,16 +348,24 @@ def test_modes_kinetic_energy_shares_add_up(tmp_path):
     assert swing["flexible members"] == pytest.approx(24.5 / 3 / (1000 + 24.5 / 3), rel=0.05)
 
 
-def test_incomplete_run_is_shown_with_its_status(incomplete_results_file, tmp_path):
+def test_incomplete_run_is_shown_with_its_status_and_plays_to_its_end(incomplete_results_file,
+                                                                      tmp_path):
     page = make_page(tmp_path, incomplete_results_file)
     data = page_data(page)
     with h5py.File(incomplete_results_file, "r") as results:
         last = results["time"][-1]
     assert data["status"] == "incomplete" and data["message"] == INCOMPLETE_MESSAGE
     assert decode(data["time"])[-1] == pytest.approx(last)
-    (dom,) = run_browsers([browser_command(tmp_path / "profile", page.as_uri() + "#t=100",
-                                           "--dump-dom")])
-    dom = parse_dom(dom)
+    # Opened after its end; and opened playing (#play=1) at ×10 from 0.1 s, which reaches the
+    # last sample within the browser's 5 s of virtual time and pauses there.
+    outputs = run_browsers([browser_command(tmp_path / f"profile{k}", page.as_uri() + fragment,
+                                            "--dump-dom")
+                            for k, fragment in enumerate(("#t=100", "#t=0.1&play=1&speed=10"))])
+    dom, played = map(parse_dom, outputs)
+    assert played.status.get("data-state") == "ready", played.status.get("data-error")
+    assert played.title.startswith("cranesim replay: ready · t = 0.100 s")  # when it opened
+    assert float(played.status["data-t"]) == pytest.approx(last, rel=1e-6)
+    assert played.play_button.strip() == "Play"  # paused at the end
     assert dom.status.get("data-state") == "ready", dom.status.get("data-error")
     assert float(dom.status["data-t"]) == pytest.approx(last, rel=1e-6)  # clamped to the last
     assert dom.incomplete is not None and not dom.incomplete["hidden"]
