@@ -1,13 +1,16 @@
-// The cranesim replay viewer, inlined by scripts/view.py into a page after three.js (r111)
-// and its OrbitControls. The data (JSON in #cranesim-data) holds per frame the positions of
-// all points (body origins, then joints) and the bodies' rotation matrices, as base64 float32.
-// All 3-D math is three.js': cameras, controls, projection, quaternions, instance matrices.
+// The cranesim replay viewer, inlined by scripts/view.py into a page after three.js (r111),
+// its OrbitControls and its Lut (colour map). The data (JSON in #cranesim-data) holds per frame
+// the positions of all points (body origins, then joints) and the bodies' rotation matrices, as
+// base64 float32; for a modes file the equilibrium and the mode shapes, for a plan file also the
+// planned path. All 3-D math is three.js': cameras, controls, projection, quaternions, instance
+// matrices, colour map.
 //
-// For people and tests, #status carries the state: data-state ("ready" or "error"),
-// data-t, data-frame, data-load-world "x,y,z", data-load-px "x,y" (the load's position on the
-// page, in CSS pixels from the page's top left, by Vector3.project), data-view-matrix and
-// data-projection-matrix (column-major, as three.js stores them), data-canvas
-// "left,top,width,height"; document.title starts with "cranesim replay: ready".
+// For people and tests, #status carries the state: data-state ("ready" or "error", then
+// data-error), data-t, data-frame, data-load-world "x,y,z", data-load-px "x,y" (the load's
+// position on the page, in CSS pixels from the page's top left, by Vector3.project),
+// data-view-matrix and data-projection-matrix (column-major, as three.js stores them),
+// data-canvas "left,top,width,height", data-force-range, data-planned-world, data-ready-ms,
+// data-bench-fps; document.title starts with "cranesim replay: ready".
 (function () {
   "use strict";
   var data = JSON.parse(document.getElementById("cranesim-data").textContent);
@@ -41,7 +44,7 @@
   try {
     renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
   } catch (error) {
-    fail("WebGL is not available in this browser: " + error.message);
+    fail("WebGL is not available in this browser: " + ((error && error.message) || error));
   }
   renderer.setPixelRatio(window.devicePixelRatio || 1);
   renderer.setClearColor(0xeef2f6);
@@ -76,8 +79,7 @@
                  Math.round(gridCentre.z / spacing) * spacing);
   grid.position.copy(gridCentre).add(up.clone().multiplyScalar(groundLevel));
   scene.add(grid);
-  var axes = new THREE.AxesHelper(spacing);
-  axes.position.copy(up).multiplyScalar(groundLevel);
+  var axes = new THREE.AxesHelper(spacing);  // at the origin
   scene.add(axes);
   document.getElementById("scale-line").textContent =
     "grid " + spacing + " m · axes at the origin: x red, y green, z blue, " + spacing + " m long";
