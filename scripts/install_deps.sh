@@ -9,6 +9,7 @@ debian_packages=(
   libeigen3-dev libsundials-dev libsuitesparse-dev coinor-libipopt-dev libhdf5-dev
   libyaml-cpp-dev catch2 libcli11-dev libfmt-dev libspdlog-dev libtbb-dev libbenchmark-dev
   python3 python3-pip
+  libjs-three chromium   # the replay page's three.js (scripts/view.py) and the browser its test uses
 )
 missing=()
 for p in "${debian_packages[@]}"; do
@@ -22,7 +23,7 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}"
 fi
 
-if ! python3 -c "import numpy, h5py, matplotlib, pytest" 2>/dev/null; then
+if ! python3 -c "import numpy, h5py, matplotlib, pytest, yaml" 2>/dev/null; then
   echo "installing Python packages from scripts/requirements.txt"
   python3 -m pip install --quiet -r "$here/requirements.txt" ||
     python3 -m pip install --quiet --break-system-packages -r "$here/requirements.txt"

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The README's main command: installs what is missing, builds, runs the thesis crane's combined
 # motion (configs/crane_combined.yaml, thesis 8.3.2) from its equilibrium and leaves the results,
-# the load's position and velocity plot, a snapshot and an animation of the whole crane in
-# out/main/. Another scene: scripts/run_main.sh configs/<scene>.yaml
+# the load's position and velocity plot, a snapshot, an animation and a 3-D replay page of the
+# whole crane in out/main/. Another scene: scripts/run_main.sh configs/<scene>.yaml
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 scene="${1:-$root/configs/crane_combined.yaml}"
@@ -21,4 +21,5 @@ python3 "$root/scripts/plot_timeseries.py" "$results" energy/kinetic energy/pote
   --title "$name: energies" -o "$out/${name}_energy.png"
 python3 "$root/scripts/plot_snapshot.py" "$results" -o "$out/${name}_snapshot.png"
 python3 "$root/scripts/animate.py" "$results" --every 10 -o "$out/${name}_animation.gif"
-echo "results, plots and animation in $out"
+python3 "$root/scripts/view.py" "$results" -o "$out/$name.html"
+echo "results, plots, animation and 3-D replay page ($name.html: open it in a browser) in $out"
