@@ -9,8 +9,10 @@ debian_packages=(
   libeigen3-dev libsundials-dev libsuitesparse-dev coinor-libipopt-dev libhdf5-dev
   libyaml-cpp-dev catch2 libcli11-dev libfmt-dev libspdlog-dev libtbb-dev libbenchmark-dev
   python3 python3-pip
-  libjs-three chromium   # the replay page's three.js (scripts/view.py) and the browser its test uses
+  libjs-three            # the replay page's three.js (scripts/view.py)
 )
+# The tests also render the replay page in a browser: `install_deps.sh --tests` (scripts/test.sh).
+if [ "${1:-}" = "--tests" ]; then debian_packages+=(chromium); fi
 missing=()
 for p in "${debian_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -3,7 +3,7 @@
 # (Catch2 unit and scene tests, the Python script and CLI tests, the benchmark smoke test).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$root/scripts/install_deps.sh"
+"$root/scripts/install_deps.sh" --tests
 "$root/scripts/build.sh"
 cd "$root/build"
 ctest --output-on-failure --parallel "$(nproc)" --timeout 900
