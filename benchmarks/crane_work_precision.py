@@ -110,7 +110,7 @@ def plot(rows: list[dict], path: Path) -> None:
 
     fig, ax = plt.subplots(figsize=(7.5, 5))
     colours = {"super_truss": "tab:blue", "condensed": "tab:orange"}
-    markers = {"bdf1": "v", "bdf2": "o", "bdf3": "s", "bdf4": "D", "bdf5": "^"}
+    markers = {"bdf1": "v", "bdf2": "o", "bdf3": "s", "bdf4": "D", "bdf5": "^", "ga1": "P", "ga0.8": "X", "ga0.5": "*", "ga0": "d"}
     for fidelity in dict.fromkeys(r["fidelity"] for r in rows):
         for integrator in dict.fromkeys(r["integrator"] for r in rows if r["fidelity"] == fidelity):
             sel = sorted((r for r in rows if r["fidelity"] == fidelity and r["integrator"] == integrator), key=lambda r: r["rtol"])
