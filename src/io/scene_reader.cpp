@@ -77,7 +77,7 @@ std::vector<JointSpec> readJoints(const YamlField& list) {
     JointSpec j;
     j.name = f.at("name").identifier();
     if (!names.insert(j.name).second) f.at("name").fail(fmt::format("duplicate joint name '{}'", j.name));
-    j.position = f.vec3("position", Vec3::Zero());
+    j.position = f.position("position", Vec3::Zero());
     if (const auto r = f.find("rotation")) j.rotation = readRotation(*r);
     j.where = f.where();
     joints.push_back(std::move(j));
@@ -93,9 +93,9 @@ RigidBodySpec readBody(const YamlField& f) {
   if (b.name == "ground") f.at("name").fail("'ground' is reserved for the inertial frame");
   if (const auto type = f.find("type")) type->choice({"rigid"});
   b.mass = f.at("mass").positive();
-  b.centroid = f.vec3("centroid", Vec3::Zero());
+  b.centroid = f.position("centroid", Vec3::Zero());
   b.inertia = readInertia(f.at("inertia"));
-  b.position = f.vec3("position", Vec3::Zero());
+  b.position = f.position("position", Vec3::Zero());
   if (const auto r = f.find("rotation")) b.rotation = readRotation(*r);
   b.velocity = f.vec3("velocity", Vec3::Zero());
   b.angular_velocity = f.vec3("angular_velocity", Vec3::Zero());
@@ -184,6 +184,8 @@ TrussDescription readTruss(const YamlField& f) {
     for (const YamlField& n : sf.at("nodes").items()) {
       const std::vector<double> yz = n.numbers();
       if (yz.size() != 2) n.fail(fmt::format("expected a node's [y, z] in the end-section frame, found {} numbers", yz.size()));
+      if (std::max(std::abs(yz[0]), std::abs(yz[1])) > YamlField::kMaxCoordinate)
+        n.fail(fmt::format("a node {:g} m from the truss axis: scene geometry must lie within {:g} m", std::max(std::abs(yz[0]), std::abs(yz[1])), YamlField::kMaxCoordinate));
       sec.nodes.emplace_back(yz[0], yz[1]);
     }
     if (const auto cb = sf.find("cross_beams")) sec.cross_beams = readNodePairs(*cb);
@@ -230,7 +232,7 @@ void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussD
 void readMemberEnd(const YamlField& f, Vec3& position, std::string& joint, SourceLocation& where) {
   where = f.where();
   if (f.isScalar()) joint = f.text();
-  else position = f.vec3();
+  else position = f.position();
 }
 
 MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& trusses) {

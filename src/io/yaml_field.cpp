@@ -63,8 +63,10 @@ void YamlField::allowKeys(const std::vector<const char*>& allowed) const {
   std::vector<std::string> seen;
   for (const auto& kv : node_) {
     const std::string key = kv.first.as<std::string>();
+    // A key set by a composing scene (base + its own keys or `modify`) is a new node without a
+    // place in any file; its value keeps the place where the composing scene wrote it.
+    const YAML::Mark mark = kv.first.Mark().is_null() ? kv.second.Mark() : kv.first.Mark();
     if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
-      const YAML::Mark mark = kv.first.Mark();
       throw SceneError({path_.empty() ? key : path_ + "." + key, mark.line + 1, mark.column + 1},
                        fmt::format("duplicate key '{}'", key));
     }
@@ -76,7 +78,6 @@ void YamlField::allowKeys(const std::vector<const char*>& allowed) const {
       const std::size_t d = editDistance(key, a);
       if (d < best_distance) best_distance = d, best = a;
     }
-    const YAML::Mark mark = kv.first.Mark();
     const SourceLocation at{path_.empty() ? key : path_ + "." + key, mark.line + 1, mark.column + 1};
     std::string allowed_list;
     for (const char* a : allowed) allowed_list += (allowed_list.empty() ? "" : ", ") + std::string(a);
@@ -146,6 +147,14 @@ Vec3 YamlField::vec3() const {
   return {v[0], v[1], v[2]};
 }
 
+Vec3 YamlField::position() const {
+  const Vec3 p = vec3();
+  if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+    fail(fmt::format("a point {:g} m from the origin: scene geometry must lie within {:g} m of it",
+                     p.cwiseAbs().maxCoeff(), kMaxCoordinate));
+  return p;
+}
+
 std::vector<YamlField> YamlField::items() const {
   if (!node_.IsSequence()) fail(fmt::format("expected a list, found {}", typeName(node_)));
   std::vector<YamlField> out;
@@ -171,6 +180,11 @@ double YamlField::number(const std::string& key, double fallback) const {
 double YamlField::positive(const std::string& key, double fallback) const {
   const auto f = find(key);
   return f ? f->positive() : fallback;
+}
+
+Vec3 YamlField::position(const std::string& key, const Vec3& fallback) const {
+  const auto f = find(key);
+  return f ? f->position() : fallback;
 }
 
 Vec3 YamlField::vec3(const std::string& key, const Vec3& fallback) const {

@@ -41,6 +41,8 @@ class YamlField {
   /// A name usable in joint references and HDF5 paths: letters, digits, '_' and '-'.
   std::string identifier() const;
   Vec3 vec3() const;
+  /// A point of the scene's geometry, m: three numbers within kMaxCoordinate of the origin.
+  Vec3 position() const;
   std::vector<double> numbers() const;
   std::vector<YamlField> items() const;
   /// One of `choices`; fails listing them.
@@ -49,6 +51,12 @@ class YamlField {
   double number(const std::string& key, double fallback) const;
   double positive(const std::string& key, double fallback) const;
   Vec3 vec3(const std::string& key, const Vec3& fallback) const;
+  Vec3 position(const std::string& key, const Vec3& fallback) const;
+
+  /// Geometry beyond this distance (m) is refused: no crane comes near it, and coordinates of
+  /// 1e308 overflowed into a singular mass matrix instead of an input error (found by
+  /// tests/fuzz/input_mutants.py).
+  static constexpr double kMaxCoordinate = 1e5;
 
  private:
   YAML::Node node_;
