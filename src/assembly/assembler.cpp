@@ -450,6 +450,18 @@ double Assembler::constraintResidual(double t, const double* y) const {
   return worst;
 }
 
+void Assembler::workPowers(double t, const double* y, double* out) const {
+  const double* q = y;
+  const double* v = y + vOffset();
+  const ElementInput in{q, v, nullptr, t, gravity()};
+  double winch = 0.0, dissipated = 0.0;
+  for (const auto& e : model_.elements) {
+    winch += e->explicitTimePower(in);
+    dissipated += e->dissipatedPower(in);
+  }
+  WorkTerms{drivePower(t, q, y + lambdaOffset()), loadPower(t, q, v), winch, dissipated}.toArray(out);
+}
+
 double Assembler::drivePower(double t, const double* q, const double* lambda) const {
   double p = 0.0;
   for (const Constraint& c : model_.constraints) {

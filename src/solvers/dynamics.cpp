@@ -36,16 +36,10 @@ int jacobianCallback(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_V
   return 0;
 }
 
-/// Quadratures: [drive power λ·Φ_t, load power Q·dq].
+/// Quadratures: the powers of the energy balance's work terms (WorkTerms).
 int quadratureCallback(sunrealtype t, N_Vector y, N_Vector, N_Vector rq, void* data) {
   const auto* d = static_cast<IdaUserData*>(data);
-  const Assembler& a = *d->assembler;
-  const double* yy = N_VGetArrayPointer(y);
-  const double* q = yy;
-  const double* v = yy + a.vOffset();
-  double* out = N_VGetArrayPointer(rq);
-  out[0] = a.drivePower(t, q, yy + a.lambdaOffset());
-  out[1] = a.loadPower(t, q, v);
+  d->assembler->workPowers(t, N_VGetArrayPointer(y), N_VGetArrayPointer(rq));
   return 0;
 }
 
@@ -68,7 +62,7 @@ class Integrator {
     y_ = N_VNew_Serial(n, ctx_);
     yp_ = N_VNew_Serial(n, ctx_);
     id_ = N_VNew_Serial(n, ctx_);
-    yq_ = N_VNew_Serial(2, ctx_);
+    yq_ = N_VNew_Serial(WorkTerms::kCount, ctx_);
     N_VConst(0.0, yq_);
     load(assembler, s);
     mem_ = IDACreate(ctx_);
@@ -207,7 +201,7 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
   long stalled_steps = 0;
   long next_sample = 1;
   bool sampled_end = false;
-  sink.sample(t, N_VGetArrayPointer(ida.y()), 0.0, 0.0);
+  sink.sample(t, N_VGetArrayPointer(ida.y()), WorkTerms{});
   std::size_t next_break = 0;
   while (next_break < breakpoints.size() && breakpoints[next_break] <= t) ++next_break;
 
@@ -242,8 +236,7 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
       if (ts > t_ret + eps) break;
       IDAGetDky(ida.mem(), std::min(ts, t_ret), 0, dense);
       IDAGetQuadDky(ida.mem(), std::min(ts, t_ret), 0, quadrature);
-      const double* work = N_VGetArrayPointer(quadrature);
-      sink.sample(ts, N_VGetArrayPointer(dense), work[0], work[1]);
+      sink.sample(ts, N_VGetArrayPointer(dense), WorkTerms::fromArray(N_VGetArrayPointer(quadrature)));
       ++next_sample;
       sampled_end = ts == t_end;
     }

@@ -27,6 +27,20 @@ struct ConstraintState {
   VecX phi_t;                     // Φ_t
 };
 
+/// The works of the energy balance, each integrated from the run's start (J), or their powers
+/// (W). The equations of motion give dE/dt = P_drive + P_load + P_winch − P_dissipated for
+/// E = T + V (element.hpp), so E(t) − E(t0) − drive − load − winch + dissipated stays 0.
+struct WorkTerms {
+  static constexpr int kCount = 4;
+  double drive = 0.0;       // rheonomic drives, λ·Φ_t
+  double load = 0.0;        // applied nodal forces and torques, Q·dq
+  double winch = 0.0;       // elements' explicit time dependence: ropes reeled in and out
+  double dissipated = 0.0;  // material damping, ≥ 0
+  /// To and from kCount values in the order of the members (IDAS' quadrature vector).
+  static WorkTerms fromArray(const double* w) { return {w[0], w[1], w[2], w[3]}; }
+  void toArray(double* w) const { w[0] = drive, w[1] = load, w[2] = winch, w[3] = dissipated; }
+};
+
 class Assembler {
  public:
   explicit Assembler(const Model& model) : Assembler(model, model.solver.formulation) {}
@@ -74,6 +88,9 @@ class Assembler {
   double constraintResidual(double t, const double* y) const;
   /// Power of the rheonomic drives on the system, λ·Φ_t (constraint forces −Gᵀλ, G dq = −Φ_t).
   double drivePower(double t, const double* q, const double* lambda) const;
+  /// The powers of WorkTerms at y = [q, dq, λ, …], WorkTerms::kCount values into `out` in the
+  /// order of its members: the integrands of the energy balance's quadratures.
+  void workPowers(double t, const double* y, double* out) const;
 
  private:
   struct ConstraintBlocks {

@@ -17,6 +17,7 @@
 #include <cmath>
 
 #include "cranesim/elements/section.hpp"
+#include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/hermite.hpp"
 #include "cranesim/math/profile.hpp"
@@ -79,6 +80,48 @@ struct SplineRopeKernel {
       U += rule.weight[g] * L * (0.5 * EA * strain * strain - rhoA * gravity.dot(shape(b.N) * q));
     }
     return U;
+  }
+
+  /// L̇ = d/dt length(t)/segments, exact: forward AD through the profile.
+  double segmentRate(double t) const { return total_length(seeded<double, 1>(t, 0)).derivatives()(0) / segments; }
+
+  /// ∂(T + V)/∂t at fixed (q, dq) = L̇ ∂(T + V)/∂L: the winch's power on the element. Adding
+  /// unstretched length at fixed nodes brings in material with its kinetic, gravity and strain
+  /// energy and lowers the strain of the material there, against the tension. Per unit of
+  /// unstretched length the energy is e = ½ ρA |ṙ|² + ½ EA max(ε, 0)² − ρA g·r, and
+  /// ∂/∂L ∫₀¹ e L dξ = ∫₀¹ (e + L ∂e/∂L) dξ with the shape functions' ∂/∂L at fixed ξ.
+  double explicitTimePower(const Q<double>& q, const Q<double>& v, double t, const Vec3& gravity) const {
+    const double rate = segmentRate(t);
+    if (rate == 0.0) return 0.0;
+    const double L = segmentLength(t), rhoA = material.density * section.area;
+    const double EA = material.youngs_modulus * section.area;
+    double dEdL = 0.0;
+    for (int g = 0; g < rule.points; ++g) {
+      const HermiteBasis b = hermiteBasis(rule.xi[g], L), bL = hermiteBasisLengthDerivative(rule.xi[g], L);
+      const Vec3 rs = shape(b.dN) * q, u = shape(b.N) * v;
+      const double stretch = rs.norm(), strain = std::max(stretch - 1.0, 0.0);
+      const double e = 0.5 * rhoA * u.squaredNorm() + 0.5 * EA * strain * strain - rhoA * gravity.dot(shape(b.N) * q);
+      const double e_L = rhoA * u.dot(shape(bL.N) * v) + EA * strain * rs.dot(shape(bL.dN) * q) / stretch -
+                         rhoA * gravity.dot(shape(bL.N) * q);
+      dEdL += rule.weight[g] * (e + L * e_L);
+    }
+    return rate * dEdL;
+  }
+
+  /// Kelvin–Voigt power dqᵀ(F(q, dq) − F(q, 0)) = ∫ EA (max(ε + η ε̇, 0) − max(ε, 0)) ε̇ ds ≥ 0 (max
+  /// is monotone). The tension-only law is not linear in dq, but the rope has no velocity terms
+  /// besides the damping, so this is its exact damping power.
+  double dissipatedPower(const Q<double>& q, const Q<double>& v, double t, const Vec3&) const {
+    if (damping == 0.0) return 0.0;
+    const double L = segmentLength(t), EA = material.youngs_modulus * section.area;
+    double power = 0.0;
+    for (int g = 0; g < rule.points; ++g) {
+      const auto dN = shape(hermiteBasis(rule.xi[g], L).dN);
+      const Vec3 rs = dN * q;
+      const double stretch = rs.norm(), strain = stretch - 1.0, rate = rs.dot(dN * v) / stretch;
+      power += rule.weight[g] * L * EA * (std::max(strain + damping * rate, 0.0) - std::max(strain, 0.0)) * rate;
+    }
+    return power;
   }
 
   /// Axial force at ξ ∈ [0, 1] of the element.
