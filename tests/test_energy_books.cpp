@@ -223,3 +223,23 @@ TEST_CASE("A free-falling rope reeled out: the reeled mass' energy is booked exa
   CHECK(run.recorder.winchWork().back() == Approx(exact).epsilon(1e-8));
   CHECK(run.recorder.relativeBalanceDrift() < 1e-8);
 }
+
+TEST_CASE("A rope reeled steadily at constant stretch: damping adds no tension and dissipates nothing", "[energy][rope]") {
+  // The bottom node follows the reeling, (1 + ε) L̇ e, the top (the reel point) and the slopes
+  // held: the material keeps its stretch, so the Kelvin–Voigt rate is 0 although L changes.
+  StraightRope undamped, damped;
+  damped.kernel.damping = 1e-3;
+  SplineRopeKernel::Q<double> v = SplineRopeKernel::Q<double>::Zero();
+  v.segment<3>(6) = (1.0 + undamped.eps) * undamped.rate * undamped.e;
+  const auto q = undamped.q();
+  const auto F0 = undamped.kernel.force<double>(q, v, undamped.t, undamped.gravity);
+  const auto F = damped.kernel.force<double>(q, v, damped.t, damped.gravity);
+  const double N = undamped.EA() * undamped.eps;
+  INFO("tension " << N << " N; damped − undamped nodal forces " << (F - F0).norm() << " N (a rate L̇/L would add "
+                  << undamped.EA() * damped.kernel.damping * std::abs(undamped.rate) / undamped.L() << " N)");
+  CHECK((F - F0).norm() < 1e-9 * N);
+  CHECK(damped.kernel.dissipatedPower(q, v, damped.t, damped.gravity) == Approx(0.0).margin(1e-9 * N));
+  // The winch's power is the undamped one, and the hand computation's.
+  CHECK(damped.kernel.explicitTimePower(q, v, damped.t, damped.gravity) ==
+        Approx(undamped.kernel.explicitTimePower(q, v, undamped.t, undamped.gravity)).epsilon(1e-12));
+}

@@ -54,6 +54,9 @@ class Assembler {
   double loadFactor() const { return load_factor_; }
   /// Adds α M(q) dq to the equations of motion: the artificial damping of static relaxation.
   void setMassDamping(double alpha) { mass_damping_ = alpha; }
+  /// Holds the elements' time-dependent parameters at their values at t (ElementInput::
+  /// parameters_held): statics and modes.
+  void setParametersHeld(bool held) { parameters_held_ = held; }
   /// jacobian() then computes the elements' ∂r/∂q only and leaves their velocity columns zero:
   /// all that statics reads (the equilibrium system's unknowns are q and λ), at the cost of
   /// nq_local instead of nq_local + nv_local AD directions.
@@ -111,6 +114,7 @@ class Assembler {
   Formulation formulation_;
   double load_factor_ = 1.0;
   double mass_damping_ = 0.0;
+  bool parameters_held_ = false;
   bool coordinate_jacobian_only_ = false;
   int size_ = 0;
   SparsityPattern pattern_;

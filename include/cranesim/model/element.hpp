@@ -26,6 +26,8 @@
 // A kernel whose parameters follow time, or whose damping is not linear in dq, provides
 //   double explicitTimePower(q, dq, t, gravity) const;   P_time
 //   double dissipatedPower(q, dq, t, gravity) const;     P_diss
+// and a kernel with explicitTimePower takes a fifth argument of force, `held`: the parameters'
+// rates are then 0 (ElementInput::parameters_held).
 // Optionally, a kernel whose mass matrix is costly provides the fused residual
 //   template <class S> Matrix<S, kNv, 1> residual(q, dq, a, t, gravity) const;   M(q) a + F
 // which KernelElement then uses for the residual and its Jacobian, and a kernel whose inertial
@@ -54,6 +56,9 @@ struct ElementInput {
   Vec3 gravity;
   /// α of a mass-proportional damping force α M(q) dq, added to F (static relaxation only).
   double mass_damping = 0.0;
+  /// Parameters that follow time (a rope's length) held at their values at t, their rates 0:
+  /// statics and modes, whose equilibrium is that of the controls at t.
+  bool parameters_held = false;
 };
 
 class Element {
@@ -182,7 +187,7 @@ template <class Kernel> class KernelElement final : public Element {
     if constexpr (FusedResidualKernel<Kernel>)
       r = kernel_.template residual<D>(q, v, a, in.t, in.gravity);
     else
-      r = kernel_.template massMatrix<D>(q, in.t) * a + kernel_.template force<D>(q, v, in.t, in.gravity);
+      r = kernel_.template massMatrix<D>(q, in.t) * a + forceAt<D>(q, v, in);
     storeDerivatives(r, J);
   }
 
@@ -230,7 +235,16 @@ template <class Kernel> class KernelElement final : public Element {
     if constexpr (FusedResidualKernel<Kernel>)
       return kernel_.template residual<double>(q, v, acc, in.t, in.gravity);
     else
-      return kernel_.template massMatrix<double>(q, in.t) * acc + kernel_.template force<double>(q, v, in.t, in.gravity);
+      return kernel_.template massMatrix<double>(q, in.t) * acc + forceAt<double>(q, v, in);
+  }
+
+  template <class S>
+  Eigen::Matrix<S, kNv, 1> forceAt(const Eigen::Matrix<S, kNq, 1>& q, const Eigen::Matrix<S, kNv, 1>& v,
+                                   const ElementInput& in) const {
+    if constexpr (TimeDependentKernel<Kernel>)
+      return kernel_.template force<S>(q, v, in.t, in.gravity, in.parameters_held);
+    else
+      return kernel_.template force<S>(q, v, in.t, in.gravity);
   }
 
   template <class R> static void storeDerivatives(const R& r, double* J) {
