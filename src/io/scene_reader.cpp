@@ -205,6 +205,35 @@ TrussDescription readTruss(const YamlField& f) {
   return d;
 }
 
+/// A rope's unstretched length must stay positive from t_start to t_end: one that runs out
+/// crawled at ever smaller steps, one that went negative stopped as a "locked mechanism". The
+/// profile is checked at its breakpoints, the interval's ends and 10 000 points between.
+void requireRopeLength(const MemberSpec& m, const YamlField& f, const SolverSpec& solver) {
+  if (!m.length) return;
+  const Profile& length = *m.length;
+  std::vector<double> times = length.breakpoints();
+  constexpr int kSamples = 10000;
+  for (int k = 0; k <= kSamples; ++k)
+    times.push_back(solver.t_start + (solver.t_end - solver.t_start) * k / kSamples);
+  std::sort(times.begin(), times.end());
+  double shortest = length(solver.t_start, Limit::Right), when = solver.t_start, out = solver.t_end;
+  bool ran_out = false;
+  for (const double t : times) {
+    if (t < solver.t_start || t > solver.t_end) continue;
+    for (const Limit side : {Limit::Left, Limit::Right}) {
+      const double l = length(t, side);
+      if (l < shortest) shortest = l, when = t;
+      if (l <= 0.0 && !ran_out) ran_out = true, out = t;
+    }
+  }
+  if (!ran_out) return;
+  const YamlField l = f.at("length");
+  const std::string type = l.isMap() && l.has("type") ? l.at("type").text() : "constant";
+  l.fail(fmt::format("rope '{}' runs out: its length ({} profile) reaches 0 at t = {:.4g} s and {:g} m at t = {:.4g} s; it "
+                     "must stay positive from t_start = {:g} s to t_end = {:g} s",
+                     m.name, type, out, shortest, when, solver.t_start, solver.t_end));
+}
+
 /// `type: truss`: a placed truss type (its drawn length is checked by placeMemberEnds).
 void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussDescription>& trusses) {
   const YamlField tf = f.at("truss");
@@ -412,6 +441,10 @@ Scene sceneFromYaml(const ComposedScene& composed, const std::string& path) {
   const YamlField solver = f.at("solver");
   s.solver = readSolver(solver);
   s.where_solver = solver.where();
+  if (const auto members = f.find("members")) {
+    const std::vector<YamlField> items = members->items();
+    for (std::size_t i = 0; i < items.size(); ++i) requireRopeLength(s.members[i], items[i], s.solver);
+  }
   placeMemberEnds(s);
   if (const auto o = f.find("output")) {
     o->allowKeys({"interval"});
