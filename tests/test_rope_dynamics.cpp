@@ -295,7 +295,7 @@ TEST_CASE("A ball reeled up by the rope's length drive tracks the length; the ro
                 e->potentialEnergy(earlier)) / (2.0 * dt);
       VecX moving(n), resting(n);
       e->residual(now, moving.data());
-      e->residual({q.data(), zero.data(), zero.data(), t[s], model.gravity, 0.0, true}, resting.data());
+      e->residual({q.data(), zero.data(), zero.data(), t[s], model.gravity, 0.0, ParameterRates::Held}, resting.data());
       const auto& vi = e->velocityIndices();
       for (int i = 0; i < n; ++i) damping += v(vi[i]) * (moving(i) - resting(i));
     }

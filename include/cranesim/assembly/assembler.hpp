@@ -54,8 +54,8 @@ class Assembler {
   double loadFactor() const { return load_factor_; }
   /// Adds α M(q) dq to the equations of motion: the artificial damping of static relaxation.
   void setMassDamping(double alpha) { mass_damping_ = alpha; }
-  /// Holds the elements' time-dependent parameters at their values at t (ElementInput::
-  /// parameters_held): statics and modes.
+  /// Holds the elements' time-dependent parameters at their values at t, their rates 0
+  /// (ElementInput::rates): statics and modes.
   void setParametersHeld(bool held) { parameters_held_ = held; }
   /// jacobian() then computes the elements' ∂r/∂q only and leaves their velocity columns zero:
   /// all that statics reads (the equilibrium system's unknowns are q and λ), at the cost of
@@ -109,6 +109,10 @@ class Assembler {
                                                        bool seed, Limit limit = Limit::Left) const;
 
   Vec3 gravity() const { return load_factor_ * model_.gravity; }
+  ParameterRates rates(Limit limit) const {
+    if (parameters_held_) return ParameterRates::Held;
+    return limit == Limit::Right ? ParameterRates::Right : ParameterRates::Left;
+  }
 
   const Model& model_;
   Formulation formulation_;

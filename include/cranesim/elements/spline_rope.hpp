@@ -50,10 +50,11 @@ struct SplineRopeKernel {
     return M.cast<S>();
   }
 
-  /// `held`: the length held at its value at t (statics), L̇ = 0.
-  template <class S> Q<S> force(const Q<S>& q, const Q<S>& v, double t, const Vec3& gravity, bool held = false) const {
+  /// `rates`: which L̇ the damping takes (element.hpp, ElementInput::rates).
+  template <class S>
+  Q<S> force(const Q<S>& q, const Q<S>& v, double t, const Vec3& gravity, ParameterRates rates = ParameterRates::Left) const {
     using std::sqrt;
-    const double L = segmentLength(t), rate = damping > 0.0 && !held ? segmentRate(t) : 0.0;
+    const double L = segmentLength(t), rate = damping > 0.0 ? segmentRate(t, rates) : 0.0;
     const double rhoA = material.density * section.area;
     const double EA = material.youngs_modulus * section.area;
     Q<S> F = Q<S>::Zero();
@@ -86,8 +87,13 @@ struct SplineRopeKernel {
     return U;
   }
 
-  /// L̇ = d/dt length(t)/segments, exact: forward AD through the profile.
-  double segmentRate(double t) const { return total_length(seeded<double, 1>(t, 0)).derivatives()(0) / segments; }
+  /// L̇ = d/dt length(t)/segments, exact: forward AD through the profile; one-sided at a
+  /// breakpoint, or 0 with the length held.
+  double segmentRate(double t, ParameterRates rates = ParameterRates::Left) const {
+    if (rates == ParameterRates::Held) return 0.0;
+    const Limit side = rates == ParameterRates::Right ? Limit::Right : Limit::Left;
+    return total_length(seeded<double, 1>(t, 0), side).derivatives()(0) / segments;
+  }
 
   /// The winch's power on the element: ∂(T + V)/∂t at fixed (q, dq) = L̇ ∂(T + V)/∂L, plus the
   /// damping stress' power on the stretch rate that L̇ causes. Adding unstretched length at

@@ -26,8 +26,8 @@
 // A kernel whose parameters follow time, or whose damping is not linear in dq, provides
 //   double explicitTimePower(q, dq, t, gravity) const;   P_time
 //   double dissipatedPower(q, dq, t, gravity) const;     P_diss
-// and a kernel with explicitTimePower takes a fifth argument of force, `held`: the parameters'
-// rates are then 0 (ElementInput::parameters_held).
+// and a kernel with explicitTimePower takes a fifth argument of force, ElementInput::rates: which
+// rates of its parameters it is to use.
 // Optionally, a kernel whose mass matrix is costly provides the fused residual
 //   template <class S> Matrix<S, kNv, 1> residual(q, dq, a, t, gravity) const;   M(q) a + F
 // which KernelElement then uses for the residual and its Jacobian, and a kernel whose inertial
@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "cranesim/math/autodiff.hpp"
+#include "cranesim/math/profile.hpp"
 
 namespace cranesim {
 
@@ -56,9 +57,10 @@ struct ElementInput {
   Vec3 gravity;
   /// α of a mass-proportional damping force α M(q) dq, added to F (static relaxation only).
   double mass_damping = 0.0;
-  /// Parameters that follow time (a rope's length) held at their values at t, their rates 0:
-  /// statics and modes, whose equilibrium is that of the controls at t.
-  bool parameters_held = false;
+  /// The rates of the parameters that follow time (a rope's length): left-sided (integrating
+  /// up to t), right-sided (starting from a breakpoint at t), or held at their values at t, rates
+  /// 0 (statics and modes, whose equilibrium is that of the controls at t).
+  ParameterRates rates = ParameterRates::Left;
 };
 
 class Element {
@@ -242,7 +244,7 @@ template <class Kernel> class KernelElement final : public Element {
   Eigen::Matrix<S, kNv, 1> forceAt(const Eigen::Matrix<S, kNq, 1>& q, const Eigen::Matrix<S, kNv, 1>& v,
                                    const ElementInput& in) const {
     if constexpr (TimeDependentKernel<Kernel>)
-      return kernel_.template force<S>(q, v, in.t, in.gravity, in.parameters_held);
+      return kernel_.template force<S>(q, v, in.t, in.gravity, in.rates);
     else
       return kernel_.template force<S>(q, v, in.t, in.gravity);
   }
