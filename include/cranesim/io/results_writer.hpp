@@ -33,6 +33,7 @@ class ResultsRecorder final : public SampleSink {
   const std::vector<double>& winchWork() const { return winch_work_; }
   const std::vector<double>& dissipated() const { return dissipated_; }
   const std::vector<double>& kineticEnergy() const { return kinetic_; }
+  const std::vector<double>& potentialEnergy() const { return potential_; }
   /// Body rotation matrices over time (9 per sample, row-major).
   const std::vector<double>& bodyRotations(int node) const { return body_rotation_[node]; }
   /// Body angular velocities over time (3 per sample, body frame).
