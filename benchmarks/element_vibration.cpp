@@ -58,7 +58,7 @@ struct Options {
 class TipSink final : public cranesim::SampleSink {
  public:
   TipSink(const cranesim::Model& model, int tip) : model_(model), tip_(tip) {}
-  void sample(double t, const double* y, double, double) override {
+  void sample(double t, const double* y, const cranesim::WorkTerms&) override {
     time.push_back(t);
     const cranesim::Frame f = model_.jointFrame(y, tip_);
     tip.insert(tip.end(), f.r.data(), f.r.data() + 3);

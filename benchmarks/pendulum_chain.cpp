@@ -61,14 +61,14 @@ class ChainSink final : public cranesim::SampleSink {
  public:
   ChainSink(const cranesim::Assembler& assembler, int tip_joint) : assembler_(assembler), tip_(tip_joint) {}
 
-  void sample(double t, const double* y, double drive_work, double load_work) override {
+  void sample(double t, const double* y, const cranesim::WorkTerms& w) override {
     const cranesim::Model& model = assembler_.model();
     const double* q = y;
     const double* v = y + assembler_.vOffset();
     time.push_back(t);
     const cranesim::Frame f = model.jointFrame(q, tip_);
     tip.insert(tip.end(), f.r.data(), f.r.data() + 3);
-    energy.push_back(assembler_.kineticEnergy(t, q, v) + assembler_.potentialEnergy(t, q) - drive_work - load_work);
+    energy.push_back(assembler_.kineticEnergy(t, q, v) + assembler_.potentialEnergy(t, q) - w.drive - w.load - w.winch + w.dissipated);
     phi.push_back(assembler_.constraintResidual(t, y));
   }
 

@@ -2,7 +2,10 @@
 
 Prints status, message, time span, sample count, solver statistics, the
 maximum constraint residuals and the relative energy drift
-max|balance - balance[0]| / max(|kinetic| + |potential|).
+max|balance - balance[0]| over the run's energy scale, max(kinetic +
+|potential - potential[0]| + |drive_work| + |load_work| + |winch_work| +
+dissipated), as crane-sim run reports it (files without winch_work and
+dissipated count them as 0).
 
 Example:
 
@@ -21,7 +24,12 @@ NOT_AVAILABLE = "n/a (no samples)"
 
 def relative_energy_drift(results: Results) -> float:
     balance = results.get("energy/balance")
-    scale = np.max(np.abs(results.get("energy/kinetic")) + np.abs(results.get("energy/potential")))
+    potential = results.get("energy/potential")
+    scale = results.get("energy/kinetic") + np.abs(potential - potential[0])
+    for work in ("drive_work", "load_work", "winch_work", "dissipated"):
+        if results.has(f"energy/{work}"):
+            scale = scale + np.abs(results.get(f"energy/{work}"))
+    scale = np.max(scale)
     drift = np.max(np.abs(balance - balance[0]))
     return drift / scale if scale > 0 else float("nan")
 

@@ -574,7 +574,7 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
         series.append({"title": title, "unit": "m", "curves": [
             {"label": axis, "values": encode(origin[:, i])} for i, axis in enumerate("xyz")]})
     energy = {name: results.get(f"energy/{name}")[samples]
-              for name in ("kinetic", "potential", "drive_work", "load_work", "balance")
+              for name in ("kinetic", "potential", "drive_work", "load_work", "winch_work", "dissipated", "balance")
               if results.has(f"energy/{name}")}
     if energy:
         curves = [{"label": "kinetic" if name == "kinetic" else f"Δ{name.replace('_', ' ')}",
@@ -583,7 +583,7 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
         series.append({"title": "energies (changes from the start)", "unit": "J",
                        "curves": curves})
         if "balance" in energy:
-            series.append({"title": "energy balance K + P − W (change)", "unit": "J",
+            series.append({"title": "energy balance K + P − W + D (change)", "unit": "J",
                            "curves": [{"label": "balance − balance(0)", "values": encode(
                                energy["balance"] - energy["balance"][0])}]})
     rope_ends = [{"label": f"{name} |F|", "values": encode(magnitude)}

@@ -1,7 +1,7 @@
 // Rope dynamics at scene level (7.2.1, C.5; issue 3): a ball swinging on a steel rope with the
 // period of the elastic compound pendulum, a ball dropped on a slack rope that snaps taut
 // (energy balance, peak force against the massless-rope estimates), and a ball reeled up by
-// the rope's length drive (tracking, rope mass ρA·L(t), the unbooked reeling energy).
+// the rope's length drive (tracking, rope mass ρA·L(t), the winch's work and the damping).
 
 #include <catch2/catch.hpp>
 
@@ -224,13 +224,16 @@ TEST_CASE("A ball dropped on a slack rope: caught without solver failure, energy
     for (std::size_t s = 0; s < run.recorder.samples(); ++s) lowest = std::min(lowest, ball[3 * s + 2]);
     const auto tension = nodeTension(run, "rope.n4", c.EA());
     const double peak = *std::max_element(tension.begin(), tension.end()), stretch = -lowest - c.L;
-    const double lost = balance.front() - balance.back();
+    const double lost = run.recorder.dissipated().back();
     INFO("η = " << eta << ": steps " << run.outcome.statistics.steps << ", peak tension at the ball " << peak
                 << " N, max stretch " << stretch << " m, energy drift max " << drift << " J, lost " << lost
                 << " J of " << drop_energy << " J");
+    // Kinetic + gravity + strain energy, less the damper's loss, is conserved to the
+    // integrator's tolerance; the damper's pulse as the rope snaps taut is integrated by the
+    // steps the state's error test chooses (the quadratures are not in it): 1.8e-4 measured.
+    CHECK(drift < (eta == 0.0 ? 1e-4 : 5e-4) * drop_energy);
     if (eta == 0.0) {
-      // Kinetic + gravity + strain energy is conserved to the integrator's tolerance.
-      CHECK(drift < 1e-4 * drop_energy);
+      CHECK(lost == 0.0);
     } else {
       CHECK(lost > 0.0);
       CHECK(lost < drop_energy);
@@ -261,21 +264,20 @@ TEST_CASE("A ball reeled up by the rope's length drive tracks the length; the ro
   const auto& ball = run.jointPositions("ball.origin");
   std::vector<std::vector<double>> state(model.nq + model.nv);
   for (int k = 0; k < model.nq + model.nv; ++k) state[k] = run.recorder.stateColumn(k);
-  const double rhoA = c.rho * c.A(), eta = scene.members[0].damping;
-  double worst_tracking = 0.0, worst_mass = 0.0, unbooked = 0.0, dissipated = 0.0;
+  const double rhoA = c.rho * c.A();
+  double worst_tracking = 0.0, worst_mass = 0.0, winch = 0.0, dissipated = 0.0;
   double last_power = 0.0, last_damping = 0.0;
   for (std::size_t s = 0; s < t.size(); ++s) {
     const double L = length(t[s]), dt = 1e-4;
-    const double rate = (length(t[s] + dt) - length(t[s] - dt)) / (2.0 * dt);
     const double accel = (length(t[s] + dt) - 2.0 * L + length(t[s] - dt)) / (dt * dt);
     // Quasi-static: tension m (g − L̈) at the ball plus half the rope's weight on average. The
-    // kernel's Kelvin–Voigt rate is taken at fixed unstretched length, so reeling at L̇ reads as
-    // a strain rate L̇/L and the ball lags the length by η: −η L̇ (0.5 mm at 0.5 m/s).
-    const double stretch = (c.m * (c.g - accel) + rhoA * L * c.g / 2.0) * L / c.EA() - eta * rate;
+    // Kelvin–Voigt rate is the material's, so reeling does not read as a strain rate L̇/L (which
+    // made the ball lag the length by η L̇, 0.5 mm at 0.5 m/s).
+    const double stretch = (c.m * (c.g - accel) + rhoA * L * c.g / 2.0) * L / c.EA();
     worst_tracking = std::max(worst_tracking, std::abs(ball[3 * s + 2] + L + stretch));
     // The rope's translational mass from its elements' mass matrices, and the energy flows the
     // length drive causes: ∂(T + V)/∂t at fixed (q, v) (the reeled mass carrying its energy in
-    // and out) and the Kelvin–Voigt damping power vᵀ(F(q, v) − F(q, 0)).
+    // and out) and the damping forces' power vᵀ(F(q, v) − F(q, 0)) with the length held.
     VecX q(model.nq), v(model.nv), zero = VecX::Zero(model.nv);
     for (int k = 0; k < model.nq; ++k) q(k) = state[k][s];
     for (int k = 0; k < model.nv; ++k) v(k) = state[model.nq + k][s];
@@ -293,25 +295,32 @@ TEST_CASE("A ball reeled up by the rope's length drive tracks the length; the ro
                 e->potentialEnergy(earlier)) / (2.0 * dt);
       VecX moving(n), resting(n);
       e->residual(now, moving.data());
-      e->residual({q.data(), zero.data(), zero.data(), t[s], model.gravity}, resting.data());
+      e->residual({q.data(), zero.data(), zero.data(), t[s], model.gravity, 0.0, ParameterRates::Held}, resting.data());
       const auto& vi = e->velocityIndices();
       for (int i = 0; i < n; ++i) damping += v(vi[i]) * (moving(i) - resting(i));
     }
     worst_mass = std::max(worst_mass, std::abs(rope_mass / (rhoA * L) - 1.0));
     if (s > 0) {
-      unbooked += 0.5 * (power + last_power) * (t[s] - t[s - 1]);
+      winch += 0.5 * (power + last_power) * (t[s] - t[s - 1]);
       dissipated += 0.5 * (damping + last_damping) * (t[s] - t[s - 1]);
     }
     last_power = power, last_damping = damping;
   }
-  const auto& balance = run.recorder.energyBalance();
-  const double drift = balance.back() - balance.front();
   const double lift = c.m * c.g * (-ball[3 * (t.size() - 1) + 2] + ball[2]);
   INFO("steps " << run.outcome.statistics.steps << "; tracking error " << worst_tracking << " m; rope mass error "
-                << worst_mass << "; energy balance drift " << drift << " J (ball lifted: " << lift
-                << " J); unbooked ∫∂(T+V)/∂t dt = " << unbooked << " J, damping " << dissipated << " J");
-  CHECK(worst_tracking < 1.5e-4);  // the static stretch is 3.1 mm at 10 m, 1.9 mm at 6 m; the lag 0.5 mm
+                << worst_mass << "; balance drift " << run.recorder.relativeBalanceDrift() << " of the energy scale (ball lifted: "
+                << lift << " J); winch work " << run.recorder.winchWork().back() << " J, by the trapezoidal rule on the samples "
+                << winch << " J; dissipated " << run.recorder.dissipated().back() << " J, by the samples " << dissipated << " J");
+  CHECK(worst_tracking < 1e-4);  // the static stretch is 3.1 mm at 10 m, 1.9 mm at 6 m; the old lag η L̇ 0.5 mm
   CHECK(worst_mass < 1e-12);
-  // The recorded balance is not closed (README): it drifts by the unbooked reeling energy.
-  CHECK(drift == Approx(unbooked - dissipated).epsilon(1e-3));
+  // The damping forces' power splits into the damper's (dissipated) and the winch's on the
+  // stretch rate that reeling causes (element.hpp), so winch − dissipated is ∫ ∂(T + V)/∂t −
+  // vᵀ(F − F₀) dt, computed here independently from the samples (trapezoidal rule), and the
+  // balance closes. Reeling at constant stretch is not damped: the damper takes only the
+  // axial vibration the accelerations excite (before the material rate: 8.8 kJ).
+  const double booked = run.recorder.winchWork().back() - run.recorder.dissipated().back();
+  CHECK(booked == Approx(winch - dissipated).epsilon(1e-3));
+  CHECK(run.recorder.dissipated().back() >= 0.0);
+  CHECK(run.recorder.dissipated().back() < 1.0);
+  CHECK(run.recorder.relativeBalanceDrift() < 1e-5);
 }

@@ -153,7 +153,7 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
     for (int k = 0; k < 3; ++k) res[n.q + 3 + k] = w(k) - v[n.v + 3 + k];
   }
 
-  const ElementInput in{q, v, a, t, gravity(), mass_damping_};
+  const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left)};
   residual_loop_.run(model_.elements.size(), [&](std::size_t e) {
     element_scratch_[e].resize(model_.elements[e]->size());
     model_.elements[e]->residual(in, element_scratch_[e].data());
@@ -238,7 +238,7 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     scatter(node_blocks_[n].qq, J.data());
   }
 
-  const ElementInput in{q, v, a, t, gravity(), mass_damping_};
+  const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left)};
   jacobian_loop_.run(model_.elements.size(), [&](std::size_t e) {
     const auto& el = *model_.elements[e];
     const std::size_t coordinates = el.size() * el.coordinateIndices().size();
@@ -342,7 +342,7 @@ Eigen::SparseMatrix<double> Assembler::massMatrix(double t, const double* q) con
 VecX Assembler::appliedForces(double t, const double* q, const double* v, Limit limit) const {
   VecX zero_a = VecX::Zero(model_.nv);
   VecX F = VecX::Zero(model_.nv);
-  const ElementInput in{q, v, zero_a.data(), t, gravity(), mass_damping_};
+  const ElementInput in{q, v, zero_a.data(), t, gravity(), mass_damping_, rates(limit)};
   std::vector<double> local;
   for (const auto& e : model_.elements) {
     local.resize(e->size());
@@ -448,6 +448,18 @@ double Assembler::constraintResidual(double t, const double* y) const {
     for (int i = 0; i < c.rows; ++i) worst = std::max(worst, std::abs(phi[i]));
   }
   return worst;
+}
+
+void Assembler::workPowers(double t, const double* y, double* out) const {
+  const double* q = y;
+  const double* v = y + vOffset();
+  const ElementInput in{q, v, nullptr, t, gravity()};
+  double winch = 0.0, dissipated = 0.0;
+  for (const auto& e : model_.elements) {
+    winch += e->explicitTimePower(in);
+    dissipated += e->dissipatedPower(in);
+  }
+  WorkTerms{drivePower(t, q, y + lambdaOffset()), loadPower(t, q, v), winch, dissipated}.toArray(out);
 }
 
 double Assembler::drivePower(double t, const double* q, const double* lambda) const {

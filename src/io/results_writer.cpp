@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "cranesim/version.hpp"
@@ -44,7 +46,7 @@ VecX ResultsRecorder::multipliersAt(double t, const double* y, const ConstraintS
   }
 }
 
-void ResultsRecorder::sample(double t, const double* y, double drive_work, double load_work) {
+void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
   const Model& model = assembler_.model();
   const double* q = y;
   const double* v = y + assembler_.vOffset();
@@ -69,9 +71,11 @@ void ResultsRecorder::sample(double t, const double* y, double drive_work, doubl
   const double T = 0.5 * dq.dot(M * dq), V = assembler_.potentialEnergy(t, q);
   kinetic_.push_back(T);
   potential_.push_back(V);
-  drive_work_.push_back(drive_work);
-  load_work_.push_back(load_work);
-  balance_.push_back(T + V - drive_work - load_work);
+  drive_work_.push_back(work.drive);
+  load_work_.push_back(work.load);
+  winch_work_.push_back(work.winch);
+  dissipated_.push_back(work.dissipated);
+  balance_.push_back(T + V - work.drive - work.load - work.winch + work.dissipated);
   if (model.m > 0) {
     residual_position_.push_back(C.phi.cwiseAbs().maxCoeff());
     residual_velocity_.push_back(C.phi_dot.cwiseAbs().maxCoeff());
@@ -81,11 +85,26 @@ void ResultsRecorder::sample(double t, const double* y, double drive_work, doubl
   }
 }
 
+double ResultsRecorder::energyScale() const {
+  double scale = 0.0;
+  for (std::size_t s = 0; s < time_.size(); ++s)
+    scale = std::max(scale, kinetic_[s] + std::abs(potential_[s] - potential_.front()) + std::abs(drive_work_[s]) +
+                                std::abs(load_work_[s]) + std::abs(winch_work_[s]) + dissipated_[s]);
+  return scale;
+}
+
+double ResultsRecorder::relativeBalanceDrift() const {
+  double drift = 0.0;
+  for (const double b : balance_) drift = std::max(drift, std::abs(b - balance_.front()));
+  const double scale = energyScale();
+  return scale > 0.0 ? drift / scale : 0.0;
+}
+
 double ResultsRecorder::estimatedBytes(const Model& model, double samples) {
   // Per sample: the state and multipliers, every node's position, rotation, velocity and angular
-  // velocity, every joint's position and rotation, time, energies and residuals (8 numbers);
+  // velocity, every joint's position and rotation, time, energies and residuals (10 numbers);
   // twice: recorded, then the file's image.
-  const double per_sample = 8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 8.0);
+  const double per_sample = 8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 10.0);
   return 2.0 * per_sample * samples;
 }
 
@@ -168,6 +187,8 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     file.writeDoubles("/energy/potential", {N}, potential_.data());
     file.writeDoubles("/energy/drive_work", {N}, drive_work_.data());
     file.writeDoubles("/energy/load_work", {N}, load_work_.data());
+    file.writeDoubles("/energy/winch_work", {N}, winch_work_.data());
+    file.writeDoubles("/energy/dissipated", {N}, dissipated_.data());
     file.writeDoubles("/energy/balance", {N}, balance_.data());
     file.writeDoubles("/residual/position", {N}, residual_position_.data());
     file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());

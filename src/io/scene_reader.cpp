@@ -207,6 +207,47 @@ TrussDescription readTruss(const YamlField& f) {
   return d;
 }
 
+/// A rope's unstretched length must stay positive from t_start to t_end: one that runs out
+/// crawled at ever smaller steps, one that went negative stopped as a "locked mechanism". It must
+/// also stay within what its elements can carry: at least kMinSegmentLength per element (a
+/// length of 1e-308 m left the rope without mass, a singular saddle-point matrix and exit 1 from
+/// check) and at most the scene's extent (1e308 m did the same). The profile is checked at its
+/// breakpoints, the interval's ends and 10 000 points between.
+void requireRopeLength(const MemberSpec& m, const YamlField& f, const SolverSpec& solver) {
+  if (!m.length) return;
+  constexpr double kMinSegmentLength = 1e-3;  // m
+  const Profile& length = *m.length;
+  std::vector<double> times = length.breakpoints();
+  constexpr int kSamples = 10000;
+  for (int k = 0; k <= kSamples; ++k)
+    times.push_back(solver.t_start + (solver.t_end - solver.t_start) * k / kSamples);
+  std::sort(times.begin(), times.end());
+  double shortest = length(solver.t_start, Limit::Right), when = solver.t_start, out = solver.t_end;
+  double longest = shortest, when_longest = solver.t_start;
+  bool ran_out = false;
+  for (const double t : times) {
+    if (t < solver.t_start || t > solver.t_end) continue;
+    for (const Limit side : {Limit::Left, Limit::Right}) {
+      const double l = length(t, side);
+      if (l < shortest) shortest = l, when = t;
+      if (l > longest) longest = l, when_longest = t;
+      if (l <= 0.0 && !ran_out) ran_out = true, out = t;
+    }
+  }
+  const YamlField l = f.at("length");
+  const std::string type = l.isMap() && l.has("type") ? l.at("type").text() : "constant";
+  if (ran_out)
+    l.fail(fmt::format("rope '{}' runs out: its length ({} profile) reaches 0 at t = {:.4g} s and {:g} m at t = {:.4g} s; it "
+                       "must stay positive from t_start = {:g} s to t_end = {:g} s",
+                       m.name, type, out, shortest, when, solver.t_start, solver.t_end));
+  if (shortest < kMinSegmentLength * m.segments)
+    l.fail(fmt::format("rope '{}' is too short for its {} element(s): its length ({} profile) is {:g} m at t = {:.4g} s; "
+                       "keep at least {:g} m per element", m.name, m.segments, type, shortest, when, kMinSegmentLength));
+  if (longest > YamlField::kMaxCoordinate)
+    l.fail(fmt::format("rope '{}' is {:g} m long at t = {:.4g} s ({} profile): scene geometry must lie within {:g} m",
+                       m.name, longest, when_longest, type, YamlField::kMaxCoordinate));
+}
+
 /// `type: truss`: a placed truss type (its drawn length is checked by placeMemberEnds).
 void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussDescription>& trusses) {
   const YamlField tf = f.at("truss");
@@ -428,6 +469,10 @@ Scene sceneFromYaml(const ComposedScene& composed, const std::string& path) {
   const YamlField solver = f.at("solver");
   s.solver = readSolver(solver);
   s.where_solver = solver.where();
+  if (const auto members = f.find("members")) {
+    const std::vector<YamlField> items = members->items();
+    for (std::size_t i = 0; i < items.size(); ++i) requireRopeLength(s.members[i], items[i], s.solver);
+  }
   placeMemberEnds(s);
   if (const auto o = f.find("output")) {
     o->allowKeys({"interval"});

@@ -38,8 +38,9 @@ int jacobianCallback(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_V
   return 0;
 }
 
+/// Quadratures: the powers of the energy balance's work terms (WorkTerms).
 int quadratureCallback(sunrealtype t, N_Vector y, N_Vector, N_Vector rq, void* data) {
-  workPowers(*static_cast<IdaUserData*>(data)->assembler, t, N_VGetArrayPointer(y), N_VGetArrayPointer(rq));
+  static_cast<IdaUserData*>(data)->assembler->workPowers(t, N_VGetArrayPointer(y), N_VGetArrayPointer(rq));
   return 0;
 }
 
@@ -63,8 +64,8 @@ class IdasStepper final : public TimeStepper {
     yp_ = N_VNew_Serial(n, ctx_);
     id_ = N_VNew_Serial(n, ctx_);
     dense_ = N_VNew_Serial(n, ctx_);
-    yq_ = N_VNew_Serial(kWorkTerms, ctx_);
-    dense_q_ = N_VNew_Serial(kWorkTerms, ctx_);
+    yq_ = N_VNew_Serial(WorkTerms::kCount, ctx_);
+    dense_q_ = N_VNew_Serial(WorkTerms::kCount, ctx_);
     N_VConst(0.0, yq_);
     load(assembler, s);
     mem_ = IDACreate(ctx_);
@@ -128,13 +129,13 @@ class IdasStepper final : public TimeStepper {
     IDAGetDky(mem_, t, 0, dense_);
     IDAGetQuadDky(mem_, t, 0, dense_q_);
     std::copy_n(N_VGetArrayPointer(dense_), N_VGetLength(dense_), y);
-    std::copy_n(N_VGetArrayPointer(dense_q_), kWorkTerms, work);
+    std::copy_n(N_VGetArrayPointer(dense_q_), WorkTerms::kCount, work);
   }
 
   void work(double* work) override {
     double t_quadrature = 0.0;
     IDAGetQuad(mem_, &t_quadrature, dense_q_);
-    std::copy_n(N_VGetArrayPointer(dense_q_), kWorkTerms, work);
+    std::copy_n(N_VGetArrayPointer(dense_q_), WorkTerms::kCount, work);
   }
 
   void restart(const DynamicState& s) override {
@@ -219,11 +220,6 @@ int reparameterise(const Model& model, double* q) {
 
 }  // namespace
 
-void workPowers(const Assembler& assembler, double t, const double* y, double* powers) {
-  powers[0] = assembler.drivePower(t, y, y + assembler.lambdaOffset());
-  powers[1] = assembler.loadPower(t, y, y + assembler.vOffset());
-}
-
 SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initial, SampleSink& sink,
                            const SimulationControl& control) {
   const auto wall_start = std::chrono::steady_clock::now();
@@ -237,13 +233,13 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
           : std::unique_ptr<TimeStepper>(std::make_unique<IdasStepper>(assembler, initial));
   SolverStatistics counts;  // what the stepper does not count itself
   std::vector<double> sample(assembler.size());
-  std::array<double, kWorkTerms> work{};
+  std::array<double, WorkTerms::kCount> work{};
 
   double t = initial.t;
   long stalled_steps = 0;
   long next_sample = 1;
   bool sampled_end = false;
-  sink.sample(t, stepper->state(), 0.0, 0.0);
+  sink.sample(t, stepper->state(), WorkTerms{});
   std::size_t next_break = 0;
   while (next_break < breakpoints.size() && breakpoints[next_break] <= t) ++next_break;
 
@@ -272,7 +268,7 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
       if (ts > t_end - eps) ts = t_end;
       if (ts > t_ret + eps) break;
       stepper->interpolate(std::min(ts, t_ret), sample.data(), work.data());
-      sink.sample(ts, sample.data(), work[0], work[1]);
+      sink.sample(ts, sample.data(), WorkTerms::fromArray(work.data()));
       ++next_sample;
       sampled_end = ts == t_end;
     }

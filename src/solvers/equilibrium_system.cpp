@@ -10,6 +10,7 @@ EquilibriumSystem::EquilibriumSystem(const Model& model, double t)
   yp_ = VecX::Zero(assembler_.size());
   values_.resize(assembler_.pattern().nonZeros());
   assembler_.setCoordinateJacobianOnly(true);
+  assembler_.setParametersHeld(true);
 }
 
 VecX EquilibriumSystem::residual(const VecX& x) {

@@ -107,7 +107,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
     for (int i = 0; i < nd_; ++i)
       y[i] = h00 * y_old_[i] + h * h10 * yp_old_[i] + h01 * y_[i] + h * h11 * yp_[i];
     for (int i = nd_; i < n_; ++i) y[i] = (1.0 - s) * y_old_[i] + s * y_[i];
-    for (int i = 0; i < kWorkTerms; ++i)
+    for (int i = 0; i < WorkTerms::kCount; ++i)
       work[i] = h00 * work_old_[i] + h * h10 * power_old_[i] + h01 * work_[i] + h * h11 * power_[i];
   }
 
@@ -125,7 +125,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
     w_ = yp_;
     t_ = t_old_ = s.t;
     y_old_ = y_, yp_old_ = yp_;
-    workPowers(assembler_, t_, y_.data(), power_.data());
+    assembler_.workPowers(t_, y_.data(), power_.data());
     work_old_ = work_, power_old_ = power_;
     has_history_ = false;
   }
@@ -285,8 +285,8 @@ class GeneralizedAlphaStepper final : public TimeStepper {
     t_old_ = t_;
     t_ += h;
     work_old_ = work_, power_old_ = power_;
-    workPowers(assembler_, t_, y_.data(), power_.data());
-    for (int i = 0; i < kWorkTerms; ++i) work_[i] += 0.5 * h * (power_old_[i] + power_[i]);
+    assembler_.workPowers(t_, y_.data(), power_.data());
+    for (int i = 0; i < WorkTerms::kCount; ++i) work_[i] += 0.5 * h * (power_old_[i] + power_[i]);
     has_history_ = true;
     ++stats_.steps;
   }
@@ -312,7 +312,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
   double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_before_ = 0.0, max_step_ = 0.0, fixed_step_ = 0.0;
   // At t_: y, ẏ, w; ẏ one step earlier; the last step's start (for interpolation); the trial.
   std::vector<double> y_, yp_, w_, w_step_, yp_before_, y_old_, yp_old_, y1_, yp1_, w1_, r_, weights_;
-  std::array<double, kWorkTerms> work_{}, power_{}, work_old_{}, power_old_{};
+  std::array<double, WorkTerms::kCount> work_{}, power_{}, work_old_{}, power_old_{};
   bool has_history_ = false;
   std::vector<double> jacobian_;
   SparseLU lu_;

@@ -55,7 +55,8 @@ Eigen::SparseMatrix<double> coordinateRateMap(const Model& model, const VecX& q)
 }  // namespace
 
 ModalResult computeModes(const Model& model, const VecX& q_eq, double t, int count) {
-  const Assembler assembler(model, Formulation::GGL);
+  Assembler assembler(model, Formulation::GGL);
+  assembler.setParametersHeld(true);
   const int nv = model.nv;
   const VecX zero_v = VecX::Zero(nv);
   ModalResult result;

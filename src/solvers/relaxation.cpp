@@ -32,7 +32,7 @@ class RelaxationMonitor final : public SampleSink {
   RelaxationMonitor(const Assembler& assembler, double ratio, double min_time)
       : assembler_(assembler), ratio_(ratio), min_time_(min_time) {}
 
-  void sample(double t, const double* y, double, double) override {
+  void sample(double t, const double* y, const WorkTerms&) override {
     const Model& model = assembler_.model();
     last_.assign(y, y + assembler_.size());
     time_ = t;

@@ -27,6 +27,20 @@ struct ConstraintState {
   VecX phi_t;                     // Φ_t
 };
 
+/// The works of the energy balance, each integrated from the run's start (J), or their powers
+/// (W). The equations of motion give dE/dt = P_drive + P_load + P_winch − P_dissipated for
+/// E = T + V (element.hpp), so E(t) − E(t0) − drive − load − winch + dissipated stays 0.
+struct WorkTerms {
+  static constexpr int kCount = 4;
+  double drive = 0.0;       // rheonomic drives, λ·Φ_t
+  double load = 0.0;        // applied nodal forces and torques, Q·dq
+  double winch = 0.0;       // elements' explicit time dependence: ropes reeled in and out
+  double dissipated = 0.0;  // material damping, ≥ 0
+  /// To and from kCount values in the order of the members (IDAS' quadrature vector).
+  static WorkTerms fromArray(const double* w) { return {w[0], w[1], w[2], w[3]}; }
+  void toArray(double* w) const { w[0] = drive, w[1] = load, w[2] = winch, w[3] = dissipated; }
+};
+
 class Assembler {
  public:
   explicit Assembler(const Model& model) : Assembler(model, model.solver.formulation) {}
@@ -40,6 +54,9 @@ class Assembler {
   double loadFactor() const { return load_factor_; }
   /// Adds α M(q) dq to the equations of motion: the artificial damping of static relaxation.
   void setMassDamping(double alpha) { mass_damping_ = alpha; }
+  /// Holds the elements' time-dependent parameters at their values at t, their rates 0
+  /// (ElementInput::rates): statics and modes.
+  void setParametersHeld(bool held) { parameters_held_ = held; }
   /// jacobian() then computes the elements' ∂r/∂q only and leaves their velocity columns zero:
   /// all that statics reads (the equilibrium system's unknowns are q and λ), at the cost of
   /// nq_local instead of nq_local + nv_local AD directions.
@@ -74,6 +91,9 @@ class Assembler {
   double constraintResidual(double t, const double* y) const;
   /// Power of the rheonomic drives on the system, λ·Φ_t (constraint forces −Gᵀλ, G dq = −Φ_t).
   double drivePower(double t, const double* q, const double* lambda) const;
+  /// The powers of WorkTerms at y = [q, dq, λ, …], WorkTerms::kCount values into `out` in the
+  /// order of its members: the integrands of the energy balance's quadratures.
+  void workPowers(double t, const double* y, double* out) const;
 
  private:
   struct ConstraintBlocks {
@@ -89,11 +109,16 @@ class Assembler {
                                                        bool seed, Limit limit = Limit::Left) const;
 
   Vec3 gravity() const { return load_factor_ * model_.gravity; }
+  ParameterRates rates(Limit limit) const {
+    if (parameters_held_) return ParameterRates::Held;
+    return limit == Limit::Right ? ParameterRates::Right : ParameterRates::Left;
+  }
 
   const Model& model_;
   Formulation formulation_;
   double load_factor_ = 1.0;
   double mass_damping_ = 0.0;
+  bool parameters_held_ = false;
   bool coordinate_jacobian_only_ = false;
   int size_ = 0;
   SparsityPattern pattern_;

@@ -67,6 +67,8 @@ struct CondensedTrussKernel {
 
   CondensedTrussKernel() = default;
 
+  bool damped() const { return frame.damped(); }
+
   /// `points_per_bay`: Gauss points of the mass stations in each bay; `damping`: Kelvin–Voigt
   /// retardation time η of every tube, s.
   explicit CondensedTrussKernel(const TrussGeometry& g, int points_per_bay = 3, double damping = 0.0) : length(g.length) {
@@ -110,6 +112,13 @@ struct CondensedTrussKernel {
   /// J_dᵀ K_red (d + η J_d dq): elastic and damping forces.
   template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
     return frame.elasticForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                                 q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
+                                 stiffness);
+  }
+
+  /// η J_dᵀ K_red J_d dq: the damping forces alone.
+  template <class S> V<S> dampingForce(const Q<S>& q, const V<S>& v) const {
+    return frame.dampingForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
                                  q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
                                  stiffness);
   }

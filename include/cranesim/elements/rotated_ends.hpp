@@ -27,6 +27,7 @@ struct RotatedEndsBeamKernel {
       : beam_(std::move(beam)), offset_{offset1, offset2}, stiffness_(beam_.localStiffness()) {}
 
   const TimoshenkoBeamKernel& beam() const { return beam_; }
+  bool damped() const { return beam_.damped(); }
 
   template <class S> Mat3T<S> sectionRotation(const Q<S>& q, int end) const {
     return rotationMatrix<S>(Vec3T<S>(q.template segment<3>(6 * end + 3))) * offset_[end].template cast<S>();
@@ -64,6 +65,12 @@ struct RotatedEndsBeamKernel {
     const V<S> vb = beamVelocities<S>(v);
     return nodeForce<S>(V<S>(beam_.inertialAndGravityForce<S>(r1, R1, r2, R2, vb, gravity) +
                              beam_.elasticForce<S>(r1, R1, r2, R2, vb, stiffness_)));
+  }
+
+  /// The beam's damping forces alone (timoshenko_beam.hpp).
+  template <class S> V<S> dampingForce(const Q<S>& q, const V<S>& v) const {
+    return nodeForce<S>(V<S>(beam_.dampingForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0), q.template segment<3>(6),
+                                                   sectionRotation<S>(q, 1), beamVelocities<S>(v), stiffness_)));
   }
 
   double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {

@@ -183,6 +183,8 @@ struct SplineBeamKernel {
   GaussRule rule = gaussLegendre(5);  // 4 points integrate the straight-beam mass exactly; 5 for curved states
   double damping = 0.0;               // Kelvin–Voigt retardation time η, s (0: undamped)
 
+  bool damped() const { return damping > 0.0; }
+
   // ---------------------------------------------------------------------------------------
   // Kinematic building blocks (public: used by tests, output and joint frames).
 

@@ -3,8 +3,10 @@
 // q = [r¹, r'¹, r², r'²] (C-141), r' = dr/ds, with the centre line interpolated by cubic Hermite
 // functions (C-142). Tension only (7-1): N = EA max(ε, 0), ε = ‖r'‖ − 1 (C-150); no bending or
 // torsion stiffness; translational inertia only (C-154).
-// Optional Kelvin–Voigt damping with retardation time η: N = EA max(ε + η ε̇, 0),
-// ε̇ = r'·ṙ'/‖r'‖ (the rate at fixed unstretched length; reeling itself is not damped). The law is
+// Optional Kelvin–Voigt damping with retardation time η: N = EA max(ε + η ε̇, 0), ε̇ the
+// material's stretch rate: at fixed ξ the slope r' = dN(L(t)) q changes with q and with L,
+// ε̇ = r'·(dN dq + L̇ ∂(dN)/∂L q)/‖r'‖, so a rope reeled at constant stretch is not damped (the
+// rate at fixed L read reeling as a strain rate L̇/L, a lag η L̇ of the load). The law is
 // continuous where a rope snaps taut: tension starts at ε = −η ε̇, not with a jump of EA η ε̇ at
 // ε = 0, which no step size resolves (a crane released from its drawing, ropes at ε = 0, stalled
 // IDAS at steps of 1e-12 s). It dissipates in every branch: N ε̇ ≥ d/dt ½ EA max(ε, 0)².
@@ -17,6 +19,7 @@
 #include <cmath>
 
 #include "cranesim/elements/section.hpp"
+#include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/hermite.hpp"
 #include "cranesim/math/profile.hpp"
@@ -47,9 +50,12 @@ struct SplineRopeKernel {
     return M.cast<S>();
   }
 
-  template <class S> Q<S> force(const Q<S>& q, const Q<S>& v, double t, const Vec3& gravity) const {
+  /// `rates`: which L̇ the damping takes (element.hpp, ElementInput::rates).
+  template <class S>
+  Q<S> force(const Q<S>& q, const Q<S>& v, double t, const Vec3& gravity, ParameterRates rates = ParameterRates::Left) const {
     using std::sqrt;
-    const double L = segmentLength(t), rhoA = material.density * section.area;
+    const double L = segmentLength(t), rate = damping > 0.0 ? segmentRate(t, rates) : 0.0;
+    const double rhoA = material.density * section.area;
     const double EA = material.youngs_modulus * section.area;
     Q<S> F = Q<S>::Zero();
     for (int g = 0; g < rule.points; ++g) {
@@ -58,7 +64,7 @@ struct SplineRopeKernel {
       const Vec3T<S> rs = dN.template cast<S>() * q;
       const S stretch = sqrt(rs.squaredNorm());
       S stress = stretch - 1.0;  // σ/E
-      if (damping > 0.0) stress += damping * rs.dot(dN.template cast<S>() * v) / stretch;
+      if (damping > 0.0) stress += damping * rs.dot(slopeRate<S>(q, v, rate, dN, rule.xi[g], L)) / stretch;
       if (stress > 0.0) F += (rule.weight[g] * L * EA) * (stress / stretch) * (dN.transpose().template cast<S>() * rs);
       F -= (rule.weight[g] * L * rhoA) * (shape(b.N).transpose() * gravity).template cast<S>();
     }
@@ -81,6 +87,57 @@ struct SplineRopeKernel {
     return U;
   }
 
+  /// L̇ = d/dt length(t)/segments, exact: forward AD through the profile; one-sided at a
+  /// breakpoint, or 0 with the length held.
+  double segmentRate(double t, ParameterRates rates = ParameterRates::Left) const {
+    if (rates == ParameterRates::Held) return 0.0;
+    const Limit side = rates == ParameterRates::Right ? Limit::Right : Limit::Left;
+    return total_length(seeded<double, 1>(t, 0), side).derivatives()(0) / segments;
+  }
+
+  /// The winch's power on the element: ∂(T + V)/∂t at fixed (q, dq) = L̇ ∂(T + V)/∂L, plus the
+  /// damping stress' power on the stretch rate that L̇ causes. Adding unstretched length at
+  /// fixed nodes brings in material with its kinetic, gravity and strain energy and lowers the
+  /// strain of the material there, against the tension. Per unit of unstretched length the
+  /// energy is e = ½ ρA |ṙ|² + ½ EA max(ε, 0)² − ρA g·r, and ∂/∂L ∫₀¹ e L dξ = ∫₀¹ (e + L ∂e/∂L) dξ
+  /// with the shape functions' ∂/∂L at fixed ξ. With σ the tension of the damped law and σ₀ the
+  /// elastic one, dqᵀF = ∂V/∂q·dq + ∫ (σ − σ₀)(ε̇ − ε̇_L) ds, ε̇_L = L̇ ∂ε/∂L: the part
+  /// ∫ (σ − σ₀) ε̇ ds is the damper's (dissipatedPower), ∫ (σ − σ₀) ε̇_L ds the winch's.
+  double explicitTimePower(const Q<double>& q, const Q<double>& v, double t, const Vec3& gravity) const {
+    const double rate = segmentRate(t);
+    if (rate == 0.0) return 0.0;
+    const double L = segmentLength(t), rhoA = material.density * section.area;
+    const double EA = material.youngs_modulus * section.area;
+    double power = 0.0;
+    for (int g = 0; g < rule.points; ++g) {
+      const HermiteBasis b = hermiteBasis(rule.xi[g], L), bL = hermiteBasisLengthDerivative(rule.xi[g], L);
+      const Vec3 rs = shape(b.dN) * q, rs_L = shape(bL.dN) * q, u = shape(b.N) * v;
+      const double stretch = rs.norm(), strain = std::max(stretch - 1.0, 0.0);
+      const double e = 0.5 * rhoA * u.squaredNorm() + 0.5 * EA * strain * strain - rhoA * gravity.dot(shape(b.N) * q);
+      const double e_L = rhoA * u.dot(shape(bL.N) * v) + EA * strain * rs.dot(rs_L) / stretch -
+                         rhoA * gravity.dot(shape(bL.N) * q);
+      power += rule.weight[g] * rate * (e + L * e_L);
+      if (damping > 0.0)
+        power += rule.weight[g] * L * EA * dampingStress(q, v, rate, rule.xi[g], L) * rate * rs.dot(rs_L) / stretch;
+    }
+    return power;
+  }
+
+  /// Kelvin–Voigt power ∫ EA (max(ε + η ε̇, 0) − max(ε, 0)) ε̇ ds ≥ 0 (max is monotone), ε̇ the
+  /// material's stretch rate.
+  double dissipatedPower(const Q<double>& q, const Q<double>& v, double t, const Vec3&) const {
+    if (damping == 0.0) return 0.0;
+    const double L = segmentLength(t), rate = segmentRate(t), EA = material.youngs_modulus * section.area;
+    double power = 0.0;
+    for (int g = 0; g < rule.points; ++g) {
+      const auto dN = shape(hermiteBasis(rule.xi[g], L).dN);
+      const Vec3 rs = dN * q;
+      const double strain_rate = rs.dot(slopeRate<double>(q, v, rate, dN, rule.xi[g], L)) / rs.norm();
+      power += rule.weight[g] * L * EA * dampingStress(q, v, rate, rule.xi[g], L) * strain_rate;
+    }
+    return power;
+  }
+
   /// Axial force at ξ ∈ [0, 1] of the element.
   double tension(const Q<double>& q, double t, double xi) const {
     const double strain = (shape(hermiteBasis(xi, segmentLength(t)).dN) * q).norm() - 1.0;
@@ -88,6 +145,24 @@ struct SplineRopeKernel {
   }
 
  private:
+  /// d/dt of the slope r' = dN(L(t)) q at fixed ξ: dN dq + L̇ ∂(dN)/∂L q.
+  template <class S>
+  Vec3T<S> slopeRate(const Q<S>& q, const Q<S>& v, double rate, const Eigen::Matrix<double, 3, 12>& dN, double xi,
+                     double L) const {
+    Vec3T<S> out = dN.template cast<S>() * v;
+    if (rate != 0.0) out += (rate * shape(hermiteBasisLengthDerivative(xi, L).dN)).template cast<S>() * q;
+    return out;
+  }
+
+  /// (σ − σ₀)/E at ξ: the damped law's stress less the elastic one, max(ε + η ε̇, 0) − max(ε, 0).
+  double dampingStress(const Q<double>& q, const Q<double>& v, double rate, double xi, double L) const {
+    const auto dN = shape(hermiteBasis(xi, L).dN);
+    const Vec3 rs = dN * q;
+    const double stretch = rs.norm(), strain = stretch - 1.0;
+    const double strain_rate = rs.dot(slopeRate<double>(q, v, rate, dN, xi, L)) / stretch;
+    return std::max(strain + damping * strain_rate, 0.0) - std::max(strain, 0.0);
+  }
+
   /// The 3 × 12 interpolation matrix [N0¹ I, N1¹ I, N0² I, N1² I] (C-142).
   static Eigen::Matrix<double, 3, 12> shape(const std::array<double, 4>& n) {
     Eigen::Matrix<double, 3, 12> N;

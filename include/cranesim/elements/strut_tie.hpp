@@ -32,6 +32,9 @@ struct StrutTieKernel {
   double smoothing = 0.0;  // h, s
   double damping = 0.0;    // Kelvin–Voigt retardation time η, s
 
+  /// The smoothing's viscous term h/2 ε̇ dissipates as the damping does.
+  bool damped() const { return smoothing > 0.0 || damping > 0.0; }
+
   template <class S> Eigen::Matrix<S, 6, 6> massMatrix(const Q<S>& q, double = 0.0) const {
     Eigen::Matrix<S, 6, 6> M = translationalMass<S>() + rotaryMass<S>(q);
     if (smoothing > 0.0) {

@@ -50,6 +50,7 @@
 // call, reused afterwards). Forces evaluate the nodes and then the members in parallel (TBB,
 // in an isolated task arena, summed in a fixed order).
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -115,6 +116,10 @@ struct SuperTrussKernel {
   std::array<RigidPart, 2> rigid;
 
   SuperTrussKernel() = default;
+
+  bool damped() const {
+    return std::any_of(members.begin(), members.end(), [](const MemberModel& m) { return m.beam.damped(); });
+  }
 
   /// Builds the kernel from a truss geometry. `mass_points`: Gauss points of each tube's mass
   /// (Timoshenko default 4); `damping`: Kelvin–Voigt retardation time η of every tube, s.
@@ -306,6 +311,11 @@ struct SuperTrussKernel {
     return forces<S>(q, v, nullptr, Vec3::Zero(), Terms::Elastic);
   }
 
+  /// The tubes' damping forces alone (their power is the Kelvin–Voigt dissipation).
+  template <class S> V<S> dampingForce(const Q<S>& q, const V<S>& v) const {
+    return forces<S>(q, v, nullptr, Vec3::Zero(), Terms::Damping);
+  }
+
   /// F(q, 0, t): elastic forces and gravity, without the velocity path of the inertial terms
   /// (the statics' Jacobian differentiates this).
   template <class S> V<S> staticForce(const Q<S>& q, double, const Vec3& gravity) const {
@@ -394,8 +404,8 @@ struct SuperTrussKernel {
   };
 
   /// Which terms forces() computes: all of F_e (+ M_e a), F_e at rest (dq = 0: elastic forces and
-  /// gravity, no velocity path), or the elastic and damping forces alone.
-  enum class Terms { All, AtRest, Elastic };
+  /// gravity, no velocity path), the elastic and damping forces alone, or the damping forces alone.
+  enum class Terms { All, AtRest, Elastic, Damping };
 
   /// F_e (+ M_e a when `a` is given), or the part of it that `terms` names.
   template <class S> V<S> forces(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity, Terms terms) const {
@@ -434,7 +444,7 @@ struct SuperTrussKernel {
     };
 
     V<S> F = V<S>::Zero();
-    if (terms != Terms::Elastic) {
+    if (terms == Terms::All || terms == Terms::AtRest) {
       const Vec3T<S> g = gravity.cast<S>();
       for (int i = 0; i < 2; ++i) {
         const RigidPart& p = rigid[i];
@@ -456,7 +466,9 @@ struct SuperTrussKernel {
         vk.template segment<3>(6 * k) = end[k]->v.template head<3>();
         vk.template segment<3>(6 * k + 3) = m.relative[k].transpose().cast<S>() * end[k]->v.template tail<3>();
       }
-      Eigen::Matrix<S, 12, 1> Fk = m.beam.template elasticForce<S>(e.r1, e.R1, e.r2, e.R2, vk, m.stiffness);
+      Eigen::Matrix<S, 12, 1> Fk = terms == Terms::Damping
+                                       ? m.beam.template dampingForce<S>(e.r1, e.R1, e.r2, e.R2, vk, m.stiffness)
+                                       : m.beam.template elasticForce<S>(e.r1, e.R1, e.r2, e.R2, vk, m.stiffness);
       if (terms == Terms::AtRest) Fk += m.beam.template gravityForce<S>(e, gravity);
       if (terms == Terms::All) {
         for (int k = 0; k < 2; ++k) {

@@ -88,6 +88,8 @@ struct TimoshenkoBeamKernel {
   int stiffness_points = 2;  // Gauss points for K (2: exact with the consistent shape functions)
   double damping = 0.0;      // Kelvin–Voigt retardation time η, s (σ = E(ε + η ε̇)); 0: off
 
+  bool damped() const { return damping > 0.0; }
+
   // ---------------------------------------------------------------------------------------------
   // Consistent Timoshenko shape functions (C.2.6)
 
@@ -229,6 +231,19 @@ struct TimoshenkoBeamKernel {
     Eigen::Matrix<S, 12, 1> strain = c.d;
     if (damping > 0.0) strain.noalias() += S(damping) * (c.Jd * v);
     return c.Jd.transpose() * (K.template cast<S>() * strain);
+  }
+
+  /// The damping forces alone, η J_dᵀ K J_d dq (their power is the Kelvin–Voigt dissipation).
+  template <class S> V<S> dampingForce(const Q<S>& q, const V<S>& v) const {
+    return dampingForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                           q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
+                           localStiffness());
+  }
+  template <class S>
+  V<S> dampingForce(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2, const Mat3T<S>& R2, const V<S>& v,
+                    const Mat12& K) const {
+    const CoRotatedTangent<S> c = coRotateWithTangent<S>(r1, R1, r2, R2);
+    return S(damping) * (c.Jd.transpose() * (K.template cast<S>() * (c.Jd * v)));
   }
 
  private:

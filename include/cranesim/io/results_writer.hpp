@@ -15,7 +15,7 @@ namespace cranesim {
 class ResultsRecorder final : public SampleSink {
  public:
   explicit ResultsRecorder(const Assembler& assembler);
-  void sample(double t, const double* y, double drive_work, double load_work) override;
+  void sample(double t, const double* y, const WorkTerms& work) override;
 
   std::size_t samples() const { return time_.size(); }
   const std::vector<double>& time() const { return time_; }
@@ -23,8 +23,17 @@ class ResultsRecorder final : public SampleSink {
   std::vector<double> stateColumn(int k) const;
   /// Position of a joint over time (3 per sample).
   const std::vector<double>& jointPositions(int joint) const { return joint_position_[joint]; }
+  /// T + V − drive − load − winch + dissipated (WorkTerms): constant for an exact solution.
   const std::vector<double>& energyBalance() const { return balance_; }
+  /// The energy the run moves about: max over the samples of T + |V − V(t0)| + |drive| + |load|
+  /// + |winch| + dissipated, J. The balance's drift is measured against it.
+  double energyScale() const;
+  /// max |balance − balance(t0)| / energyScale() over the samples (0 for a run at rest).
+  double relativeBalanceDrift() const;
+  const std::vector<double>& winchWork() const { return winch_work_; }
+  const std::vector<double>& dissipated() const { return dissipated_; }
   const std::vector<double>& kineticEnergy() const { return kinetic_; }
+  const std::vector<double>& potentialEnergy() const { return potential_; }
   /// Body rotation matrices over time (9 per sample, row-major).
   const std::vector<double>& bodyRotations(int node) const { return body_rotation_[node]; }
   /// Body angular velocities over time (3 per sample, body frame).
@@ -57,7 +66,7 @@ class ResultsRecorder final : public SampleSink {
   std::vector<double> time_, state_;
   std::vector<std::vector<double>> body_position_, body_rotation_, body_velocity_, body_omega_;
   std::vector<std::vector<double>> joint_position_, joint_rotation_;
-  std::vector<double> kinetic_, potential_, drive_work_, load_work_, balance_;
+  std::vector<double> kinetic_, potential_, drive_work_, load_work_, winch_work_, dissipated_, balance_;
   std::vector<double> residual_position_, residual_velocity_;
 };
 

@@ -20,4 +20,15 @@ inline HermiteBasis hermiteBasis(double xi, double L) {
   return b;
 }
 
+/// ∂/∂L of the functions above at fixed ξ: N1 scale with L, dN0 and dN2 with 1/L, ddN0 and
+/// ddN2 with 1/L², ddN1 and ddN3 with 1/L.
+inline HermiteBasis hermiteBasisLengthDerivative(double xi, double L) {
+  const HermiteBasis b = hermiteBasis(xi, L);
+  HermiteBasis d;
+  d.N = {0.0, b.N[1] / L, 0.0, b.N[3] / L};
+  d.dN = {-b.dN[0] / L, 0.0, -b.dN[2] / L, 0.0};
+  d.ddN = {-2.0 * b.ddN[0] / L, -b.ddN[1] / L, -2.0 * b.ddN[2] / L, -b.ddN[3] / L};
+  return d;
+}
+
 }  // namespace cranesim

@@ -58,6 +58,10 @@ std::vector<double> splineSlopes(const std::vector<double>& t, const std::vector
 /// a breakpoint from the left and restarts from it to the right.
 enum class Limit { Left, Right };
 
+/// The rates of a parameter that follows a profile (a rope's length): one-sided as Limit, or
+/// none: held at its value at t (statics).
+enum class ParameterRates { Left, Right, Held };
+
 class Profile {
  public:
   using Kind = std::variant<ConstantProfile, RampProfile, TrapezoidProfile, CosineStepProfile,

@@ -14,6 +14,20 @@
 //   double potentialEnergy(q, t, gravity) const;  gravity + strain energy
 // so that its equations read M(q, t) d(dq)/dt + F(q, dq, t) = applied and constraint forces
 // (3-26, 3-51). q_e and dq_e are the concatenated coordinates of the element's nodes, in order.
+//
+// Energy books. With E = T + V the equations give, along any motion,
+//   dqᵀ(M d(dq)/dt + F) = dE/dt − P_time + P_diss,
+// P_time the power of the element's explicit time dependence (a rope reeled by a winch) and
+// P_diss ≥ 0 the power of its material damping. The default is P_time = 0, and P_diss = 0 unless
+// the kernel says it is damped:
+//   bool damped() const;   then P_diss = dqᵀ(F(q, dq) − F(q, −dq))/2 = dqᵀ D dq, exact when F is
+//                          F₀(q) + D(q) dq + G(q; dq, dq) with dqᵀG = ½ dqᵀ Ṁ dq (inertia),
+//                          or dqᵀ dampingForce(q, dq) when the kernel has D dq alone
+// A kernel whose parameters follow time, or whose damping is not linear in dq, provides
+//   double explicitTimePower(q, dq, t, gravity) const;   P_time
+//   double dissipatedPower(q, dq, t, gravity) const;     P_diss
+// and a kernel with explicitTimePower takes a fifth argument of force, ElementInput::rates: which
+// rates of its parameters it is to use.
 // Optionally, a kernel whose mass matrix is costly provides the fused residual
 //   template <class S> Matrix<S, kNv, 1> residual(q, dq, a, t, gravity) const;   M(q) a + F
 // which KernelElement then uses for the residual and its Jacobian, and a kernel whose inertial
@@ -30,6 +44,7 @@
 #include <vector>
 
 #include "cranesim/math/autodiff.hpp"
+#include "cranesim/math/profile.hpp"
 
 namespace cranesim {
 
@@ -42,6 +57,10 @@ struct ElementInput {
   Vec3 gravity;
   /// α of a mass-proportional damping force α M(q) dq, added to F (static relaxation only).
   double mass_damping = 0.0;
+  /// The rates of the parameters that follow time (a rope's length): left-sided (integrating
+  /// up to t), right-sided (starting from a breakpoint at t), or held at their values at t, rates
+  /// 0 (statics and modes, whose equilibrium is that of the controls at t).
+  ParameterRates rates = ParameterRates::Left;
 };
 
 class Element {
@@ -66,6 +85,11 @@ class Element {
   virtual void mass(const ElementInput& in, double* M) const = 0;
   virtual double kineticEnergy(const ElementInput& in) const = 0;
   virtual double potentialEnergy(const ElementInput& in) const = 0;
+  /// Power the element's explicit time dependence puts into it at (q, dq, t) (the winch's
+  /// power on a rope of varying length), W.
+  virtual double explicitTimePower(const ElementInput&) const { return 0.0; }
+  /// Power its material damping dissipates at (q, dq, t), ≥ 0, W.
+  virtual double dissipatedPower(const ElementInput&) const { return 0.0; }
 };
 
 /// A kernel that computes M(q) a + F(q, dq, t) in one call.
@@ -76,6 +100,30 @@ concept FusedResidualKernel = requires(const K& k, const Eigen::Matrix<double, K
 };
 
 /// A kernel that computes F(q, 0, t) without the inertial terms' velocity machinery.
+/// A kernel whose parameters follow time (explicitTimePower), or whose damping is not linear
+/// in dq (dissipatedPower).
+template <class K>
+concept TimeDependentKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
+                                       const Eigen::Matrix<double, K::kNv, 1>& v, const Vec3& g) {
+  { k.explicitTimePower(q, v, 0.0, g) } -> std::convertible_to<double>;
+};
+template <class K>
+concept DissipationKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
+                                     const Eigen::Matrix<double, K::kNv, 1>& v, const Vec3& g) {
+  { k.dissipatedPower(q, v, 0.0, g) } -> std::convertible_to<double>;
+};
+/// A kernel with damping linear in dq, which may be switched off.
+template <class K>
+concept LinearlyDampedKernel = requires(const K& k) {
+  { k.damped() } -> std::convertible_to<bool>;
+};
+/// A kernel that computes its damping forces D(q) dq alone (cheaper than F twice).
+template <class K>
+concept DampingForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
+                                      const Eigen::Matrix<double, K::kNv, 1>& v) {
+  { k.template dampingForce<double>(q, v) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
+};
+
 template <class K>
 concept StaticForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q, const Vec3& g) {
   { k.template staticForce<double>(q, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
@@ -141,7 +189,7 @@ template <class Kernel> class KernelElement final : public Element {
     if constexpr (FusedResidualKernel<Kernel>)
       r = kernel_.template residual<D>(q, v, a, in.t, in.gravity);
     else
-      r = kernel_.template massMatrix<D>(q, in.t) * a + kernel_.template force<D>(q, v, in.t, in.gravity);
+      r = kernel_.template massMatrix<D>(q, in.t) * a + forceAt<D>(q, v, in);
     storeDerivatives(r, J);
   }
 
@@ -157,6 +205,31 @@ template <class Kernel> class KernelElement final : public Element {
     return kernel_.potentialEnergy(gatherQ(in.q), in.t, in.gravity);
   }
 
+  double explicitTimePower(const ElementInput& in) const override {
+    if constexpr (TimeDependentKernel<Kernel>)
+      return kernel_.explicitTimePower(gatherQ(in.q), gatherV(in.v), in.t, in.gravity);
+    else
+      return 0.0;
+  }
+
+  /// By the kernel, or for damping linear in dq, dqᵀ D dq: from the kernel's damping forces, or
+  /// by polarization: the terms of F even in dq (elastic, gravity, inertial) cancel in
+  /// F(q, dq) − F(q, −dq), which leaves 2 D dq.
+  double dissipatedPower(const ElementInput& in) const override {
+    if constexpr (DissipationKernel<Kernel>) {
+      return kernel_.dissipatedPower(gatherQ(in.q), gatherV(in.v), in.t, in.gravity);
+    } else if constexpr (LinearlyDampedKernel<Kernel>) {
+      if (!kernel_.damped()) return 0.0;
+      const Qd q = gatherQ(in.q);
+      const Vd v = gatherV(in.v);
+      if constexpr (DampingForceKernel<Kernel>) return v.dot(kernel_.template dampingForce<double>(q, v));
+      return 0.5 * v.dot(kernel_.template force<double>(q, v, in.t, in.gravity) -
+                         kernel_.template force<double>(q, Vd(-v), in.t, in.gravity));
+    } else {
+      return 0.0;
+    }
+  }
+
  private:
   /// M(q) (a + α dq) + F(q, dq, t), α = in.mass_damping.
   Vd residualAt(const Qd& q, const Vd& v, const Vd& a, const ElementInput& in) const {
@@ -164,7 +237,16 @@ template <class Kernel> class KernelElement final : public Element {
     if constexpr (FusedResidualKernel<Kernel>)
       return kernel_.template residual<double>(q, v, acc, in.t, in.gravity);
     else
-      return kernel_.template massMatrix<double>(q, in.t) * acc + kernel_.template force<double>(q, v, in.t, in.gravity);
+      return kernel_.template massMatrix<double>(q, in.t) * acc + forceAt<double>(q, v, in);
+  }
+
+  template <class S>
+  Eigen::Matrix<S, kNv, 1> forceAt(const Eigen::Matrix<S, kNq, 1>& q, const Eigen::Matrix<S, kNv, 1>& v,
+                                   const ElementInput& in) const {
+    if constexpr (TimeDependentKernel<Kernel>)
+      return kernel_.template force<S>(q, v, in.t, in.gravity, in.rates);
+    else
+      return kernel_.template force<S>(q, v, in.t, in.gravity);
   }
 
   template <class R> static void storeDerivatives(const R& r, double* J) {

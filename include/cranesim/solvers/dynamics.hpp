@@ -5,8 +5,8 @@
 //
 // The run restarts the integrator (with freshly solved accelerations and multipliers) at
 // every drive breakpoint, where a profile's second derivative jumps, and whenever a rotation
-// vector is re-parameterised (DESIGN §4). Work of drives and loads is integrated as
-// quadratures for the energy balance.
+// vector is re-parameterised (DESIGN §4). The works of the energy balance (WorkTerms: drives,
+// loads, winches, damping) are integrated as quadratures.
 
 #include <atomic>
 #include <functional>
@@ -16,10 +16,11 @@
 
 namespace cranesim {
 
-/// Receives the solution at every output time. `y` is the DAE state [q, dq, λ(, μ)].
+/// Receives the solution at every output time. `y` is the DAE state [q, dq, λ(, μ)], `work`
+/// the works done since the run's start.
 struct SampleSink {
   virtual ~SampleSink() = default;
-  virtual void sample(double t, const double* y, double drive_work, double load_work) = 0;
+  virtual void sample(double t, const double* y, const WorkTerms& work) = 0;
 };
 
 struct SimulationOutcome {

@@ -31,10 +31,6 @@ struct SolverStatistics {
   double wall_time_s = 0.0;
 };
 
-/// The integrands of the work quadratures, [drive power λ·Φ_t, load power Q·dq], at (t, y).
-constexpr int kWorkTerms = 2;
-void workPowers(const Assembler& assembler, double t, const double* y, double* powers);
-
 struct StepOutcome {
   bool reached_stop = false;  // the step ended exactly at the stop time
   std::string failure;        // empty unless the integrator gave up: why
@@ -48,7 +44,8 @@ class TimeStepper {
   virtual double time() const = 0;
   /// y = [q, dq, λ(, μ)] at time(); may be changed in place, followed by restart().
   virtual double* state() = 0;
-  /// y and the work integrals at t within the last step.
+  /// y and the work integrals (WorkTerms, in the order of WorkTerms::toArray) at t within the
+  /// last step.
   virtual void interpolate(double t, double* y, double* work) = 0;
   /// The work integrals at time().
   virtual void work(double* work) = 0;
