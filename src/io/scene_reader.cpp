@@ -104,24 +104,27 @@ RigidBodySpec readBody(const YamlField& f) {
   return b;
 }
 
+// Cross-sections from a wire of 10 µm to a tube of 100 m radius (a crane's are 5 mm … 1 m).
+constexpr double kMinRadius = 1e-5, kMaxRadius = 100.0;
+
 Section readSection(const YamlField& f, double poisson) {
   if (f.has("radius")) {
     f.allowKeys({"radius"});
-    return Section::circular(f.at("radius").positive(), 0.0, poisson);
+    return Section::circular(f.at("radius").within(kMinRadius, kMaxRadius, "m"), 0.0, poisson);
   }
   if (f.has("outer_radius")) {
     f.allowKeys({"outer_radius", "inner_radius"});
-    const double outer = f.at("outer_radius").positive();
+    const double outer = f.at("outer_radius").within(kMinRadius, kMaxRadius, "m");
     const double inner = f.has("inner_radius") ? f.at("inner_radius").nonNegative() : 0.0;
     if (inner >= outer) f.at("inner_radius").fail(fmt::format("inner radius {} must be below the outer radius {}", inner, outer));
     return Section::circular(outer, inner, poisson);
   }
   f.allowKeys({"area", "Iy", "Iz", "J", "shear_factor"});
   Section s;
-  s.area = f.at("area").positive();
-  s.Iy = f.at("Iy").positive();
-  s.Iz = f.at("Iz").positive();
-  s.J = f.at("J").positive();
+  s.area = f.at("area").within(kMinRadius * kMinRadius, kMaxRadius * kMaxRadius, "m²");
+  s.Iy = f.at("Iy").within(std::pow(kMinRadius, 4), std::pow(kMaxRadius, 4), "m⁴");
+  s.Iz = f.at("Iz").within(std::pow(kMinRadius, 4), std::pow(kMaxRadius, 4), "m⁴");
+  s.J = f.at("J").within(std::pow(kMinRadius, 4), std::pow(kMaxRadius, 4), "m⁴");
   s.shear_factor = f.has("shear_factor") ? f.at("shear_factor").positive() : 0.0;
   return s;
 }
@@ -129,8 +132,8 @@ Section readSection(const YamlField& f, double poisson) {
 Material readMaterial(const YamlField& f, double& poisson) {
   f.allowKeys({"density", "youngs_modulus", "poisson_ratio", "shear_modulus"});
   Material m;
-  m.density = f.at("density").positive();
-  m.youngs_modulus = f.at("youngs_modulus").positive();
+  m.density = f.at("density").within(1e-3, 1e6, "kg/m³");
+  m.youngs_modulus = f.at("youngs_modulus").within(1e3, 1e15, "Pa");
   if (f.has("poisson_ratio") && f.has("shear_modulus")) f.at("shear_modulus").fail("give either poisson_ratio or shear_modulus");
   if (f.has("shear_modulus")) {
     m.shear_modulus = f.at("shear_modulus").positive();
@@ -158,7 +161,7 @@ std::vector<TrussNodePair> readNodePairs(const YamlField& f) {
 
 TrussTube readTube(const YamlField& f) {
   f.allowKeys({"outer_radius", "inner_radius"});
-  return {f.at("outer_radius").number(), f.number("inner_radius", 0.0), f.where()};
+  return {f.at("outer_radius").within(kMinRadius, kMaxRadius, "m"), f.number("inner_radius", 0.0), f.where()};
 }
 
 /// One entry of `trusses:` (a truss type, Table D-3). Indices and radii are checked by

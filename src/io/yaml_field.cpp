@@ -58,11 +58,21 @@ std::optional<YamlField> YamlField::find(const std::string& key) const {
   return at(key);
 }
 
+namespace {
+/// A key as an error message shows it: control characters (a NUL cut the message short) as \xNN.
+std::string displayed(const std::string& key) {
+  std::string out;
+  for (const unsigned char c : key)
+    out += c < 0x20 || c == 0x7f ? fmt::format("\\x{:02x}", c) : std::string(1, static_cast<char>(c));
+  return out;
+}
+}  // namespace
+
 void YamlField::allowKeys(const std::vector<const char*>& allowed) const {
   if (!node_.IsMap()) fail(fmt::format("expected a mapping, found {}", typeName(node_)));
   std::vector<std::string> seen;
   for (const auto& kv : node_) {
-    const std::string key = kv.first.as<std::string>();
+    const std::string key = displayed(kv.first.as<std::string>());
     // A key set by a composing scene (base + its own keys or `modify`) is a new node without a
     // place in any file; its value keeps the place where the composing scene wrote it.
     const YAML::Mark mark = kv.first.Mark().is_null() ? kv.second.Mark() : kv.first.Mark();
@@ -153,6 +163,12 @@ Vec3 YamlField::position() const {
     fail(fmt::format("a point {:g} m from the origin: scene geometry must lie within {:g} m of it",
                      p.cwiseAbs().maxCoeff(), kMaxCoordinate));
   return p;
+}
+
+double YamlField::within(double low, double high, const char* unit) const {
+  const double x = positive();
+  if (x < low || x > high) fail(fmt::format("{:g} {} lies outside [{:g}, {:g}] {}", x, unit, low, high, unit));
+  return x;
 }
 
 std::vector<YamlField> YamlField::items() const {

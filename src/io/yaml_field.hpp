@@ -35,6 +35,10 @@ class YamlField {
   double number() const;
   double positive() const;
   double nonNegative() const;
+  /// A positive number within [low, high] of a physical `unit`: values far outside what any
+  /// crane uses (a radius of 1e-308 m, a density of 1e308) become a massless or overflowing
+  /// model, which no solver reports at the scene's line.
+  double within(double low, double high, const char* unit) const;
   int integer() const;
   bool boolean() const;
   std::string text() const;
