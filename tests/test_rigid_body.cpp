@@ -85,7 +85,7 @@ TEST_CASE("Quadratic-velocity terms conserve kinetic energy in free motion", "[e
     qdot.head<3>() = v.head<3>();
     qdot.tail<3>() = angularVelocityMapInverse<double>(Vec3(q.tail<3>())) * v.tail<3>();
     const double h = 1e-6;
-    const auto Mdot = (k.massMatrix<double>(q + h * qdot) - k.massMatrix<double>(q - h * qdot)) / (2 * h);
+    const Eigen::Matrix<double, 6, 6> Mdot = (k.massMatrix<double>(q + h * qdot) - k.massMatrix<double>(q - h * qdot)) / (2 * h);
     CHECK(v.dot(M * a) + 0.5 * v.dot(Mdot * v) == Approx(0.0).margin(1e-8));
   }
 }
