@@ -158,16 +158,7 @@ class IdasStepper final : public TimeStepper {
 
  private:
   void load(const Assembler& assembler, const DynamicState& s) {
-    const Model& model = assembler.model();
-    double* y = N_VGetArrayPointer(y_);
-    double* yp = N_VGetArrayPointer(yp_);
-    std::fill(y, y + assembler.size(), 0.0);
-    std::fill(yp, yp + assembler.size(), 0.0);
-    std::copy(s.q.data(), s.q.data() + model.nq, y);
-    std::copy(s.v.data(), s.v.data() + model.nv, y + assembler.vOffset());
-    std::copy(s.lambda.data(), s.lambda.data() + model.m, y + assembler.lambdaOffset());
-    std::copy(s.qdot.data(), s.qdot.data() + model.nq, yp);
-    std::copy(s.a.data(), s.a.data() + model.nv, yp + assembler.vOffset());
+    stateVectors(assembler, s, N_VGetArrayPointer(y_), N_VGetArrayPointer(yp_));
   }
 
   void addCounters(SolverStatistics& s) const {
@@ -219,6 +210,17 @@ int reparameterise(const Model& model, double* q) {
 }
 
 }  // namespace
+
+void stateVectors(const Assembler& assembler, const DynamicState& s, double* y, double* yp) {
+  const Model& model = assembler.model();
+  std::fill(y, y + assembler.size(), 0.0);
+  std::fill(yp, yp + assembler.size(), 0.0);
+  std::copy(s.q.data(), s.q.data() + model.nq, y);
+  std::copy(s.v.data(), s.v.data() + model.nv, y + assembler.vOffset());
+  std::copy(s.lambda.data(), s.lambda.data() + model.m, y + assembler.lambdaOffset());
+  std::copy(s.qdot.data(), s.qdot.data() + model.nq, yp);
+  std::copy(s.a.data(), s.a.data() + model.nv, yp + assembler.vOffset());
+}
 
 SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initial, SampleSink& sink,
                            const SimulationControl& control) {

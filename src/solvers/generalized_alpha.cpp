@@ -37,7 +37,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
   GeneralizedAlphaStepper(const Assembler& assembler, const DynamicState& s, double rho_inf)
       : assembler_(assembler), k_(GeneralizedAlphaCoefficients::fromSpectralRadius(rho_inf)),
         n_(assembler.size()), nd_(assembler.model().nq + assembler.model().nv),
-        y_(n_), yp_(n_), w_(n_), w_step_(n_), yp_before_(n_), y_old_(n_), yp_old_(n_), y1_(n_), yp1_(n_), w1_(n_),
+        y_(n_), yp_(n_), w_(n_), w_step_(n_), y_old_(n_), yp_old_(n_), y1_(n_), yp1_(n_), w1_(n_),
         r_(n_), weights_(n_), jacobian_(std::max(assembler.pattern().nonZeros(), 1)) {
     const SolverSpec& solver = assembler.model().solver;
     max_step_ = solver.max_step;
@@ -66,12 +66,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
       // Up to 10 % longer to land on the stop time rather than leave a sliver.
       const bool to_stop = t_ + 1.1 * h_ >= t_stop;
       const double h = to_stop ? t_stop - t_ : h_;
-      if (!solveStep(h)) {
-        ++stats_.nonlinear_failures;
-        h_ = 0.25 * h;
-        continue;
-      }
-      if (assembler_.model().m > 0 && !useRatesOfMotion(t_ + h)) {
+      if (!solveStep(h) || (assembler_.model().m > 0 && !useRatesOfMotion(t_ + h))) {
         ++stats_.nonlinear_failures;
         h_ = 0.25 * h;
         continue;
@@ -114,14 +109,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
   void work(double* work) override { std::copy(work_.begin(), work_.end(), work); }
 
   void restart(const DynamicState& s) override {
-    const Model& model = assembler_.model();
-    std::fill(y_.begin(), y_.end(), 0.0);
-    std::fill(yp_.begin(), yp_.end(), 0.0);
-    std::copy(s.q.data(), s.q.data() + model.nq, y_.begin());
-    std::copy(s.v.data(), s.v.data() + model.nv, y_.begin() + assembler_.vOffset());
-    std::copy(s.lambda.data(), s.lambda.data() + model.m, y_.begin() + assembler_.lambdaOffset());
-    std::copy(s.qdot.data(), s.qdot.data() + model.nq, yp_.begin());
-    std::copy(s.a.data(), s.a.data() + model.nv, yp_.begin() + assembler_.vOffset());
+    stateVectors(assembler_, s, y_.data(), yp_.data());
     w_ = yp_;
     t_ = t_old_ = s.t;
     y_old_ = y_, yp_old_ = yp_;
@@ -143,13 +131,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
     const double t1 = t_ + h;
     const double c = (1.0 - k_.alpha_m) / ((1.0 - k_.alpha_f) * k_.gamma * h);
     rescaleLag(h);
-    // Predictor: a quadratic through the last two derivatives, else a tangent.
-    for (int i = 0; i < nd_; ++i) {
-      const double curvature = has_history_ ? (yp_[i] - yp_before_[i]) / h_before_ : 0.0;
-      y1_[i] = y_[i] + h * yp_[i] + 0.5 * h * h * curvature;
-    }
-    std::copy(y_.begin() + nd_, y_.end(), y1_.begin() + nd_);
-    derivativesOf(h);
+    predict(h);
     bool fresh = false;
     if (!factorised_ || c < kJacobianRatioLow * c_jacobian_ || c > kJacobianRatioHigh * c_jacobian_ || refresh_) {
       if (!newJacobian(t1, c)) return false;
@@ -159,15 +141,21 @@ class GeneralizedAlphaStepper final : public TimeStepper {
       if (newton(t1, c)) return true;
       if (fresh) return false;
       // Stale Jacobian: evaluate one here and try again from the predictor.
-      for (int i = 0; i < nd_; ++i) {
-        const double curvature = has_history_ ? (yp_[i] - yp_before_[i]) / h_before_ : 0.0;
-        y1_[i] = y_[i] + h * yp_[i] + 0.5 * h * h * curvature;
-      }
-      std::copy(y_.begin() + nd_, y_.end(), y1_.begin() + nd_);
-      derivativesOf(h);
+      predict(h);
       if (!newJacobian(t1, c)) return false;
       fresh = true;
     }
+  }
+
+  /// The trial y₁ (and its w₁, ẏ₁): a quadratic through the last two derivatives, else a
+  /// tangent; the multipliers as they are.
+  void predict(double h) {
+    for (int i = 0; i < nd_; ++i) {
+      const double curvature = has_history_ ? (yp_[i] - yp_old_[i]) / h_last_ : 0.0;
+      y1_[i] = y_[i] + h * yp_[i] + 0.5 * h * h * curvature;
+    }
+    std::copy(y_.begin() + nd_, y_.end(), y1_.begin() + nd_);
+    derivativesOf(h);
   }
 
   /// The rates the method carries to the next step are those of the motion: q̇ = H dq and the
@@ -201,7 +189,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
   /// rescales the lag, else each change of h costs a first-order error (measured: the local
   /// error estimate jumped tenfold when h grew by 1.6).
   void rescaleLag(double h) {
-    const double ratio = has_history_ ? h / h_before_ : 1.0;
+    const double ratio = has_history_ ? h / h_last_ : 1.0;
     for (int i = 0; i < nd_; ++i) w_step_[i] = yp_[i] + ratio * (w_[i] - yp_[i]);
   }
 
@@ -267,7 +255,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
     for (int i = 0; i < nd_; ++i) {
       double e;
       if (has_history_) {
-        const double third = 2.0 * ((yp1_[i] - yp_[i]) / h - (yp_[i] - yp_before_[i]) / h_before_) / (h + h_before_);
+        const double third = 2.0 * ((yp1_[i] - yp_[i]) / h - (yp_[i] - yp_old_[i]) / h_last_) / (h + h_last_);
         e = k_.error_constant * h * h * h * third;
       } else {
         e = std::max(std::abs(k_.alpha_m - k_.alpha_f), k_.error_constant) * h * (yp1_[i] - yp_[i]);
@@ -279,9 +267,8 @@ class GeneralizedAlphaStepper final : public TimeStepper {
 
   void accept(double h) {
     y_old_.swap(y_), yp_old_.swap(yp_);
-    yp_before_ = yp_old_;
-    h_before_ = h;
     y_ = y1_, yp_ = yp1_, w_ = w1_;
+    h_last_ = h;
     t_old_ = t_;
     t_ += h;
     work_old_ = work_, power_old_ = power_;
@@ -309,9 +296,11 @@ class GeneralizedAlphaStepper final : public TimeStepper {
   const Assembler& assembler_;
   const GeneralizedAlphaCoefficients k_;
   const int n_, nd_;
-  double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_before_ = 0.0, max_step_ = 0.0, fixed_step_ = 0.0;
-  // At t_: y, ẏ, w; ẏ one step earlier; the last step's start (for interpolation); the trial.
-  std::vector<double> y_, yp_, w_, w_step_, yp_before_, y_old_, yp_old_, y1_, yp1_, w1_, r_, weights_;
+  // h_: the next step tried; h_last_: the last one accepted, from t_old_ to t_.
+  double t_ = 0.0, t_old_ = 0.0, h_ = 0.0, h_last_ = 0.0, max_step_ = 0.0, fixed_step_ = 0.0;
+  // At t_: y, ẏ, w and w rescaled to the trial step; at the last step's start t_old_ (the
+  // interpolation's, the predictor's and the error estimate's history): y, ẏ; the trial.
+  std::vector<double> y_, yp_, w_, w_step_, y_old_, yp_old_, y1_, yp1_, w1_, r_, weights_;
   std::array<double, WorkTerms::kCount> work_{}, power_{}, work_old_{}, power_old_{};
   bool has_history_ = false;
   std::vector<double> jacobian_;

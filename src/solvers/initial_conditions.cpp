@@ -79,11 +79,6 @@ void solveAccelerations(const Assembler& assembler, DynamicState& s, const Const
   AccelerationSolver().solve(assembler, s, C, limit);
 }
 
-AccelerationSolver::AccelerationSolver() = default;
-AccelerationSolver::~AccelerationSolver() = default;
-AccelerationSolver::AccelerationSolver(AccelerationSolver&&) noexcept = default;
-AccelerationSolver& AccelerationSolver::operator=(AccelerationSolver&&) noexcept = default;
-
 void AccelerationSolver::solve(const Assembler& assembler, DynamicState& s, const ConstraintState& C, Limit limit) {
   solve(assembler, s, C, assembler.massMatrix(s.t, s.q.data()), limit);
 }

@@ -4,7 +4,6 @@
 //   [M  Gᵀ] [d(dq)/dt]   [−F + Q]
 //   [G  0 ] [   λ    ] = [  −Γ  ].
 
-#include <memory>
 #include <vector>
 
 #include "cranesim/assembly/assembler.hpp"
@@ -50,11 +49,6 @@ DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q,
 /// next, and refactors with the previous pivot sequence while that stays well conditioned.
 class AccelerationSolver {
  public:
-  AccelerationSolver();
-  ~AccelerationSolver();
-  AccelerationSolver(AccelerationSolver&&) noexcept;
-  AccelerationSolver& operator=(AccelerationSolver&&) noexcept;
-
   void solve(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints, Limit limit);
   /// The same with the mass matrix M(state.q) at hand.
   void solve(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints,

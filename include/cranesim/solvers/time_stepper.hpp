@@ -31,6 +31,9 @@ struct SolverStatistics {
   double wall_time_s = 0.0;
 };
 
+/// A consistent state as the DAE's y = [q, dq, λ, μ = 0] and ẏ = [q̇, d(dq)/dt, 0].
+void stateVectors(const Assembler& assembler, const DynamicState& s, double* y, double* yp);
+
 struct StepOutcome {
   bool reached_stop = false;  // the step ended exactly at the stop time
   std::string failure;        // empty unless the integrator gave up: why
