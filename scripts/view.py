@@ -333,6 +333,27 @@ def up_direction(scene: dict) -> list[float]:
     return [0.0, 0.0, 1.0]
 
 
+def file_fields(results: Results, scene: dict) -> dict:
+    """What every page says about the file it shows."""
+    return {
+        "file": results.path.name,
+        "scene": str(scene.get("name") or results.attribute("scene_path") or ""),
+        "status": results.status,
+        "message": results.message,
+        "engine_version": results.attribute("engine_version"),
+    }
+
+
+def view_fields(low: np.ndarray, high: np.ndarray, size: float, scene: dict) -> dict:
+    """The extent of what a page shows, its grid and which way is up."""
+    return {
+        "bounds": [low.tolist(), high.tolist()],
+        "size": size,
+        "grid_spacing": nice_spacing(float(np.max(high - low))),
+        "up": up_direction(scene),
+    }
+
+
 def rotation_matrix(rotation_vector: np.ndarray) -> np.ndarray:
     """Rodrigues' formula: the rotation by |φ| about φ/|φ| (the rotation vector of /q)."""
     angle = float(np.linalg.norm(rotation_vector))
@@ -418,11 +439,7 @@ def modes_page_data(results: Results, load_name: str | None) -> dict:
     low, high, size = bounds_of(equilibrium)
     return {
         "kind": "modes",
-        "file": results.path.name,
-        "scene": str(scene.get("name") or results.attribute("scene_path") or ""),
-        "status": results.status,
-        "message": results.message,
-        "engine_version": results.attribute("engine_version"),
+        **file_fields(results, scene),
         "t_end_requested": None,
         "sample_count": 1,
         "frame_count": 2,
@@ -439,10 +456,7 @@ def modes_page_data(results: Results, load_name: str | None) -> dict:
         "boxes": [None] * len(bodies),
         "load": load,
         "load_name": load_body,
-        "bounds": [low.tolist(), high.tolist()],
-        "size": size,
-        "grid_spacing": nice_spacing(float(np.max(high - low))),
-        "up": up_direction(scene),
+        **view_fields(low, high, size, scene),
         "series": [],
         "modes": {
             "frequency": frequency.tolist(),
@@ -599,11 +613,7 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
 
     return {
         "kind": "results",
-        "file": results.path.name,
-        "scene": str(scene.get("name") or results.attribute("scene_path") or ""),
-        "status": results.status,
-        "message": results.message,
-        "engine_version": results.attribute("engine_version"),
+        **file_fields(results, scene),
         "t_end_requested": results.attribute("t_end_requested"),
         "sample_count": int(geometry.time.size),
         "frame_count": int(len(samples)),
@@ -620,10 +630,7 @@ def page_data(results: Results, frames: int, load_name: str | None) -> dict:
         "boxes": [inertia_box(body_specs.get(name, {})) for name in bodies],
         "load": load,
         "load_name": bodies[load] if load >= 0 else None,
-        "bounds": [low.tolist(), high.tolist()],
-        "size": size,
-        "grid_spacing": nice_spacing(float(np.max(high - low))),
-        "up": up_direction(scene),
+        **view_fields(low, high, size, scene),
         "series": series,
         "member_forces": member_forces,  # frames × members: mean |F| at their ends, N
     }
