@@ -158,8 +158,9 @@ void printEquilibriumReport(const Model& model, const StaticResult& eq) {
 }
 
 /// Models up to this many velocity coordinates get the equilibrium's stability checked (dense
-/// modal analysis, O(nv³): ~5 ms for the thesis crane's 160, seconds at 1000).
-constexpr int kStabilityCheckLimit = 1200;
+/// modal analysis, O(nv³): ~5 ms for the thesis crane's 160, 0.9 s for its full-member model's
+/// 1230, a few seconds at 2000).
+constexpr int kStabilityCheckLimit = 2000;
 
 /// Why the equilibrium is unstable (its reduced stiffness has a negative eigenvalue), or empty;
 /// the lowest elastic mode is reported.

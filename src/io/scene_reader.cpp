@@ -262,14 +262,17 @@ void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussD
     tf.fail(fmt::format("unknown truss type '{}' (types under trusses: {})", m.truss, known.empty() ? "none" : known));
   }
   const YamlField fidelity = f.at("fidelity");
-  const std::string chosen = fidelity.choice({"super_truss", "condensed", "members"});
-  m.fidelity = chosen == "members" ? TrussFidelity::Members : chosen == "condensed" ? TrussFidelity::Condensed : TrussFidelity::SuperTruss;
+  const std::string chosen = fidelity.choice({"super_truss", "condensed", "beam", "members"});
+  m.fidelity = chosen == "members"     ? TrussFidelity::Members
+               : chosen == "condensed" ? TrussFidelity::Condensed
+               : chosen == "beam"      ? TrussFidelity::Beam
+                                       : TrussFidelity::SuperTruss;
   if (const auto e = f.find("element")) {
     if (m.fidelity != TrussFidelity::Members) e->fail("'element' chooses the tubes' beam element of fidelity 'members' only");
     e->choice({"timoshenko"});
   }
-  if (m.fidelity != TrussFidelity::Members && f.has("segments"))
-    f.at("segments").fail("'segments' splits the tubes of fidelity 'members' only");
+  if (m.fidelity != TrussFidelity::Members && m.fidelity != TrussFidelity::Beam && f.has("segments"))
+    f.at("segments").fail("'segments' splits the tubes of fidelity 'members' or the beam of fidelity 'beam' only");
 }
 
 /// A member's `start` or `end`: coordinates, or a joint's name (placed by placeMemberEnds).

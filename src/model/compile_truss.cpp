@@ -1,7 +1,8 @@
 // Truss members (`type: truss`, DESIGN §7): one truss description placed in the scene becomes
 // the super truss element (3.5), the condensed truss element (the full-member model's stiffness
-// condensed onto the end sections, condensed_truss.hpp) or the full-member model, in which every
-// tube is its own Timoshenko beam on shared frame nodes (docs/truss.md).
+// condensed onto the end sections, condensed_truss.hpp), the equivalent Timoshenko beam
+// (equivalent_beam.hpp) or the full-member model, in which every tube is its own Timoshenko beam
+// on shared frame nodes (docs/truss.md).
 //
 // Full-member model:
 // - One frame node per truss node (end-section and internal nodes), shared by every tube that
@@ -24,6 +25,7 @@
 #include "cranesim/elements/rotated_ends.hpp"
 #include "cranesim/elements/super_truss.hpp"
 #include "cranesim/math/rotation.hpp"
+#include "cranesim/model/equivalent_beam.hpp"
 #include "model_building.hpp"
 
 namespace cranesim {
@@ -145,13 +147,13 @@ void compileMembers(Model& model, const MemberSpec& m, const TrussGeometry& g) {
   }
 }
 
-/// A 12-DOF truss element (super truss or condensed): two frame nodes, the end sections (joints
-/// <name>.start / <name>.end), with the end-section nodes as joints on them (the same names as in
-/// the full-member model).
-template <class Kernel> void compileSectionElement(Model& model, const MemberSpec& m, const TrussGeometry& g, Kernel kernel) {
+/// The two end-section frame nodes of a truss member with one element between them (super
+/// truss, condensed, equivalent beam): the joints <name>.start / <name>.end, and the end-section
+/// nodes as joints on them (the same names as in the full-member model). Returns the two nodes.
+std::vector<int> addEndSections(Model& model, const MemberSpec& m, const TrussGeometry& g) {
   const Mat3 R = memberFrame(m.start, m.end, m.z_axis);  // truss frame → inertial
   const std::vector<std::string> names = nodeNames(m, g);
-  std::array<int, 2> section{};
+  std::vector<int> section(2);
   for (int s = 0; s < 2; ++s) {
     const Vec3 origin(s == 0 ? 0.0 : g.length, 0.0, 0.0);
     section[s] = model.addNode(fmt::format("{}.section{}", m.name, s + 1), NodeKind::Frame, m.name);
@@ -167,7 +169,32 @@ template <class Kernel> void compileSectionElement(Model& model, const MemberSpe
     if (g.nodes[tube.node1].end_section >= 0 && g.nodes[tube.node2].end_section >= 0)
       model.drawing_lines.push_back({model.findJoint(names[tube.node1]), model.findJoint(names[tube.node2])});
   for (const auto& chord : g.chords) model.drawing_lines.push_back({model.findJoint(names[chord[0]]), model.findJoint(names[chord[1]])});
-  addElement(model, std::move(kernel), {section[0], section[1]});
+  return section;
+}
+
+/// The equivalent Timoshenko beam (equivalent_beam.hpp) in `segments` elements between the end
+/// sections, with frame nodes <name>.b1 … <name>.b<segments − 1> between them.
+void compileEquivalentBeam(Model& model, const MemberSpec& m, const TrussGeometry& g) {
+  const std::vector<int> section = addEndSections(model, m, g);
+  const EquivalentBeam equivalent = equivalentBeam(g);
+  TimoshenkoBeamKernel beam;
+  beam.length = g.length / m.segments;
+  beam.section = equivalent.section;
+  beam.material = equivalent.material;
+  if (m.quadrature > 0) beam.mass_points = m.quadrature;
+  beam.damping = m.damping;
+  const Mat3 R = memberFrame(m.start, m.end, m.z_axis);
+  std::vector<int> chain = {section[0]};
+  for (int j = 1; j < m.segments; ++j) {
+    const int n = model.addNode(fmt::format("{}.b{}", m.name, j), NodeKind::Frame, m.name);
+    const Node& node = model.nodes[n];
+    model.q0.segment<3>(node.q) = m.start + R * Vec3(j * beam.length, 0.0, 0.0);
+    model.q0.segment<3>(node.q + 3) = rotationVector(R);
+    model.joints.push_back({model.nodes[n].name, n, Vec3::Zero(), Mat3::Identity()});
+    chain.push_back(n);
+  }
+  chain.push_back(section[1]);
+  for (int j = 0; j < m.segments; ++j) addElement(model, beam, {chain[j], chain[j + 1]});
 }
 
 }  // namespace
@@ -177,12 +204,14 @@ void compileTrussMember(Model& model, const MemberSpec& member, const TrussDescr
   switch (member.fidelity) {
     case TrussFidelity::Members: compileMembers(model, member, geometry); break;
     case TrussFidelity::SuperTruss:
-      compileSectionElement(model, member, geometry, SuperTrussKernel(geometry, member.quadrature > 0 ? member.quadrature : 4, member.damping));
+      addElement(model, SuperTrussKernel(geometry, member.quadrature > 0 ? member.quadrature : 4, member.damping),
+                 addEndSections(model, member, geometry));
       break;
     case TrussFidelity::Condensed:
-      compileSectionElement(model, member, geometry,
-                            CondensedTrussKernel(geometry, member.quadrature > 0 ? member.quadrature : 3, member.damping));
+      addElement(model, CondensedTrussKernel(geometry, member.quadrature > 0 ? member.quadrature : 3, member.damping),
+                 addEndSections(model, member, geometry));
       break;
+    case TrussFidelity::Beam: compileEquivalentBeam(model, member, geometry); break;
   }
 }
 

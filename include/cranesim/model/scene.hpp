@@ -35,15 +35,17 @@ struct RigidBodySpec {
 
 enum class MemberType { StrutTie, Timoshenko, SplineBeam, Rope, Truss };
 
-/// How a truss member is modelled: one super truss element (3.5) or every tube its own beam.
-enum class TrussFidelity { SuperTruss, Condensed, Members };
+/// How a truss member is modelled: one super truss element (3.5), one condensed truss element,
+/// an equivalent Timoshenko beam, or every tube its own beam.
+enum class TrussFidelity { SuperTruss, Condensed, Beam, Members };
 
 /// A flexible member: a straight line of `segments` elements from `start` to `end`, with nodes
 /// `<name>.n0 … <name>.n<segments>` (joints of the same names; `<name>.start`, `<name>.end`
 /// name the end nodes). Section axes: x along the member, z towards `z_axis`.
 /// A truss member (type Truss) places the truss type `truss` (Scene::trusses) with its axis from
 /// `start` to `end` and its z axis towards `z_axis`; its end sections are the joints
-/// `<name>.start` and `<name>.end`. `segments`, `quadrature` and `damping` apply to every tube.
+/// `<name>.start` and `<name>.end`. `segments`, `quadrature` and `damping` apply to every tube (fidelity Members) or to
+/// the equivalent beam (fidelity Beam).
 struct MemberSpec {
   std::string name;
   MemberType type = MemberType::Timoshenko;

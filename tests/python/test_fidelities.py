@@ -1,0 +1,87 @@
+"""The lattice fidelities on a crane in small (issue 17): configs/jib_fidelities.yaml, a 15 m
+type 2 jib on a slewing pedestal with a 10 t load on an 8 m rope, run by crane-sim as a full-member
+model (the reference) and as condensed, equivalent-beam and super truss sections.
+
+What each fidelity must reproduce (measured: README, "The lattice fidelities on the crane"):
+- condensed: the full-member stiffness between the end sections, so the static tip deflection
+  to 0.1 % and the jib's modes to 2 %; the load's path over the 4 s slew to 0.2 mm;
+- beam: the full-member stiffness under end loads (model/equivalent_beam.hpp) with uniform mass,
+  so the tip deflection under self-weight and load to 3 %, the lateral mode to 2 %, the
+  vertical one to 10 %, the load's path to 1 mm;
+- super truss: stiffer by its construction (thesis 3.5: the lacing's shear compliance lost):
+  deflection 60–90 % of the reference, every frequency at or above it, the path to 1 cm.
+Those brackets catch a broken kernel or a broken fit, not the reductions' known errors.
+
+Environment: CRANESIM_BIN, CRANESIM_SOURCE_DIR (as test_cli.py).
+"""
+
+import os
+import subprocess
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
+BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
+SCENE = SOURCE_DIR / "configs" / "jib_fidelities.yaml"
+FIDELITIES = ["members", "condensed", "beam", "super_truss"]
+JIB_HEIGHT = 10.0
+
+
+def run(fidelity: str, verb: str, workdir: Path) -> Path:
+    scene = workdir / f"jib_{fidelity}.yaml"
+    scene.write_text(f"base: {SCENE}\nmodify: {{members.jib.fidelity: {fidelity}}}\n", encoding="utf-8")
+    out = workdir / f"{fidelity}_{verb}.h5"
+    result = subprocess.run([str(BINARY), verb, str(scene), "-o", str(out)], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    return out
+
+
+@pytest.fixture(scope="module")
+def results(tmp_path_factory) -> dict:
+    workdir = tmp_path_factory.mktemp("fidelities")
+    out = {}
+    for fidelity in FIDELITIES:
+        with h5py.File(run(fidelity, "run", workdir)) as run_file, h5py.File(run(fidelity, "modes", workdir)) as modes:
+            out[fidelity] = {
+                "load": run_file["bodies/load/position"][:],
+                "tip": run_file["joints/jib.end/position"][:],
+                "frequencies": modes["modes/frequency"][:],
+            }
+    return out
+
+
+def test_static_tip_deflection(results):
+    deflection = {f: JIB_HEIGHT - r["tip"][0, 2] for f, r in results.items()}
+    reference = deflection["members"]
+    assert 0.005 < reference < 0.05  # a 15 m jib under its weight and 10 t: ~13 mm
+    assert deflection["condensed"] == pytest.approx(reference, rel=1e-3)
+    assert deflection["beam"] == pytest.approx(reference, rel=0.03)
+    assert 0.6 * reference < deflection["super_truss"] < 0.9 * reference
+
+
+def test_load_path_over_the_slew(results):
+    reference = results["members"]["load"]
+    assert np.max(np.linalg.norm(reference - reference[0], axis=1)) > 1.0  # the load moves metres
+    distance = {f: np.max(np.linalg.norm(r["load"] - reference, axis=1)) for f, r in results.items()}
+    assert distance["condensed"] < 2e-4
+    assert distance["beam"] < 1e-3
+    assert distance["super_truss"] < 1e-2
+
+
+def test_modes_of_the_jib(results):
+    """The elastic modes: the pendulum's two swings are the same in every fidelity; the jib's
+    lateral (≈ 3.75 Hz) and vertical (≈ 9.4 Hz) bending with the load differ by the reduction."""
+    reference = results["members"]["frequencies"]
+    elastic = reference > 1e-3
+    assert np.count_nonzero(elastic) >= 6
+    lateral, vertical = np.flatnonzero(elastic)[2], np.flatnonzero(elastic)[5]
+    assert 3.0 < reference[lateral] < 4.5 and 8.0 < reference[vertical] < 11.0
+    for fidelity, lateral_tolerance, vertical_tolerance in [("condensed", 0.02, 0.02), ("beam", 0.02, 0.10)]:
+        frequencies = results[fidelity]["frequencies"]
+        assert frequencies[lateral] == pytest.approx(reference[lateral], rel=lateral_tolerance), fidelity
+        assert frequencies[vertical] == pytest.approx(reference[vertical], rel=vertical_tolerance), fidelity
+    stiffer = results["super_truss"]["frequencies"][elastic]
+    assert np.all(stiffer >= reference[elastic] * (1 - 1e-4))
