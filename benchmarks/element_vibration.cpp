@@ -97,7 +97,7 @@ Run simulateCase(const Options& o, const Case& c, double timeout_s) {
     scene.members.at(0).segments = c.segments;
     scene.members.at(0).damping = c.damping;
     scene.solver.rtol = c.rtol;
-    scene.solver.atol = c.rtol * 1e-2;
+    scene.solver.atol = cranesim::AbsoluteTolerance::uniform(c.rtol * 1e-2);
     scene.solver.t_end = c.name == "vibration" ? o.vibration_t_end : o.rotation_t_end;
     scene.output.interval = 0.01;
     const cranesim::Model model = cranesim::compileModel(scene);

@@ -144,7 +144,7 @@ struct Released {
 
 Released release(Scene scene, double rtol, double t_end, int reps) {
   scene.solver.rtol = rtol;
-  scene.solver.atol = rtol * 1e-2;
+  scene.solver.atol = AbsoluteTolerance::uniform(rtol * 1e-2);
   scene.solver.t_end = t_end;
   scene.output.interval = 0.01;
   Released r;
@@ -183,7 +183,7 @@ double freeEquivalentMass(Scene scene, const Vec3& force, const Vec3& torque, do
     scene.loads.push_back(load);
   }
   scene.solver.rtol = 1e-6;
-  scene.solver.atol = 1e-8;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-8);
   scene.solver.t_end = t_end;
   scene.output.interval = t_end / 100.0;
   const bool spin = torque.x() != 0.0;

@@ -38,7 +38,7 @@ TEST_CASE("Free triple jib pendulum conserves energy and keeps its constraints (
 TEST_CASE("At rtol 1e-9 the GGL constraint residual stays below 1e-9", "[dynamics][conservation]") {
   Scene scene = test::loadScene("triple_jib_pendulum.yaml");
   scene.solver.rtol = 1e-9;
-  scene.solver.atol = 1e-11;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-11);
   scene.solver.t_end = 10.0;
   const test::SimulationRun run(scene);
   REQUIRE(run.outcome.complete);

@@ -183,7 +183,7 @@ TEST_CASE("A stretched damped rope dissipates EA η ε̇² per unit length, neve
 TEST_CASE("A ball reeled up on a damped rope: the recorded balance closes", "[energy][rope][scenes]") {
   Scene scene = test::loadScene("rope_reeling.yaml");
   scene.solver.rtol = 1e-8;
-  scene.solver.atol = 1e-10;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-10);
   scene.solver.t_end = 4.0;  // at rest, accelerating, reeling at 0.5 m/s
   const test::SimulationRun run(scene);
   REQUIRE(run.outcome.complete);
@@ -208,7 +208,7 @@ TEST_CASE("A free-falling rope reeled out: the reeled mass' energy is booked exa
   scene.bodies[0].position = Vec3(0.0, 0.0, -L0);
   scene.solver.start_from_equilibrium = false;
   scene.solver.rtol = 1e-8;
-  scene.solver.atol = 1e-10;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-10);
   scene.solver.t_end = 2.0;
   const test::SimulationRun run(scene);
   REQUIRE(run.outcome.complete);
@@ -251,7 +251,7 @@ TEST_CASE("A damped rope reeled in from rest at a constant rate: the jump of L̇
   Scene scene = test::loadScene("rope_reeling.yaml");
   scene.members[0].length = Profile(RampProfile{10.0, -0.5, 1.0});
   scene.solver.rtol = 1e-7;
-  scene.solver.atol = 1e-9;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-9);
   scene.solver.t_end = 1.5;
   const test::SimulationRun run(scene);
   INFO(run.outcome.message << "; steps " << run.outcome.statistics.steps << ", balance drift "

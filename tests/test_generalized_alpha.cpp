@@ -87,11 +87,11 @@ TEST_CASE("Generalized-α converges at second order on the pendulum", "[dynamics
   Scene scene = pendulum(90.0);
   scene.solver.t_end = 2.0;
   scene.solver.rtol = 1e-10;
-  scene.solver.atol = 1e-12;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-12);
   const test::SimulationRun reference(scene);
   REQUIRE(reference.outcome.complete);
   scene.solver.rtol = 1e-8;  // Newton's tolerance, far below the method's error
-  scene.solver.atol = 1e-10;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-10);
   for (double rho : {1.0, 0.8, 0.3}) {
     const test::SimulationRun coarse(generalizedAlpha(scene, rho, 4e-4)), fine(generalizedAlpha(scene, rho, 2e-4));
     REQUIRE(coarse.outcome.complete);
@@ -115,7 +115,7 @@ TEST_CASE("Generalized-α damps vibration the step does not resolve as its ampli
     Scene scene = generalizedAlpha(pendulum(0.1), rho, h);
     scene.solver.t_end = 8 * h;
     scene.solver.rtol = 1e-6;
-    scene.solver.atol = 1e-6;
+    scene.solver.atol = AbsoluteTolerance::uniform(1e-6);
     scene.output.interval = h;  // samples at the steps
     const test::SimulationRun run(scene);
     REQUIRE(run.outcome.complete);

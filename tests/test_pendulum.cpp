@@ -44,7 +44,7 @@ double periodError(double amplitude_deg, const std::string& formulation) {
   scene.solver.formulation = formulation == "ggl" ? Formulation::GGL : Formulation::Baumgarte;
   scene.solver.baumgarte_alpha = 20.0;
   scene.solver.rtol = 1e-10;
-  scene.solver.atol = 1e-12;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-12);
   scene.solver.t_end = 8.5;
   scene.output.interval = 1e-3;
   const test::SimulationRun run(scene);

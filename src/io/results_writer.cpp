@@ -207,7 +207,10 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     file.attribute("/solver", "wall_time_s", st.wall_time_s);
     file.attribute("/solver", "max_step_constraint_residual", st.max_step_constraint_residual);
     file.attribute("/solver", "rtol", model.solver.rtol);
-    file.attribute("/solver", "atol", model.solver.atol);
+    file.attribute("/solver", "atol", model.solver.atol.position);  // positions; by kind below
+    file.attribute("/solver", "atol_rotation", model.solver.atol.rotation);
+    file.attribute("/solver", "atol_velocity", model.solver.atol.velocity);
+    file.attribute("/solver", "atol_angular_velocity", model.solver.atol.angular_velocity);
     file.attribute("/solver", "last_step_size", st.last_step_size);
     file.attribute("/solver", "last_order", static_cast<long>(st.last_order));
   });

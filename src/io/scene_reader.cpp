@@ -373,6 +373,14 @@ LoadSpec readLoad(const YamlField& f) {
   return l;
 }
 
+/// `atol`: one value for every coordinate, or one per kind (all four keys).
+AbsoluteTolerance readAbsoluteTolerance(const YamlField& f) {
+  if (!f.isMap()) return AbsoluteTolerance::uniform(f.positive());
+  f.allowKeys({"position", "rotation", "velocity", "angular_velocity"});
+  return {f.at("position").positive(), f.at("rotation").positive(), f.at("velocity").positive(),
+          f.at("angular_velocity").positive()};
+}
+
 SolverSpec readSolver(const YamlField& f) {
   f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_order", "initial_step",
                "integrator", "rho_inf", "fixed_step",
@@ -385,7 +393,7 @@ SolverSpec readSolver(const YamlField& f) {
   if (!(s.t_end > s.t_start)) f.at("t_end").fail(fmt::format("t_end ({}) must be after t_start ({})", s.t_end, s.t_start));
   s.rtol = f.positive("rtol", s.rtol);
   if (s.rtol >= 0.1) f.at("rtol").fail(fmt::format("rtol {} is not a tolerance: use a value below 0.1", s.rtol));
-  s.atol = f.positive("atol", s.atol);
+  if (const auto a = f.find("atol")) s.atol = readAbsoluteTolerance(*a);
   s.atol_multipliers = f.positive("atol_multipliers", s.atol_multipliers);
   s.newton_coefficient = f.positive("newton_coefficient", s.newton_coefficient);
   if (const auto w = f.find("work_error_control")) s.work_error_control = w->boolean();

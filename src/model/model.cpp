@@ -18,6 +18,19 @@ int Model::addNode(std::string name, NodeKind kind, std::string member) {
   return static_cast<int>(nodes.size()) - 1;
 }
 
+VecX Model::absoluteTolerances() const {
+  const AbsoluteTolerance& atol = solver.atol;
+  VecX out(nq + nv);
+  for (const Node& node : nodes) {
+    // Every kind starts with r; the rest (φ, ‖r'‖, r') is dimensionless.
+    out.segment(node.q, node.size()).setConstant(atol.rotation);
+    out.segment(node.q, 3).setConstant(atol.position);
+    out.segment(nq + node.v, node.size()).setConstant(atol.angular_velocity);
+    out.segment(nq + node.v, 3).setConstant(atol.velocity);
+  }
+  return out;
+}
+
 Frame Model::nodeFrame(const double* q, int node) const {
   const Node& n = nodes[node];
   return {Vec3(q + n.q), n.hasRotation() ? rotationMatrix<double>(Vec3(q + n.q + 3)) : Mat3::Identity()};

@@ -41,10 +41,14 @@ std::string modelSummary(const Assembler& assembler) {
   out += fmt::format("coordinates: {} (q), {} (dq); DAE unknowns: {}\n", model.nq, model.nv, assembler.size());
   out += fmt::format("degrees of freedom: {} (= {} − {})\n", model.nv - rank, model.nv, rank);
   out += fmt::format("drives: {}   loads: {}\n", drives, model.loads.size());
-  out += fmt::format("solver: {} formulation, rtol {:g}, atol {:g}, t = {:g} … {:g} s, output every {:g} s\n",
+  const AbsoluteTolerance& atol = model.solver.atol;
+  const std::string atol_text =
+      atol.isUniform() ? fmt::format("{:g}", atol.position)
+                       : fmt::format("{:g} m, {:g} rad, {:g} m/s, {:g} rad/s", atol.position, atol.rotation, atol.velocity,
+                                     atol.angular_velocity);
+  out += fmt::format("solver: {} formulation, rtol {:g}, atol {}, t = {:g} … {:g} s, output every {:g} s\n",
                      model.solver.formulation == Formulation::GGL ? "GGL index-2" : "Baumgarte index-1",
-                     model.solver.rtol, model.solver.atol, model.solver.t_start, model.solver.t_end,
-                     model.output.interval);
+                     model.solver.rtol, atol_text, model.solver.t_start, model.solver.t_end, model.output.interval);
   out += fmt::format("Jacobian: {} × {}, {} non-zeros\n", assembler.size(), assembler.size(),
                      assembler.pattern().nonZeros());
   return out;

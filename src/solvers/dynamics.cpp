@@ -75,7 +75,8 @@ class IdasStepper final : public TimeStepper {
     atol_ = N_VNew_Serial(n, ctx_);
     double* atol = N_VGetArrayPointer(atol_);
     std::fill(atol, atol + n, model.solver.atol_multipliers);
-    std::fill(atol, atol + model.nq + model.nv, model.solver.atol);
+    const VecX state_atol = model.absoluteTolerances();
+    std::copy(state_atol.data(), state_atol.data() + state_atol.size(), atol);
     check(IDASVtolerances(mem_, model.solver.rtol, atol_), "IDASVtolerances");
     const SparsityPattern& p = assembler.pattern();
     A_ = SUNSparseMatrix(n, n, std::max(p.nonZeros(), 1), CSC_MAT, ctx_);
@@ -95,7 +96,7 @@ class IdasStepper final : public TimeStepper {
     check(IDASetNonlinConvCoef(mem_, model.solver.newton_coefficient), "IDASetNonlinConvCoef");
     check(IDAQuadInit(mem_, quadratureCallback, yq_), "IDAQuadInit");
     if (model.solver.work_error_control) {
-      check(IDAQuadSStolerances(mem_, model.solver.rtol, model.solver.atol), "IDAQuadSStolerances");
+      check(IDAQuadSStolerances(mem_, model.solver.rtol, model.solver.atol.position), "IDAQuadSStolerances");
       check(IDASetQuadErrCon(mem_, SUNTRUE), "IDASetQuadErrCon");
     }
   }

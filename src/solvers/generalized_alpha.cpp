@@ -38,7 +38,8 @@ class GeneralizedAlphaStepper final : public TimeStepper {
       : assembler_(assembler), k_(GeneralizedAlphaCoefficients::fromSpectralRadius(rho_inf)),
         n_(assembler.size()), nd_(assembler.model().nq + assembler.model().nv),
         y_(n_), yp_(n_), w_(n_), w_step_(n_), y_old_(n_), yp_old_(n_), y1_(n_), yp1_(n_), w1_(n_),
-        r_(n_), weights_(n_), jacobian_(std::max(assembler.pattern().nonZeros(), 1)) {
+        r_(n_), weights_(n_), state_atol_(assembler.model().absoluteTolerances()),
+        jacobian_(std::max(assembler.pattern().nonZeros(), 1)) {
     const SolverSpec& solver = assembler.model().solver;
     max_step_ = solver.max_step;
     fixed_step_ = solver.fixed_step;
@@ -281,7 +282,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
   void setWeights() {
     const SolverSpec& solver = assembler_.model().solver;
     for (int i = 0; i < n_; ++i)
-      weights_[i] = 1.0 / (solver.rtol * std::abs(y_[i]) + (i < nd_ ? solver.atol : solver.atol_multipliers));
+      weights_[i] = 1.0 / (solver.rtol * std::abs(y_[i]) + (i < nd_ ? state_atol_[i] : solver.atol_multipliers));
   }
 
   /// IDAS' choice: a step that changes y by half its tolerance, at most 1/1000 of the interval.
@@ -301,6 +302,7 @@ class GeneralizedAlphaStepper final : public TimeStepper {
   // At t_: y, ẏ, w and w rescaled to the trial step; at the last step's start t_old_ (the
   // interpolation's, the predictor's and the error estimate's history): y, ẏ; the trial.
   std::vector<double> y_, yp_, w_, w_step_, y_old_, yp_old_, y1_, yp1_, w1_, r_, weights_;
+  const VecX state_atol_;  // of q and dq (Model::absoluteTolerances)
   std::array<double, WorkTerms::kCount> work_{}, power_{}, work_old_{}, power_old_{};
   bool has_history_ = false;
   std::vector<double> jacobian_;

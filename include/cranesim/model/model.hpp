@@ -103,6 +103,8 @@ struct Model {
 
   /// Appends a node of the given kind, placing its coordinates after the existing ones.
   int addNode(std::string name, NodeKind kind, std::string member = "");
+  /// The absolute tolerance of every coordinate and velocity, [q, dq] (solver.atol by kind).
+  VecX absoluteTolerances() const;
   /// Frame of a node at coordinates q (identity rotation for nodes without one).
   Frame nodeFrame(const double* q, int node) const;
   /// Frame of a joint at coordinates q.

@@ -98,12 +98,25 @@ enum class StaticMethod { Newton, Relaxation };
 
 enum class Integrator { Bdf, GeneralizedAlpha };
 
+/// Absolute tolerances of the integrators' error test by kind of coordinate (a scalar `atol`
+/// sets all four). Rotations, stretches and rope slopes are dimensionless and share `rotation`;
+/// their rates share `angular_velocity`.
+struct AbsoluteTolerance {
+  double position = 1e-8;          // m
+  double rotation = 1e-8;          // rad (and stretches, slopes)
+  double velocity = 1e-8;          // m/s
+  double angular_velocity = 1e-8;  // rad/s (and the rates of stretches and slopes)
+
+  static AbsoluteTolerance uniform(double atol) { return {atol, atol, atol, atol}; }
+  bool isUniform() const { return rotation == position && velocity == position && angular_velocity == position; }
+};
+
 struct SolverSpec {
   Formulation formulation = Formulation::GGL;
   double t_start = 0.0;
   double t_end = 1.0;
   double rtol = 1e-6;
-  double atol = 1e-8;
+  AbsoluteTolerance atol;
   /// Absolute tolerance (N, N·m) of the multipliers λ, μ in IDAS' Newton convergence test.
   /// They are excluded from the error test; a tight value stalls Newton at small steps,
   /// where round-off in index-2 multipliers grows like 1/h².
