@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "cranesim/version.hpp"
 #include "hdf5_file.hpp"
@@ -29,10 +30,11 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
       body_velocity_(assembler.model().nodes.size()),
       body_omega_(assembler.model().nodes.size()),
       joint_position_(assembler.model().joints.size()),
-      joint_rotation_(assembler.model().joints.size()) {}
+      joint_rotation_(assembler.model().joints.size()),
+      section_forces_(assembler.model().section_force_groups.size()) {}
 
-VecX ResultsRecorder::multipliersAt(double t, const double* y, const ConstraintState& constraints,
-                                    const Eigen::SparseMatrix<double>& mass) const {
+DynamicState ResultsRecorder::motionAt(double t, const double* y, const ConstraintState& constraints,
+                                       const Eigen::SparseMatrix<double>& mass) const {
   const Model& model = assembler_.model();
   DynamicState s;
   s.t = t;
@@ -40,10 +42,11 @@ VecX ResultsRecorder::multipliersAt(double t, const double* y, const ConstraintS
   s.v = Eigen::Map<const VecX>(y + assembler_.vOffset(), model.nv);
   try {
     accelerations_.solve(assembler_, s, constraints, mass, Limit::Left);
-    return s.lambda;
   } catch (const std::exception&) {
-    return Eigen::Map<const VecX>(y + assembler_.lambdaOffset(), model.m);
+    s.lambda = Eigen::Map<const VecX>(y + assembler_.lambdaOffset(), model.m);
+    s.a = VecX::Constant(model.nv, std::numeric_limits<double>::quiet_NaN());
   }
+  return s;
 }
 
 void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
@@ -54,7 +57,8 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
   const Eigen::SparseMatrix<double> M = assembler_.massMatrix(t, q);  // for λ and T = ½ dqᵀ M dq
   time_.push_back(t);
   append(state_, y, model.nq + model.nv);
-  append(state_, multipliersAt(t, y, C, M).data(), model.m);
+  const DynamicState motion = motionAt(t, y, C, M);
+  append(state_, motion.lambda.data(), model.m);
   for (std::size_t n = 0; n < model.nodes.size(); ++n) {
     const Frame f = model.nodeFrame(q, static_cast<int>(n));
     append(body_position_[n], f.r.data(), 3);
@@ -76,6 +80,13 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
   winch_work_.push_back(work.winch);
   dissipated_.push_back(work.dissipated);
   balance_.push_back(T + V - work.drive - work.load - work.winch + work.dissipated);
+  const ElementInput in{q, v, motion.a.data(), t, model.gravity};
+  for (std::size_t g = 0; g < model.section_force_groups.size(); ++g)
+    for (const int e : model.section_force_groups[g].elements) {
+      double forces[12];
+      model.elements[e]->sectionForces(in, forces);
+      append(section_forces_[g], forces, 12);
+    }
   if (model.m > 0) {
     residual_position_.push_back(C.phi.cwiseAbs().maxCoeff());
     residual_velocity_.push_back(C.phi_dot.cwiseAbs().maxCoeff());
@@ -102,9 +113,12 @@ double ResultsRecorder::relativeBalanceDrift() const {
 
 double ResultsRecorder::estimatedBytes(const Model& model, double samples) {
   // Per sample: the state and multipliers, every node's position, rotation, velocity and angular
-  // velocity, every joint's position and rotation, time, energies and residuals (10 numbers);
-  // twice: recorded, then the file's image.
-  const double per_sample = 8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 10.0);
+  // velocity, every joint's position and rotation, time, energies and residuals (10 numbers),
+  // the recorded section forces; twice: recorded, then the file's image.
+  double section_forces = 0.0;
+  for (const Model::SectionForceGroup& g : model.section_force_groups) section_forces += 12.0 * g.elements.size();
+  const double per_sample =
+      8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 10.0 + section_forces);
   return 2.0 * per_sample * samples;
 }
 
@@ -190,6 +204,15 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     file.writeDoubles("/energy/winch_work", {N}, winch_work_.data());
     file.writeDoubles("/energy/dissipated", {N}, dissipated_.data());
     file.writeDoubles("/energy/balance", {N}, balance_.data());
+    for (std::size_t g = 0; g < model.section_force_groups.size(); ++g) {
+      const Model::SectionForceGroup& group = model.section_force_groups[g];
+      const std::string path = "/section_forces/" + group.member;
+      std::vector<std::string> nodes;
+      for (const int e : group.elements)
+        for (const int n : model.elements[e]->nodes()) nodes.push_back(model.nodes[n].name);
+      file.writeDoubles(path + "/forces", {N, hsize_t(group.elements.size()), 12}, section_forces_[g].data());
+      file.writeStrings(path + "/element_nodes", {group.elements.size(), 2}, nodes);
+    }
     file.writeDoubles("/residual/position", {N}, residual_position_.data());
     file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());
 

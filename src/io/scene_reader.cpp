@@ -381,6 +381,29 @@ AbsoluteTolerance readAbsoluteTolerance(const YamlField& f) {
           f.at("angular_velocity").positive()};
 }
 
+/// `output.section_forces`: names of members made of beams.
+std::vector<std::string> readSectionForceMembers(const YamlField& f, const std::vector<MemberSpec>& members) {
+  const auto hasBeams = [](const MemberSpec& m) {
+    return m.type == MemberType::Timoshenko ||
+           (m.type == MemberType::Truss && (m.fidelity == TrussFidelity::Members || m.fidelity == TrussFidelity::Beam));
+  };
+  std::string eligible;
+  for (const MemberSpec& m : members)
+    if (hasBeams(m)) eligible += (eligible.empty() ? "" : ", ") + m.name;
+  std::vector<std::string> names;
+  for (const YamlField& item : f.items()) {
+    const std::string name = item.text();
+    const auto m = std::find_if(members.begin(), members.end(), [&](const MemberSpec& spec) { return spec.name == name; });
+    if (m == members.end() || !hasBeams(*m))
+      item.fail(fmt::format("{} '{}': section forces are recorded for timoshenko members and trusses of fidelity members "
+                            "or beam (here: {})", m == members.end() ? "no member" : "no beams in member", name,
+                            eligible.empty() ? "none" : eligible));
+    if (std::find(names.begin(), names.end(), name) != names.end()) item.fail(fmt::format("'{}' is listed twice", name));
+    names.push_back(name);
+  }
+  return names;
+}
+
 SolverSpec readSolver(const YamlField& f) {
   f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_order", "initial_step",
                "integrator", "rho_inf", "fixed_step",
@@ -489,9 +512,10 @@ Scene sceneFromYaml(const ComposedScene& composed, const std::string& path) {
   }
   placeMemberEnds(s);
   if (const auto o = f.find("output")) {
-    o->allowKeys({"interval"});
+    o->allowKeys({"interval", "section_forces"});
     s.output.interval = o->positive("interval", s.output.interval);
     if (o->has("interval")) s.output.where = o->at("interval").where();
+    if (const auto sf = o->find("section_forces")) s.output.section_forces = readSectionForceMembers(*sf, s.members);
   }
   return s;
 }

@@ -73,6 +73,12 @@ struct RotatedEndsBeamKernel {
                                                    sectionRotation<S>(q, 1), beamVelocities<S>(v), stiffness_)));
   }
 
+  /// The beam's section forces in its own co-rotated frame (timoshenko_beam.hpp).
+  Eigen::Matrix<double, 12, 1> sectionForces(const Q<double>& q, const V<double>& v, const V<double>& a, const Vec3& gravity) const {
+    return beam_.sectionForces(q.segment<3>(0), sectionRotation<double>(q, 0), q.segment<3>(6), sectionRotation<double>(q, 1),
+                               beamVelocities<double>(v), beamVelocities<double>(a), gravity, stiffness_);
+  }
+
   double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
     return 0.5 * v.dot(massMatrix<double>(q) * v);
   }

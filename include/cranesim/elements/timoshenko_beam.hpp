@@ -233,6 +233,28 @@ struct TimoshenkoBeamKernel {
     return c.Jd.transpose() * (K.template cast<S>() * strain);
   }
 
+  /// Section forces at the two ends, [N, V_y, V_z, T, M_y, M_z] at end 1 and then at end 2, in
+  /// the co-rotated frame R_B (x along the chord; N > 0 in tension): the forces the nodes exert
+  /// on the beam, its residual M a + F (elastic, damping, inertia and gravity), turned into R_B
+  /// (the rotational parts act about the section frames' axes) — at end 2 the section's
+  /// resultant, at end 1 with the opposite sign (its face points the other way).
+  Eigen::Matrix<double, 12, 1> sectionForces(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2, const V<double>& v,
+                                             const V<double>& a, const Vec3& gravity, const Mat12& K) const {
+    const V<double> r = inertialAndGravityForce<double>(r1, R1, r2, R2, v, gravity, &a) + elasticForce<double>(r1, R1, r2, R2, v, K);
+    const Mat3 RB = coRotate<double>(r1, R1, r2, R2).R;
+    Eigen::Matrix<double, 12, 1> out;
+    for (int e = 0; e < 2; ++e) {
+      const double face = e == 0 ? -1.0 : 1.0;
+      out.segment<3>(6 * e) = face * (RB.transpose() * r.segment<3>(6 * e));
+      out.segment<3>(6 * e + 3) = face * (RB.transpose() * ((e == 0 ? R1 : R2) * r.segment<3>(6 * e + 3)));
+    }
+    return out;
+  }
+  Eigen::Matrix<double, 12, 1> sectionForces(const Q<double>& q, const V<double>& v, const V<double>& a, const Vec3& gravity) const {
+    return sectionForces(q.segment<3>(0), rotationMatrix<double>(Vec3(q.segment<3>(3))), q.segment<3>(6),
+                         rotationMatrix<double>(Vec3(q.segment<3>(9))), v, a, gravity, localStiffness());
+  }
+
   /// The damping forces alone, η J_dᵀ K J_d dq (their power is the Kelvin–Voigt dissipation).
   template <class S> V<S> dampingForce(const Q<S>& q, const V<S>& v) const {
     return dampingForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),

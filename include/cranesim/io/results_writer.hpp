@@ -58,8 +58,10 @@ class ResultsRecorder final : public SampleSink {
   void write(const std::string& path, const Metadata& meta, const SimulationOutcome& outcome) const;
 
  private:
-  VecX multipliersAt(double t, const double* y, const ConstraintState& constraints,
-                     const Eigen::SparseMatrix<double>& mass) const;
+  /// The consistent accelerations and multipliers at a sample (the saddle-point system (4-3));
+  /// IDAS' multipliers and NaN accelerations where it is singular.
+  DynamicState motionAt(double t, const double* y, const ConstraintState& constraints,
+                        const Eigen::SparseMatrix<double>& mass) const;
 
   const Assembler& assembler_;
   mutable AccelerationSolver accelerations_;  // the multipliers at every sample
@@ -68,6 +70,7 @@ class ResultsRecorder final : public SampleSink {
   std::vector<std::vector<double>> joint_position_, joint_rotation_;
   std::vector<double> kinetic_, potential_, drive_work_, load_work_, winch_work_, dissipated_, balance_;
   std::vector<double> residual_position_, residual_velocity_;
+  std::vector<std::vector<double>> section_forces_;  // per Model::section_force_groups: 12 per element and sample
 };
 
 }  // namespace cranesim

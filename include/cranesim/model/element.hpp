@@ -90,6 +90,9 @@ class Element {
   virtual double explicitTimePower(const ElementInput&) const { return 0.0; }
   /// Power its material damping dissipates at (q, dq, t), ≥ 0, W.
   virtual double dissipatedPower(const ElementInput&) const { return 0.0; }
+  /// A beam's section forces [N, V_y, V_z, T, M_y, M_z] at its two ends (12 values, N, N·m) in
+  /// its co-rotated frame, at (q, dq, d(dq)/dt); false for an element that is no beam.
+  virtual bool sectionForces(const ElementInput&, double*) const { return false; }
 };
 
 /// A kernel that computes M(q) a + F(q, dq, t) in one call.
@@ -122,6 +125,13 @@ template <class K>
 concept DampingForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
                                       const Eigen::Matrix<double, K::kNv, 1>& v) {
   { k.template dampingForce<double>(q, v) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
+};
+
+/// A beam kernel that reports its section forces.
+template <class K>
+concept SectionForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
+                                      const Eigen::Matrix<double, K::kNv, 1>& v, const Vec3& g) {
+  { k.sectionForces(q, v, v, g) } -> std::convertible_to<Eigen::Matrix<double, 12, 1>>;
 };
 
 template <class K>
@@ -215,6 +225,15 @@ template <class Kernel> class KernelElement final : public Element {
   /// By the kernel, or for damping linear in dq, dqᵀ D dq: from the kernel's damping forces, or
   /// by polarization: the terms of F even in dq (elastic, gravity, inertial) cancel in
   /// F(q, dq) − F(q, −dq), which leaves 2 D dq.
+  bool sectionForces(const ElementInput& in, double* out) const override {
+    if constexpr (SectionForceKernel<Kernel>) {
+      Eigen::Map<Eigen::Matrix<double, 12, 1>> forces(out);
+      forces = kernel_.sectionForces(gatherQ(in.q), gatherV(in.v), gatherV(in.a), in.gravity);
+      return true;
+    }
+    return false;
+  }
+
   double dissipatedPower(const ElementInput& in) const override {
     if constexpr (DissipationKernel<Kernel>) {
       return kernel_.dissipatedPower(gatherQ(in.q), gatherV(in.v), in.t, in.gravity);

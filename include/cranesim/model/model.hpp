@@ -100,6 +100,12 @@ struct Model {
   VecX q0, v0;  // initial state as given by the scene
   SolverSpec solver;
   OutputSpec output;
+  /// The beam elements of each member in output.section_forces, in that order.
+  struct SectionForceGroup {
+    std::string member;
+    std::vector<int> elements;
+  };
+  std::vector<SectionForceGroup> section_force_groups;
 
   /// Appends a node of the given kind, placing its coordinates after the existing ones.
   int addNode(std::string name, NodeKind kind, std::string member = "");

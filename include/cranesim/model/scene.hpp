@@ -158,6 +158,9 @@ struct SolverSpec {
 struct OutputSpec {
   double interval = 0.01;
   SourceLocation where{"output.interval", 0, 0};  // of the interval, for errors about the output's size
+  /// Members whose beams' section forces are recorded (timoshenko members, trusses of fidelity
+  /// members or beam).
+  std::vector<std::string> section_forces;
 };
 
 struct Scene {
