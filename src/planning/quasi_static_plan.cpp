@@ -120,9 +120,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   }
   plan.luffing_spline = smoothControlTrajectory(plan.trajectory.t, luffing, target.resample_points, target.steady_points);
   plan.hoist_spline = smoothControlTrajectory(plan.trajectory.t, hoist, target.resample_points, target.steady_points);
-  plan.lead_time = plan.trajectory.t.front() - plan.luffing_spline.t.front();
-  for (TableProfile* spline : {&plan.luffing_spline, &plan.hoist_spline})
-    for (double& t : spline->t) t += plan.lead_time;
+  plan.lead_time = plan.luffing_spline.t[target.steady_points] - plan.trajectory.t.front();
   plan.controls_s = secondsSince(t0);
 
   // 5. map(inverse(p)) − p at five points of the trajectory, against the crane's own equilibrium.

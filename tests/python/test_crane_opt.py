@@ -6,7 +6,8 @@ defect. Its first two lines say what the error must contain and which YAML path 
     # expect: <substring of the error message>
     # path: <YAML path the error is reported at>
 
-Environment: CRANEOPT_BIN (default <repo>/build/crane-opt) and CRANESIM_SOURCE_DIR.
+Environment: CRANEOPT_BIN (default <repo>/build/crane-opt), CRANESIM_BIN (default
+<repo>/build/crane-sim) and CRANESIM_SOURCE_DIR.
 """
 
 import os
@@ -17,9 +18,11 @@ from pathlib import Path
 import h5py
 import numpy as np
 import pytest
+import yaml
 
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANEOPT_BIN", SOURCE_DIR / "build" / "crane-opt")).resolve()
+CRANE_SIM = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
 BAD_TARGETS = sorted((SOURCE_DIR / "tests" / "bad_targets").glob("*.yaml"))
 JIB_TARGET = SOURCE_DIR / "configs" / "target_luffing_jib.yaml"
 
@@ -96,6 +99,41 @@ def test_plan_verification_tracks_the_plan(jib_plan: Path):
         assert v.attrs["max_error"] < 0.6
         assert v.attrs["final_error"] < 0.1
         assert np.max(np.abs(simulated[:, 1])) < 1e-6  # the motion stays in the jib's plane
+
+
+def verification_as_scene(plan: Path, base: Path) -> dict:
+    """The plan's verification written as a crane-sim scene: the base scene with its ropes driven
+    by the plan's control splines (table profiles: crane-sim computes the same zero-end-slope
+    spline from the knots), from the equilibrium at t = 0 to the last knot plus the settle time."""
+    with h5py.File(plan, "r") as f:
+        settle = yaml.safe_load(f.attrs["target_text"])["verification"]["settle_time"]
+        splines = {rope: (f[f"controls/spline/{name}/t"][...], f[f"controls/spline/{name}/y"][...])
+                   for rope, name in (("luffing_rope", "luffing_length"), ("hoist_rope", "hoist_length"))}
+    modify = {f"members.{rope}.length": {"type": "table", "t": [float(v) for v in t], "value": [float(v) for v in y]}
+              for rope, (t, y) in splines.items()}
+    end = max(t[-1] for t, _ in splines.values())
+    modify.update({"solver.t_start": 0.0, "solver.t_end": float(end + settle), "solver.initial_state": "equilibrium"})
+    return {"base": str(base), "name": "crane-opt verification as a scene", "modify": modify}
+
+
+def test_verification_takes_the_steps_of_crane_sim(jib_plan: Path, tmp_path: Path):
+    """The verification inside crane-opt and crane-sim running the same scene and splines are one
+    computation: the same steps, Jacobians and error-test failures, the same load path. (The
+    splines' slopes used to be computed before the knots were shifted onto the simulation's time
+    axis: rounding-level differences, 7779 steps against crane-sim's 7830 here.)"""
+    scene = tmp_path / "verification.yaml"
+    scene.write_text(yaml.safe_dump(verification_as_scene(jib_plan, SOURCE_DIR / "configs" / "luffing_jib.yaml")))
+    results = tmp_path / "verification.h5"
+    run = subprocess.run([str(CRANE_SIM), "run", str(scene), "-o", str(results), "--quiet"], capture_output=True,
+                         text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    with h5py.File(jib_plan.parent / "jib_simulation.h5", "r") as inside, h5py.File(results, "r") as outside:
+        counters = ("steps", "residual_evaluations", "jacobian_evaluations", "error_test_failures", "nonlinear_failures")
+        assert {c: inside["solver"].attrs[c] for c in counters} == {c: outside["solver"].attrs[c] for c in counters}
+        assert inside["solver"].attrs["steps"] > 1000  # a run with something to lose
+        assert np.array_equal(inside["time"][...], outside["time"][...])
+        hook_inside, hook_outside = inside["joints/load.hook/position"][...], outside["joints/load.hook/position"][...]
+        assert np.max(np.abs(hook_inside - hook_outside)) < 1e-12
 
 
 def test_map_only(tmp_path: Path):
