@@ -60,7 +60,6 @@ TEST_CASE("ZV and ZVD shapers: impulses and their analytic residual", "[planning
   CHECK(zvd.amplitudes == std::vector<double>{0.25, 0.5, 0.25});
   CHECK(zvd.duration() == 6.0);
   CHECK_THROWS_AS(makeShaper(ShaperKind::ZV, 0.0), std::invalid_argument);
-  CHECK(pendulumPeriod(9.81, 9.81) == Approx(2.0 * std::numbers::pi).epsilon(1e-15));
 }
 
 TEST_CASE("A shaped path is the convolution of the QR path, sampled exactly", "[planning][shaping]") {

@@ -108,8 +108,10 @@ void writePath(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& 
   file.attribute("/path", "motion_time", plan.path.t.back() - plan.path.t.front());
   file.attribute("/path", "hanging_length_start", plan.hanging_length_start);
   file.attribute("/path", "hanging_length_end", plan.hanging_length_end);
-  file.attribute("/path", "sway_period", plan.sway_period);
   if (!plan.shaper.times.empty()) {
+    file.attribute("/path", "sway_period_start", plan.sway_period_start);
+    file.attribute("/path", "sway_period_end", plan.sway_period_end);
+    file.attribute("/path", "sway_period", plan.sway_period);
     writeVector(file, "/path/impulse_times", plan.shaper.times);
     writeVector(file, "/path/impulse_amplitudes", plan.shaper.amplitudes);
   }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 namespace cranesim {
@@ -30,8 +29,6 @@ InputShaper makeShaper(ShaperKind kind, double period) {
   if (kind == ShaperKind::ZV) return {{0.0, 0.5 * period}, {0.5, 0.5}};
   return {{0.0, 0.5 * period, period}, {0.25, 0.5, 0.25}};
 }
-
-double pendulumPeriod(double length, double gravity) { return 2.0 * std::numbers::pi * std::sqrt(length / gravity); }
 
 QrTrajectory shapeTrajectory(const QrTrajectory& trajectory, const InputShaper& shaper) {
   if (trajectory.t.size() < 2) throw std::invalid_argument("input shaping: the trajectory needs at least two samples");

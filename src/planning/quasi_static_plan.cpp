@@ -11,6 +11,7 @@
 #include "cranesim/model/compile.hpp"
 #include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
+#include "cranesim/solvers/modes.hpp"
 
 namespace cranesim {
 namespace {
@@ -51,6 +52,21 @@ double hangingLength(const Model& model, const VecX& q, const CraneControls& con
   for (const char* side : {".start", ".end"})
     length = std::max(length, (model.jointFrame(q.data(), model.findJoint(controls.hoist_rope + side)).r - end).norm());
   return length;
+}
+
+/// The period of the load's sway in the crane's plane about the equilibrium q: the crane's
+/// lowest elastic mode in which the end point's node moves mostly along x (the plane's
+/// horizontal). It includes what the simple pendulum misses: the load's own inertia below the
+/// hook, the rope's mass and stretch and the boom's compliance.
+double swayPeriod(const Model& model, const VecX& q, double t, const CraneControls& controls) {
+  const ModalResult modes = computeModes(model, q, t, 0);
+  const Node& node = model.nodes[model.joints[model.findJoint(controls.end_point)].node];
+  for (Eigen::Index k = 0; k < modes.frequencies.size(); ++k) {
+    if (modes.rigid[k] || modes.omega_squared(k) <= 0.0) continue;
+    const Eigen::Vector3d v = modes.shapes.col(k).segment<3>(node.v).cwiseAbs();
+    if (v.x() > v.y() && v.x() > v.z()) return 1.0 / modes.frequencies(k);
+  }
+  throw std::runtime_error(fmt::format("input shaping: no mode of the crane sways '{}' in its plane", controls.end_point));
 }
 
 }  // namespace
@@ -144,13 +160,14 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
     check.reached = Eigen::Vector2d(reached.x(), reached.z());
     check.error = (check.reached - check.planned).norm();
     plan.inversion_checks.push_back(check);
-    if (k == 0) plan.hanging_length_start = hangingLength(model, eq.q, target.controls);
-    if (k == n - 1) plan.hanging_length_end = hangingLength(model, eq.q, target.controls);
+    if (k != 0 && k != n - 1) continue;
+    (k == 0 ? plan.hanging_length_start : plan.hanging_length_end) = hangingLength(model, eq.q, target.controls);
+    if (target.method != PlanMethod::QuasiStatic)
+      (k == 0 ? plan.sway_period_start : plan.sway_period_end) = swayPeriod(model, eq.q, eq.t, target.controls);
   }
-  // Between the path's ends the sway period changes with the rope (Table 8-2: 14.8 → 11.6 s); the
-  // mean length puts the shaper's period error at either end near half that range.
-  plan.sway_period =
-      pendulumPeriod(0.5 * (plan.hanging_length_start + plan.hanging_length_end), target.scene.gravity.norm());
+  // Between the path's ends the sway period changes with the rope (Table 8-2: 15.5 → 12.0 s); the
+  // mean puts the shaper's period error at either end near half that range.
+  plan.sway_period = 0.5 * (plan.sway_period_start + plan.sway_period_end);
   plan.inversion_s = secondsSince(t0);
   double worst = 0.0;
   for (const InversionCheck& c : plan.inversion_checks) worst = std::max(worst, c.error);
@@ -161,10 +178,11 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   if (target.method != PlanMethod::QuasiStatic) {
     plan.shaper = makeShaper(target.method == PlanMethod::ZV ? ShaperKind::ZV : ShaperKind::ZVD, plan.sway_period);
     plan.path = shapeTrajectory(plan.trajectory, plan.shaper);
-    say(fmt::format("input shaping: {} impulses over {:.3g} s for the sway period {:.4g} s (hanging length {:.4g} → {:.4g} m); "
-                    "motion {:.4g} s",
-                    plan.shaper.times.size(), plan.shaper.duration(), plan.sway_period, plan.hanging_length_start,
-                    plan.hanging_length_end, plan.path.t.back() - plan.path.t.front()));
+    say(fmt::format("input shaping: {} impulses over {:.4g} s for the mean sway period {:.4g} s ({:.4g} s at the start, "
+                    "{:.4g} s at the end; hanging length {:.4g} → {:.4g} m); motion {:.4g} s",
+                    plan.shaper.times.size(), plan.shaper.duration(), plan.sway_period, plan.sway_period_start,
+                    plan.sway_period_end, plan.hanging_length_start, plan.hanging_length_end,
+                    plan.path.t.back() - plan.path.t.front()));
   }
 
   // 6. Control trajectory (6.4).

@@ -25,9 +25,6 @@ struct InputShaper {
 /// The ZV or ZVD shaper for an undamped oscillation of `period` s (> 0).
 InputShaper makeShaper(ShaperKind kind, double period);
 
-/// Small-swing period of a simple pendulum, 2π √(length / gravity).
-double pendulumPeriod(double length, double gravity);
-
 /// The trajectory's path convolved with the shaper: state(t) = Σ a_i state_QR(t − t_i), with
 /// the QR states between samples exact for its double integrator (x + v s + a s²/2) and held at
 /// the first and last state outside the trajectory. Sampled at the trajectory's sample time

@@ -57,8 +57,12 @@ struct QuasiStaticPlan {
   QrTrajectory path;
   InputShaper shaper;                      // no impulses for quasi_static
   /// The pendulum at the path's start and end equilibria: from the hoist rope's end at the boom
-  /// head to the end point, m; the shaper's period is 2π √(L / g) for their mean.
-  double hanging_length_start = 0.0, hanging_length_end = 0.0, sway_period = 0.0;
+  /// head to the end point, m.
+  double hanging_length_start = 0.0, hanging_length_end = 0.0;
+  /// Shaped methods only: the crane's sway period in its plane at the start and end equilibria
+  /// (its lowest mode in which the end point moves mostly along x), s; the shaper's period is
+  /// their mean.
+  double sway_period_start = 0.0, sway_period_end = 0.0, sway_period = 0.0;
   std::vector<ControlPoint> controls;      // per path point
   TableProfile luffing_spline, hoist_spline;
   double lead_time = 0.0;                  // steady time before the motion in the splines and the simulation
