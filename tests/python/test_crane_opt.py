@@ -183,22 +183,28 @@ def test_map_only(tmp_path: Path):
 CRANE_TARGET = SOURCE_DIR / "configs" / "target.yaml"
 
 
+def plan_condensed_crane(tmp_path: Path, target: tuple, method: str = "quasi_static") -> Path:
+    """Table 8-2's problem (configs/target.yaml) on the condensed crane with another target and
+    method, planned and verified by crane-opt (exit 0 asserted); returns the plan file."""
+    text = CRANE_TARGET.read_text(encoding="utf-8")
+    text = text.replace("scene: crane.yaml", f"scene: {SOURCE_DIR / 'configs' / 'crane_condensed.yaml'}", 1)
+    text = text.replace("target: [-35, 10, 0, 0]", f"target: [{target[0]}, {target[1]}, 0, 0]", 1)
+    assert str(target[0]) in text and "crane_condensed" in text
+    path = tmp_path / "target.yaml"
+    path.write_text(f"method: {method}\n" + text, encoding="utf-8")
+    out = tmp_path / "plan.h5"
+    result = crane_opt("plan", path, "-o", out, "--quiet", cwd=tmp_path, timeout=600)
+    assert result.returncode == 0, result.stderr
+    return out
+
+
 @pytest.mark.parametrize("target", [(-15, 5), (-20, 10), (-25, 5), (-30, 5), (-30, 15), (-35, 10)],
                          ids=lambda t: f"x{t[0]}_z{t[1]}")
 def test_plan_reaches_targets_across_the_map(target: tuple, tmp_path: Path):
     """Table 8-2's problem on the condensed crane with targets spread over the mapped region.
     The four inner ones ended at the inversion with exit 1 when the inversion solved its own
     bordered system from the nearest map point; with the statics of crane-sim they plan."""
-    text = CRANE_TARGET.read_text(encoding="utf-8")
-    text = text.replace("scene: crane.yaml", f"scene: {SOURCE_DIR / 'configs' / 'crane_condensed.yaml'}", 1)
-    text = text.replace("target: [-35, 10, 0, 0]", f"target: [{target[0]}, {target[1]}, 0, 0]", 1)
-    assert str(target[0]) in text and "crane_condensed" in text
-    path = tmp_path / "target.yaml"
-    path.write_text(text, encoding="utf-8")
-    out = tmp_path / "plan.h5"
-    result = crane_opt("plan", path, "-o", out, "--quiet", cwd=tmp_path, timeout=600)
-    assert result.returncode == 0, result.stderr
-    with h5py.File(out, "r") as f:
+    with h5py.File(plan_condensed_crane(tmp_path, target), "r") as f:
         assert np.allclose(f["trajectory/state"][-1][:2], target, atol=0.02)
         assert np.max(f["inversion/error"][...]) < 1e-4
         v = f["verification"]
@@ -213,14 +219,7 @@ def test_zvd_leaves_table_8_2_within_five_centimetres(tmp_path: Path):
     at the start is the in-plane sway of `crane-sim modes` at the thesis' controls (15.50 s; across
     the plane 16.85 s, the simple pendulum to the hook 14.78 s). The load ends within the
     industry's ±5 cm (measured ±0.020 m) where the quasi-static plan leaves ±1.48 m."""
-    text = CRANE_TARGET.read_text(encoding="utf-8")
-    text = "method: zvd\n" + text.replace("scene: crane.yaml", f"scene: {SOURCE_DIR / 'configs' / 'crane_condensed.yaml'}", 1)
-    path = tmp_path / "target.yaml"
-    path.write_text(text, encoding="utf-8")
-    out = tmp_path / "plan.h5"
-    result = crane_opt("plan", path, "-o", out, "--quiet", cwd=tmp_path, timeout=600)
-    assert result.returncode == 0, result.stderr
-    with h5py.File(out, "r") as f:
+    with h5py.File(plan_condensed_crane(tmp_path, (-35, 10), "zvd"), "r") as f:
         assert f["path"].attrs["sway_period_start"] == pytest.approx(15.50, abs=0.05)
         assert f["path"].attrs["motion_time"] == pytest.approx(40 + f["path"].attrs["sway_period"], abs=0.1)
         assert f["verification"].attrs["residual_sway"] < 0.05
