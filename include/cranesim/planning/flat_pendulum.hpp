@@ -8,7 +8,7 @@
 // and the tip s = p + ℓ e lies on the boom's circle ‖s − foot‖ = R, a quadratic in ℓ:
 //   ℓ = −d·e + √((d·e)² − ‖d‖² + R²),   d = p − foot   (the root with the tip above the load).
 // So the boom angle and the rope length at t follow algebraically from p and p̈ at t, and a path
-// whose derivatives up to the fourth vanish at both ends (rest_to_rest below) starts and ends
+// whose derivatives up to the fourth vanish at both ends (restToRest below) starts and ends
 // with the rope plumb and the controls at rest: the load arrives without sway, up to the model.
 
 #include <Eigen/Dense>

@@ -7,7 +7,6 @@
 //   ZVD: amplitudes ¼, ½, ¼ at 0, T/2, T;    residual sway cos²(π r / 2),
 // r = T / (the true period): ZVD keeps the residual below 5 % for r within ±14 %, ZV within ±3 %.
 
-#include <string>
 #include <vector>
 
 #include "cranesim/planning/qr_trajectory.hpp"
