@@ -10,13 +10,20 @@ Panels (after Figures 8-14 to 8-18 of the thesis):
 
 A map-only file (root attribute contents = "map") gets panels (a) and (b) without the fit.
 
+Several plan files (e.g. the same target planned with method quasi_static, zv and zvd) give one
+comparison figure instead: each plan's planned path (the one its controls follow) and verified
+path in the x-z plane, and the load's horizontal offset from the target after the planned
+arrival, labelled with the motion time and the residual sway.
+
 Example:
 
     crane-opt plan configs/target_luffing_jib.yaml -o jib_plan.h5
     python scripts/plot_plan.py jib_plan.h5 -o jib_plan.png
+    python scripts/plot_plan.py jib_plan.h5 jib_zv_plan.h5 jib_zvd_plan.h5 -o jib_methods.png
 """
 
 import argparse
+import contextlib
 import sys
 from pathlib import Path
 
@@ -49,6 +56,55 @@ def control_bounds(plan: h5py.File):
         return np.full(2, -np.inf), np.full(2, np.inf)
     bounds = plan["trajectory/control_bounds"][()]
     return bounds[0], bounds[1]
+
+
+def planned_path(plan: h5py.File):
+    """(t, state) of the path the controls follow: /path, or /trajectory in files without it."""
+    group = plan["path"] if "path" in plan else plan["trajectory"]
+    return group["t"][()], group["state"][()]
+
+
+def method(plan: h5py.File) -> str:
+    return str(plan["path"].attrs.get("method", "quasi_static")) if "path" in plan else "quasi_static"
+
+
+def sway_after_arrival(plan: h5py.File):
+    """(time since the planned arrival, simulated x − target x) of the verification from the arrival on."""
+    verification = plan["verification"]
+    t, simulated = verification["t"][()], verification["simulated"][()]
+    arrival = float(plan["controls"].attrs.get("lead_time", 0.0)) + planned_path(plan)[0][-1]
+    target_x = plan["trajectory/origin"][0] + plan["trajectory/target"][0, 0]
+    after = t >= arrival
+    return t[after] - arrival, simulated[after, 0] - target_x
+
+
+def plot_comparison(plans: list, names: list) -> plt.Figure:
+    """Each plan's planned and verified path, and the sway about the target after arrival."""
+    fig, (ax_path, ax_sway) = plt.subplots(1, 2, figsize=(15, 6), layout="constrained")
+    for k, (plan, name) in enumerate(zip(plans, names)):
+        colour = f"C{k}"
+        origin = plan["trajectory/origin"][()]
+        t, state = planned_path(plan)
+        simulated = plan["verification/simulated"][()]
+        label = method(plan) if name == method(plan) else f"{method(plan)} ({name})"
+        ax_path.plot(*(origin + state[:, :2]).T, "--", color=colour, label=f"{label}: planned")
+        ax_path.plot(simulated[:, 0], simulated[:, 2], "-", color=colour, lw=1, label=f"{label}: verified")
+        since, offset = sway_after_arrival(plan)
+        sway = plan["verification"].attrs.get("residual_sway", np.nan)
+        ax_sway.plot(since, offset, color=colour,
+                     label=f"{label}: motion {t[-1] - t[0]:.4g} s, residual sway ±{sway:.3g} m")
+    first = plans[0]
+    ax_path.plot(*(first["trajectory/origin"][()] + first["trajectory/start"][0, :2]), "go", label="start")
+    ax_path.plot(*(first["trajectory/origin"][()] + first["trajectory/target"][0, :2]), "ks", label="target")
+    ax_path.set(xlabel="x [m]", ylabel="z [m]", title="end-point path: planned and verified")
+    ax_path.set_aspect("equal", adjustable="datalim")
+    ax_path.legend(loc="best", fontsize="small")
+    ax_sway.axhline(0.0, color="0.5", lw=0.8)
+    ax_sway.set(xlabel="time since the planned arrival [s]", ylabel="simulated x − target x [m]",
+                title="sway after arrival")
+    ax_sway.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize="small")
+    fig.suptitle("crane-opt plans: " + ", ".join(names))
+    return fig
 
 
 def panel_map(ax, plan: h5py.File) -> None:
@@ -162,7 +218,7 @@ def panel_error(ax, plan: h5py.File) -> None:
     planned, simulated = verification["planned"][()], verification["simulated"][()]
     ax.plot(t, np.linalg.norm(simulated[:, [0, 2]] - planned, axis=1), "C2-")
     lead = float(plan["controls"].attrs.get("lead_time", 0.0))
-    end = lead + plan["trajectory/t"][-1]
+    end = lead + planned_path(plan)[0][-1]
     ax.axvspan(lead, end, color="0.9", label="planned motion")
     ax.set(xlabel="simulation time [s]", ylabel="‖simulated − planned‖ (x, z) [m]", title="(f) tracking error")
     a = verification.attrs
@@ -201,16 +257,26 @@ def plot_plan(plan: h5py.File) -> plt.Figure:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("plan", type=Path, help="plan file written by crane-opt plan (HDF5)")
-    parser.add_argument("-o", "--output", type=Path, help="output image (default: <plan>_plan.png)")
+    parser.add_argument("plans", type=Path, nargs="+", metavar="plan",
+                        help="plan file written by crane-opt plan (HDF5); several: a comparison figure")
+    parser.add_argument("-o", "--output", type=Path,
+                        help="output image (default: <first plan>_plan.png, or _compare.png for several)")
     args = parser.parse_args(argv)
-    output = args.output or args.plan.with_name(args.plan.stem + "_plan.png")
-    try:
-        with h5py.File(args.plan, "r") as plan:
-            fig = plot_plan(plan)
-    except (OSError, KeyError) as error:
-        print(f"plot_plan.py: error: {args.plan}: {error}", file=sys.stderr)
-        return 2
+    first = args.plans[0]
+    output = args.output or first.with_name(first.stem + ("_plan.png" if len(args.plans) == 1 else "_compare.png"))
+    with contextlib.ExitStack() as stack:
+        files = []
+        for path in args.plans:
+            try:
+                files.append(stack.enter_context(h5py.File(path, "r")))
+            except OSError as error:
+                print(f"plot_plan.py: error: {path}: {error}", file=sys.stderr)
+                return 2
+        try:
+            fig = plot_plan(files[0]) if len(files) == 1 else plot_comparison(files, [p.stem for p in args.plans])
+        except KeyError as error:
+            print(f"plot_plan.py: error: {', '.join(map(str, args.plans))}: {error}", file=sys.stderr)
+            return 2
     fig.savefig(output, dpi=110)
     plt.close(fig)
     print(f"wrote {output}")

@@ -86,7 +86,7 @@ void writeControls(Hdf5File& file, const QuasiStaticPlan& plan) {
     luffing.push_back(c.luffing_length);
     hoist.push_back(c.hoist_length);
   }
-  writeVector(file, "/controls/t", plan.trajectory.t);
+  writeVector(file, "/controls/t", plan.path.t);
   writeVector(file, "/controls/boom_angle", angle);
   writeVector(file, "/controls/hoist_change", change);
   writeVector(file, "/controls/luffing_length", luffing);
@@ -98,6 +98,23 @@ void writeControls(Hdf5File& file, const QuasiStaticPlan& plan) {
     writeVector(file, g + "/slopes", spline->slopes);
   }
   file.attribute("/controls", "lead_time", plan.lead_time);
+}
+
+void writePath(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& plan) {
+  writeVector(file, "/path/t", plan.path.t);
+  writePoints<4>(file, "/path/state", plan.path.states);
+  const char* method = target.method == PlanMethod::ZV ? "zv" : target.method == PlanMethod::ZVD ? "zvd" : "quasi_static";
+  file.attribute("/path", "method", std::string(method));
+  file.attribute("/path", "motion_time", plan.path.t.back() - plan.path.t.front());
+  file.attribute("/path", "hanging_length_start", plan.hanging_length_start);
+  file.attribute("/path", "hanging_length_end", plan.hanging_length_end);
+  if (!plan.shaper.times.empty()) {
+    file.attribute("/path", "sway_period_start", plan.sway_period_start);
+    file.attribute("/path", "sway_period_end", plan.sway_period_end);
+    file.attribute("/path", "sway_period", plan.sway_period);
+    writeVector(file, "/path/impulse_times", plan.shaper.times);
+    writeVector(file, "/path/impulse_amplitudes", plan.shaper.amplitudes);
+  }
 }
 
 void writeVerification(Hdf5File& file, const QuasiStaticPlan& plan) {
@@ -143,6 +160,7 @@ void writePlan(const std::string& path, const TargetSpec& target, const QuasiSta
     if (!map_only) {
       writeFit(file, plan.fit, target.fit);
       writeTrajectory(file, target, plan);
+      writePath(file, target, plan);
       writeControls(file, plan);
       writeVerification(file, plan);
     }

@@ -126,7 +126,7 @@ TargetSpec readTarget(const std::string& path) {
   const YAML::Node root = loadBoundedYaml(text);
   const YamlField f(root, "");
   if (!f.isMap()) f.fail("a target file is a mapping (scene, crane, map, fit, trajectory, …)");
-  f.allowKeys({"name", "scene", "crane", "map", "fit", "trajectory", "control_spline", "verification"});
+  f.allowKeys({"name", "scene", "method", "crane", "map", "fit", "trajectory", "control_spline", "verification"});
 
   TargetSpec t;
   t.path = path;
@@ -137,6 +137,10 @@ TargetSpec readTarget(const std::string& path) {
     t.scene = readScene(scene_path);
   } catch (const SceneError& e) {
     scene.fail(fmt::format("in the scene '{}': {}", scene_path, e.what()));
+  }
+  if (const auto method = f.find("method")) {
+    const std::string m = method->choice({"quasi_static", "zv", "zvd"});
+    t.method = m == "zv" ? PlanMethod::ZV : m == "zvd" ? PlanMethod::ZVD : PlanMethod::QuasiStatic;
   }
   const YamlField crane = f.at("crane");
   t.controls = readControls(crane);

@@ -20,24 +20,22 @@ TableProfile smoothControlTrajectory(const std::vector<double>& t, const std::ve
   }
 
   const double spacing = (t.back() - t.front()) / (points - 1);
+  const int knots = points + 2 * steady_points;
   TableProfile profile;
-  profile.t.reserve(points + 2 * steady_points);
-  profile.y.reserve(points + 2 * steady_points);
-  for (int k = steady_points; k > 0; --k) {
-    profile.t.push_back(t.front() - k * spacing);
-    profile.y.push_back(y.front());
-  }
+  profile.t.reserve(knots);
+  profile.y.reserve(knots);
   std::size_t segment = 1;  // samples t[segment − 1] ≤ time ≤ t[segment]
-  for (int m = 0; m < points; ++m) {
+  for (int k = 0; k < knots; ++k) {
+    profile.t.push_back(k * spacing);
+    const int m = k - steady_points;  // the resampled point, or a steady knot outside 0 … points − 1
+    if (m < 0 || m >= points) {
+      profile.y.push_back(m < 0 ? y.front() : y.back());
+      continue;
+    }
     const double time = m + 1 == points ? t.back() : t.front() + m * spacing;
     while (segment + 1 < t.size() && t[segment] < time) ++segment;
     const double w = (time - t[segment - 1]) / (t[segment] - t[segment - 1]);
-    profile.t.push_back(time);
     profile.y.push_back((1.0 - w) * y[segment - 1] + w * y[segment]);
-  }
-  for (int k = 1; k <= steady_points; ++k) {
-    profile.t.push_back(t.back() + k * spacing);
-    profile.y.push_back(y.back());
   }
   profile.slopes = splineSlopes(profile.t, profile.y, true);
   return profile;

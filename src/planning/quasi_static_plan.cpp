@@ -11,6 +11,7 @@
 #include "cranesim/model/compile.hpp"
 #include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
+#include "cranesim/solvers/modes.hpp"
 
 namespace cranesim {
 namespace {
@@ -43,6 +44,31 @@ Eigen::Vector2d trajectoryAt(const QrTrajectory& trajectory, double t) {
   return (1.0 - w) * trajectory.states[k - 1].head<2>() + w * trajectory.states[k].head<2>();
 }
 
+/// The pendulum the load hangs on: from the hoist rope's end farther from the end point (where
+/// the rope leaves the boom head) to the end point, at the configuration q.
+double hangingLength(const Model& model, const VecX& q, const CraneControls& controls) {
+  const Vec3 end = model.jointFrame(q.data(), model.findJoint(controls.end_point)).r;
+  double length = 0.0;
+  for (const char* side : {".start", ".end"})
+    length = std::max(length, (model.jointFrame(q.data(), model.findJoint(controls.hoist_rope + side)).r - end).norm());
+  return length;
+}
+
+/// The period of the load's sway in the crane's plane about the equilibrium q: the crane's
+/// lowest elastic mode in which the end point's node moves mostly along x (the plane's
+/// horizontal). It includes what the simple pendulum misses: the load's own inertia below the
+/// hook, the rope's mass and stretch and the boom's compliance.
+double swayPeriod(const Model& model, const VecX& q, double t, const CraneControls& controls) {
+  const ModalResult modes = computeModes(model, q, t, 0);
+  const Node& node = model.nodes[model.joints[model.findJoint(controls.end_point)].node];
+  for (Eigen::Index k = 0; k < modes.frequencies.size(); ++k) {
+    if (modes.rigid[k] || modes.omega_squared(k) <= 0.0) continue;
+    const Eigen::Vector3d v = modes.shapes.col(k).segment<3>(node.v).cwiseAbs();
+    if (v.x() > v.y() && v.x() > v.z()) return 1.0 / modes.frequencies(k);
+  }
+  throw std::runtime_error(fmt::format("input shaping: no mode of the crane sways '{}' in its plane", controls.end_point));
+}
+
 }  // namespace
 
 MapFit fitStaticMap(const StaticMap& map, const SurfaceSpec& spec) {
@@ -62,6 +88,19 @@ ControlPoint controlsAt(const MapFit& fit, const StaticMap& map, double x, doubl
   c.hoist_length = map.hoist_length - uv(1);  // exact: the hoist change is the map's own variable
   return c;
 }
+
+namespace {
+
+/// The controls of a path state (relative to the origin); leaving the map is bad input.
+ControlPoint pathControls(const TargetSpec& target, const QuasiStaticPlan& plan, const EndState& s) {
+  try {
+    return controlsAt(plan.fit, plan.map, target.origin(0) + s(0), target.origin(1) + s(1));
+  } catch (const std::domain_error& e) {
+    throw SceneError(target.where_trajectory, fmt::format("the planned trajectory leaves the static map: {}", e.what()));
+  }
+}
+
+}  // namespace
 
 QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   const auto say = [&](const std::string& line) {
@@ -104,48 +143,61 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   say(fmt::format("trajectory: {} steps, cost {:.6g}, {} Ipopt iterations in {:.3f} s; end at ({:.4f}, {:.4f}) m", problem.steps,
                   plan.trajectory.cost, plan.trajectory.iterations, plan.trajectory_s, end(0), end(1)));
 
-  // 4. Control trajectory (6.4).
-  t0 = Clock::now();
-  std::vector<double> luffing, hoist;
-  for (const EndState& s : plan.trajectory.states) {
-    ControlPoint c;
-    try {
-      c = controlsAt(plan.fit, plan.map, origin(0) + s(0), origin(1) + s(1));
-    } catch (const std::domain_error& e) {
-      throw SceneError(target.where_trajectory, fmt::format("the planned trajectory leaves the static map: {}", e.what()));
-    }
-    plan.controls.push_back(c);
-    luffing.push_back(c.luffing_length);
-    hoist.push_back(c.hoist_length);
-  }
-  plan.luffing_spline = smoothControlTrajectory(plan.trajectory.t, luffing, target.resample_points, target.steady_points);
-  plan.hoist_spline = smoothControlTrajectory(plan.trajectory.t, hoist, target.resample_points, target.steady_points);
-  plan.lead_time = plan.trajectory.t.front() - plan.luffing_spline.t.front();
-  for (TableProfile* spline : {&plan.luffing_spline, &plan.hoist_spline})
-    for (double& t : spline->t) t += plan.lead_time;
-  plan.controls_s = secondsSince(t0);
-
-  // 5. map(inverse(p)) − p at five points of the trajectory, against the crane's own equilibrium.
+  // 4. map(inverse(p)) − p at five points of the trajectory, against the crane's own equilibrium;
+  // at its ends also the pendulum the load hangs on.
   t0 = Clock::now();
   const int n = static_cast<int>(plan.trajectory.states.size());
   for (int k : {0, (n - 1) / 4, (n - 1) / 2, 3 * (n - 1) / 4, n - 1}) {
-    const ControlPoint& c = plan.controls[k];
+    InversionCheck check;
+    check.t = plan.trajectory.t[k];
+    check.planned = origin + plan.trajectory.states[k].head<2>();
+    const ControlPoint c = pathControls(target, plan, plan.trajectory.states[k]);
     const Scene scene = withControls(target.scene, target.controls, Profile(ConstantProfile{c.luffing_length}),
                                      Profile(ConstantProfile{c.hoist_length}));
     const Model model = compileModel(scene);
     const StaticResult eq = equilibriumUnder(scene, model, scene.solver.t_start, c);
     const Vec3 reached = model.jointFrame(eq.q.data(), model.findJoint(target.controls.end_point)).r;
-    InversionCheck check;
-    check.t = plan.trajectory.t[k];
-    check.planned = origin + plan.trajectory.states[k].head<2>();
     check.reached = Eigen::Vector2d(reached.x(), reached.z());
     check.error = (check.reached - check.planned).norm();
     plan.inversion_checks.push_back(check);
+    if (k != 0 && k != n - 1) continue;
+    (k == 0 ? plan.hanging_length_start : plan.hanging_length_end) = hangingLength(model, eq.q, target.controls);
+    if (target.method != PlanMethod::QuasiStatic)
+      (k == 0 ? plan.sway_period_start : plan.sway_period_end) = swayPeriod(model, eq.q, eq.t, target.controls);
   }
+  // Between the path's ends the sway period changes with the rope (Table 8-2: 15.5 → 12.0 s); the
+  // mean puts the shaper's period error at either end near half that range.
+  plan.sway_period = 0.5 * (plan.sway_period_start + plan.sway_period_end);
   plan.inversion_s = secondsSince(t0);
   double worst = 0.0;
   for (const InversionCheck& c : plan.inversion_checks) worst = std::max(worst, c.error);
   say(fmt::format("inversion: map(inverse(p)) − p ≤ {:.3g} m at {} trajectory points", worst, plan.inversion_checks.size()));
+
+  // 5. The path: the QR trajectory, or it input-shaped for the sway period.
+  plan.path = plan.trajectory;
+  if (target.method != PlanMethod::QuasiStatic) {
+    plan.shaper = makeShaper(target.method == PlanMethod::ZV ? ShaperKind::ZV : ShaperKind::ZVD, plan.sway_period);
+    plan.path = shapeTrajectory(plan.trajectory, plan.shaper);
+    say(fmt::format("input shaping: {} impulses over {:.4g} s for the mean sway period {:.4g} s ({:.4g} s at the start, "
+                    "{:.4g} s at the end; hanging length {:.4g} → {:.4g} m); motion {:.4g} s",
+                    plan.shaper.times.size(), plan.shaper.duration(), plan.sway_period, plan.sway_period_start,
+                    plan.sway_period_end, plan.hanging_length_start, plan.hanging_length_end,
+                    plan.path.t.back() - plan.path.t.front()));
+  }
+
+  // 6. Control trajectory (6.4).
+  t0 = Clock::now();
+  std::vector<double> luffing, hoist;
+  for (const EndState& s : plan.path.states) {
+    const ControlPoint c = pathControls(target, plan, s);
+    plan.controls.push_back(c);
+    luffing.push_back(c.luffing_length);
+    hoist.push_back(c.hoist_length);
+  }
+  plan.luffing_spline = smoothControlTrajectory(plan.path.t, luffing, target.resample_points, target.steady_points);
+  plan.hoist_spline = smoothControlTrajectory(plan.path.t, hoist, target.resample_points, target.steady_points);
+  plan.lead_time = plan.luffing_spline.t[target.steady_points] - plan.path.t.front();
+  plan.controls_s = secondsSince(t0);
   return plan;
 }
 
@@ -174,7 +226,7 @@ void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::stri
 
   const Eigen::Vector2d origin = target.origin;
   const std::vector<double>& end = recorder.jointPositions(model.findJoint(target.controls.end_point));
-  const double motion_end = plan.lead_time + plan.trajectory.t.back();
+  const double motion_end = plan.lead_time + plan.path.t.back();
   const double settled = plan.luffing_spline.t.back();
   double sum = 0.0, x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
@@ -182,7 +234,7 @@ void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::stri
   for (std::size_t k = 0; k < recorder.samples(); ++k) {
     const double t = recorder.time()[k];
     const Eigen::Vector3d p(end[3 * k], end[3 * k + 1], end[3 * k + 2]);
-    const Eigen::Vector2d planned = origin + trajectoryAt(plan.trajectory, t - plan.lead_time);
+    const Eigen::Vector2d planned = origin + trajectoryAt(plan.path, t - plan.lead_time);
     v.t.push_back(t);
     v.planned.push_back(planned);
     v.simulated.push_back(p);

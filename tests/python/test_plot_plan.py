@@ -102,6 +102,19 @@ def write_plan(path: Path, contents: str = "plan") -> Path:
     return path
 
 
+def write_shaped_plan(path: Path, delay: float) -> Path:
+    """The synthetic plan with a /path (method zvd) that arrives `delay` s later than its QR trajectory."""
+    write_plan(path)
+    with h5py.File(path, "r+") as f:
+        t, state = f["trajectory/t"][()], f["trajectory/state"][()]
+        extra = np.arange(1, int(round(delay / 0.5)) + 1)
+        group = f.create_group("path")
+        group["t"] = np.concatenate([t, t[-1] + 0.5 * extra])
+        group["state"] = np.vstack([state, np.repeat(state[-1:], len(extra), axis=0)])
+        group.attrs.update({"method": "zvd", "motion_time": t[-1] + delay})
+    return path
+
+
 def assert_png(path: Path) -> None:
     assert path.is_file() and path.stat().st_size > 20_000
     assert path.read_bytes().startswith(PNG_SIGNATURE)
@@ -134,3 +147,23 @@ def test_hermite_reproduces_a_cubic_and_is_constant_outside(plot_plan):
     outside = plot_plan.hermite([-5.0, -1.5, 2.5, 10.0], knots, knots**3, 3 * knots**2)
     np.testing.assert_array_equal(outside, [-1.0, -1.0, 8.0, 8.0])
     assert np.ndim(plot_plan.hermite(0.3, knots, knots**3, 3 * knots**2)) == 0
+
+
+def test_sway_after_arrival_is_the_offset_from_the_target_after_the_planned_arrival(plot_plan, tmp_path):
+    """The synthetic verification sways 0.05 sin(2t) about a path that holds the target after
+    lead + 5 s; a shaped plan's arrival is its own path's end, 1 s later."""
+    for path, arrival in ((write_plan(tmp_path / "plain.h5"), 1.0 + 5.0),
+                          (write_shaped_plan(tmp_path / "shaped.h5", 1.0), 1.0 + 6.0)):
+        with h5py.File(path, "r") as plan:
+            since, offset = plot_plan.sway_after_arrival(plan)
+            time = plan["verification/t"][()]
+        assert since[0] >= 0 and np.all(np.diff(since) > 0)
+        assert len(since) == np.count_nonzero(time >= arrival)
+        np.testing.assert_allclose(offset, 0.05 * np.sin(2 * (since + arrival)), atol=1e-12)
+
+
+def test_comparison_figure_of_several_plans(plot_plan, tmp_path):
+    plans = [write_plan(tmp_path / "quasi_static.h5"), write_shaped_plan(tmp_path / "zvd.h5", 1.0)]
+    assert plot_plan.main([str(p) for p in plans]) == 0
+    assert_png(tmp_path / "quasi_static_compare.png")
+    assert plot_plan.main([str(plans[0]), str(tmp_path / "absent.h5")]) == 2

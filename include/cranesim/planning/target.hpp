@@ -12,6 +12,10 @@
 
 namespace cranesim {
 
+/// How the end-point path is planned: the thesis' quasi-static QR trajectory (6.3), or that
+/// trajectory input-shaped for the load's sway period (planning/input_shaping.hpp).
+enum class PlanMethod { QuasiStatic, ZV, ZVD };
+
 struct TargetSpec {
   std::string path, text;
   Scene scene;
@@ -24,6 +28,7 @@ struct TargetSpec {
   QrProblem trajectory;
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   SourceLocation where_start, where_target, where_trajectory;
+  PlanMethod method = PlanMethod::QuasiStatic;
   int resample_points = 20;  // 6.4: knots taken at equal times from the discrete controls
   int steady_points = 5;     // 6.4: steady-state knots added before and after
   double settle_time = 20.0;  // verification: simulated time after the motion, s
