@@ -5,6 +5,11 @@
 // residual and Jacobian, and the statics' Jacobian (EquilibriumSystem: ∂/∂q and ∂/∂λ only);
 // and the crane's elements by kind (BM_CraneElements/<kind>: one residual and one DAE Jacobian
 // of every element of that kind, single-threaded), the breakdown of the crane's kernel time.
+// BM_Scaling/<model>/<work>: how the cost per residual, DAE Jacobian, KLU refactorisation and
+// solve grows with the coordinates, from one lattice section tube by tube
+// (configs/jib_fidelities.yaml) through the main boom tube by tube to the full-member crane
+// (configs/crane_members.yaml), beside the 162-coordinate cranes; counters: coordinates, DAE
+// unknowns, Jacobian non-zeros, LU non-zeros (the fill).
 
 #include <benchmark/benchmark.h>
 
@@ -12,6 +17,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -22,6 +28,7 @@
 
 #include "chain_scene.hpp"
 #include "cranesim/assembly/assembler.hpp"
+#include "cranesim/math/sparse_lu.hpp"
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/solvers/equilibrium_system.hpp"
@@ -95,8 +102,8 @@ struct CraneFixture {
   std::vector<double> y, yp, res, values;
   cranesim::VecX x;
 
-  explicit CraneFixture(const std::string& scene) {
-    model = cranesim::compileModel(cranesim::readScene(std::string(CRANESIM_SOURCE_DIR) + "/configs/" + scene));
+  explicit CraneFixture(const cranesim::Scene& scene) {
+    model = cranesim::compileModel(scene);
     assembler = std::make_unique<cranesim::Assembler>(model);
     statics = std::make_unique<cranesim::EquilibriumSystem>(model, 0.0);
     const auto& a = *assembler;
@@ -111,12 +118,28 @@ struct CraneFixture {
   }
 };
 
-CraneFixture& crane(bool condensed) {
-  static std::unique_ptr<CraneFixture> cache[2];
-  auto& f = cache[condensed];
-  if (!f) f = std::make_unique<CraneFixture>(condensed ? "crane_condensed.yaml" : "crane.yaml");
+cranesim::Scene configScene(const std::string& name) {
+  return cranesim::readScene(std::string(CRANESIM_SOURCE_DIR) + "/configs/" + name);
+}
+
+/// The models of BM_Scaling, by name: a scene from configs/, or the full-member crane with its
+/// derrick condensed (main_boom_members).
+cranesim::Scene scalingScene(const std::string& name) {
+  if (name != "main_boom_members") return configScene(name + ".yaml");
+  cranesim::Scene scene = configScene("crane_members.yaml");
+  for (cranesim::MemberSpec& m : scene.members)
+    if (m.name.rfind("derrick", 0) == 0) m.fidelity = cranesim::TrussFidelity::Condensed;
+  return scene;
+}
+
+CraneFixture& fixture(const std::string& name) {
+  static std::map<std::string, std::unique_ptr<CraneFixture>> cache;
+  auto& f = cache[name];
+  if (!f) f = std::make_unique<CraneFixture>(scalingScene(name));
   return *f;
 }
+
+CraneFixture& crane(bool condensed) { return fixture(condensed ? "crane_condensed" : "crane"); }
 
 const char* fidelity(const benchmark::State& state) { return state.range(0) ? "condensed" : "super_truss"; }
 
@@ -201,6 +224,46 @@ void registerCraneElementBenchmarks() {
   }
 }
 
+/// One residual, DAE Jacobian, KLU refactorisation of that Jacobian, or solve with it, of a model
+/// of BM_Scaling.
+void scaling(benchmark::State& state, const std::string& name, const std::string& work) {
+  CraneFixture& f = fixture(name);
+  const auto& a = *f.assembler;
+  const cranesim::SparsityPattern& p = a.pattern();
+  f.assembler->jacobian(0.0, 1e3, f.y.data(), f.yp.data(), f.values.data());
+  cranesim::SparseLU lu;
+  if (!lu.factorise(static_cast<int>(a.size()), p.columnPointers().data(), p.rowIndices().data(), f.values.data()))
+    state.SkipWithError("singular DAE Jacobian");
+  std::vector<double> x(a.size(), 1.0);
+  for (auto _ : state) {
+    if (work == "residual") {
+      f.assembler->residual(0.0, f.y.data(), f.yp.data(), f.res.data());
+      benchmark::DoNotOptimize(f.res.data());
+    } else if (work == "jacobian") {
+      f.assembler->jacobian(0.0, 1e3, f.y.data(), f.yp.data(), f.values.data());
+      benchmark::DoNotOptimize(f.values.data());
+    } else if (work == "factor") {
+      benchmark::DoNotOptimize(lu.factorise(static_cast<int>(a.size()), p.columnPointers().data(), p.rowIndices().data(),
+                                            f.values.data()));
+    } else {
+      lu.solve(x.data());
+      benchmark::DoNotOptimize(x.data());
+    }
+    benchmark::ClobberMemory();
+  }
+  state.counters["coordinates"] = f.model.nq;
+  state.counters["unknowns"] = static_cast<double>(a.size());
+  state.counters["jacobian_nonzeros"] = static_cast<double>(p.nonZeros());
+  state.counters["lu_nonzeros"] = static_cast<double>(lu.factorNonZeros());
+}
+
+void registerScalingBenchmarks() {
+  for (const char* name : {"crane", "crane_condensed", "jib_fidelities", "main_boom_members", "crane_members"})
+    for (const char* work : {"residual", "jacobian", "factor", "solve"})
+      benchmark::RegisterBenchmark(fmt::format("BM_Scaling/{}/{}", name, work).c_str(), scaling, std::string(name), std::string(work))
+          ->Unit(benchmark::kMillisecond);
+}
+
 BENCHMARK(BM_CraneResidual)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CraneJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CraneStaticJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
@@ -215,6 +278,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   registerCraneElementBenchmarks();
+  registerScalingBenchmarks();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -60,4 +60,9 @@ void SparseLU::solve(double* x) {
   klu_solve(k.symbolic, k.numeric, k.n, 1, x, &k.common);
 }
 
+long SparseLU::factorNonZeros() const {
+  const Klu& k = *klu_;
+  return k.numeric ? static_cast<long>(k.numeric->lnz) + k.numeric->unz : 0;
+}
+
 }  // namespace cranesim

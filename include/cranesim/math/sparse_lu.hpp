@@ -21,6 +21,8 @@ class SparseLU {
   bool factorise(int n, const int* Ap, const int* Ai, const double* Ax);
   /// Solves A x = b in place (x holds b on entry) with the latest factorisation.
   void solve(double* x);
+  /// Entries of the latest factors L and U (KLU's lnz + unz, diagonals included): the fill.
+  long factorNonZeros() const;
 
  private:
   struct Klu;
