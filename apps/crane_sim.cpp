@@ -158,8 +158,8 @@ void printEquilibriumReport(const Model& model, const StaticResult& eq) {
 }
 
 /// Models up to this many velocity coordinates get the equilibrium's stability checked (dense
-/// modal analysis, O(nv³): ~5 ms for the thesis crane's 160, 0.9 s for its full-member model's
-/// 1230, a few seconds at 2000).
+/// modal analysis without the shapes, O(nv³): ~5 ms for the thesis crane's 160, 0.5 s for its
+/// full-member model's 1230, a few seconds at 2000).
 constexpr int kStabilityCheckLimit = 2000;
 
 /// Why the equilibrium is unstable (its reduced stiffness has a negative eigenvalue), or empty;
@@ -169,7 +169,7 @@ std::string instability(const Model& model, const StaticResult& eq, bool quiet =
     if (!quiet) fmt::print(stderr, "stability: not checked ({} velocity coordinates, more than {})\n", model.nv, kStabilityCheckLimit);
     return {};
   }
-  const ModalResult modal = computeModes(model, eq.q, eq.t, 0);
+  const ModalResult modal = computeModes(model, eq.q, eq.t, 0, ModeShapes::Skipped);
   if (modal.omega_squared.size() == 0) return {};
   if (modal.omega_squared(0) < -modal.zero_threshold)
     return fmt::format("the equilibrium found is unstable: its lowest mode has ω² = {:.4g} rad²/s² (a perturbation grows "

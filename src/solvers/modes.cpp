@@ -54,7 +54,7 @@ Eigen::SparseMatrix<double> coordinateRateMap(const Model& model, const VecX& q)
 
 }  // namespace
 
-ModalResult computeModes(const Model& model, const VecX& q_eq, double t, int count) {
+ModalResult computeModes(const Model& model, const VecX& q_eq, double t, int count, ModeShapes shapes) {
   Assembler assembler(model, Formulation::GGL);
   assembler.setParametersHeld(true);
   const int nv = model.nv;
@@ -86,7 +86,8 @@ ModalResult computeModes(const Model& model, const VecX& q_eq, double t, int cou
   const int modes = count <= 0 ? result.free_dofs : std::min(count, result.free_dofs);
   result.omega_squared = VecX::Zero(modes);
   result.frequencies = VecX::Zero(modes);
-  result.shapes = MatX::Zero(nv, modes);
+  const bool with_shapes = shapes == ModeShapes::Computed;
+  result.shapes = MatX::Zero(nv, with_shapes ? modes : 0);
   result.rigid.assign(modes, false);
   if (result.free_dofs == 0) return result;
 
@@ -95,7 +96,8 @@ ModalResult computeModes(const Model& model, const VecX& q_eq, double t, int cou
                                          "freedom left by the constraints (a massless coordinate?)",
                                          result.free_dofs));
   const Eigen::GeneralizedSelfAdjointEigenSolver<MatX> eigen(0.5 * (K_reduced + K_reduced.transpose()), M_reduced,
-                                                             Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+                                                             (with_shapes ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly) |
+                                                                 Eigen::Ax_lBx);
   if (eigen.info() != Eigen::Success) throw std::runtime_error("modes: the eigen-solver did not converge");
 
   const VecX& all = eigen.eigenvalues();
@@ -106,6 +108,7 @@ ModalResult computeModes(const Model& model, const VecX& q_eq, double t, int cou
     result.omega_squared(k) = w2;
     result.rigid[k] = std::abs(w2) <= result.zero_threshold;
     if (!result.rigid[k]) result.frequencies(k) = std::copysign(std::sqrt(std::abs(w2)), w2) / (2.0 * std::numbers::pi);
+    if (!with_shapes) continue;
     VecX shape = N * eigen.eigenvectors().col(k);
     Eigen::Index largest = 0;
     shape.cwiseAbs().maxCoeff(&largest);

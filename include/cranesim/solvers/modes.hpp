@@ -48,10 +48,13 @@ struct ModalResult {
   double force_residual = 0.0;
 };
 
+enum class ModeShapes { Computed, Skipped };
+
 /// The `count` lowest modes (all of them when count ≤ 0 or count ≥ free_dofs) of `model` about
-/// the equilibrium q_eq (e.g. solveStatics(model, q, t).q) at time t. Throws std::runtime_error
-/// when the mass matrix is not positive definite on the constraint null space (a massless
-/// degree of freedom).
-ModalResult computeModes(const Model& model, const VecX& q_eq, double t, int count);
+/// the equilibrium q_eq (e.g. solveStatics(model, q, t).q) at time t; with ModeShapes::Skipped
+/// only their frequencies (`shapes` has no columns), about half the work. Throws
+/// std::runtime_error when the mass matrix is not positive definite on the constraint null space
+/// (a massless degree of freedom).
+ModalResult computeModes(const Model& model, const VecX& q_eq, double t, int count, ModeShapes shapes = ModeShapes::Computed);
 
 }  // namespace cranesim
