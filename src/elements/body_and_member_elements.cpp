@@ -25,6 +25,7 @@ std::unique_ptr<Element> makeElement(SplineRopeKernel kernel, std::vector<int> n
 }
 
 std::unique_ptr<Element> makeElement(TimoshenkoBeamKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices) {
+  kernel.keepStiffness();
   return std::make_unique<KernelElement<TimoshenkoBeamKernel>>(std::move(kernel), std::move(nodes), std::move(q_indices), std::move(v_indices));
 }
 

@@ -53,6 +53,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <type_traits>
 
 #include "cranesim/elements/section.hpp"
@@ -180,6 +181,12 @@ struct TimoshenkoBeamKernel {
     return K;
   }
 
+  /// K kept once the kernel's section and material are final (makeElement does it), so that
+  /// the forces need not integrate it again at every call.
+  void keepStiffness() { kept_stiffness_ = localStiffness(); }
+  /// K: the kept one, or integrated now.
+  Mat12 stiffness() const { return kept_stiffness_ ? *kept_stiffness_ : localStiffness(); }
+
   // ---------------------------------------------------------------------------------------------
   // Co-rotated frame and local deformations (3-29, 3-34)
 
@@ -212,14 +219,14 @@ struct TimoshenkoBeamKernel {
 
   double strainEnergy(const Q<double>& q) const {
     const auto d = localDeformation<double>(q);
-    return 0.5 * d.dot(localStiffness() * d);
+    return 0.5 * d.dot(stiffness() * d);
   }
 
   /// Elastic and damping forces along dq: J_dᵀ K (d + η J_d dq).
   template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
     return elasticForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
                            q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
-                           localStiffness());
+                           stiffness());
   }
 
   /// The same from the end frames and a precomputed K = localStiffness() (for callers that
@@ -252,14 +259,14 @@ struct TimoshenkoBeamKernel {
   }
   Eigen::Matrix<double, 12, 1> sectionForces(const Q<double>& q, const V<double>& v, const V<double>& a, const Vec3& gravity) const {
     return sectionForces(q.segment<3>(0), rotationMatrix<double>(Vec3(q.segment<3>(3))), q.segment<3>(6),
-                         rotationMatrix<double>(Vec3(q.segment<3>(9))), v, a, gravity, localStiffness());
+                         rotationMatrix<double>(Vec3(q.segment<3>(9))), v, a, gravity, stiffness());
   }
 
   /// The damping forces alone, η J_dᵀ K J_d dq (their power is the Kelvin–Voigt dissipation).
   template <class S> V<S> dampingForce(const Q<S>& q, const V<S>& v) const {
     return dampingForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
                            q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
-                           localStiffness());
+                           stiffness());
   }
   template <class S>
   V<S> dampingForce(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2, const Mat3T<S>& R2, const V<S>& v,
@@ -269,6 +276,8 @@ struct TimoshenkoBeamKernel {
   }
 
  private:
+  std::optional<Mat12> kept_stiffness_;
+
   /// R_B and d (3-34), and with kTangent J_d in closed form. With δω_B the variation of R_B in its
   /// own axes (δR_B = R_B δω̃_B), c = r² − r¹, ℓ = ‖c‖, b = c/ℓ, a = R_m e_x, k = a × b:
   /// - the chord direction turns the x axis: δω_B,y = −(R_B e_z)·δc/ℓ, δω_B,z = (R_B e_y)·δc/ℓ;
