@@ -125,7 +125,8 @@ TargetSpec readTarget(const std::string& path) {
   const std::string text = readInputFile(path, "target file", {path, 0, 0});
   const YAML::Node root = loadBoundedYaml(text);
   const YamlField f(root, "");
-  if (!f.isMap()) f.fail("a target file is a mapping (scene, crane, map, fit, trajectory, …)");
+  // An empty document has no mark of its own: the defect is the file from its first line on.
+  if (!f.isMap()) throw SceneError({"<document>", 1, 1}, "a target file is a mapping (scene, crane, map, fit, trajectory, …)");
   f.allowKeys({"name", "scene", "method", "crane", "map", "fit", "trajectory", "control_spline", "verification"});
 
   TargetSpec t;

@@ -1,19 +1,21 @@
-"""Mutated scenes against crane-sim's input contract: no crash, no hang, a clear error.
+"""Mutated scenes and targets against the tools' input contract: no crash, no hang, a clear error.
 
 Every mutant is one of the shipped scenes (configs/*.yaml, their `base:` scenes beside them) with
 one defect: a value replaced by a hostile one (NaN, ±inf, 0, negative, 1e308, 1e-308, a huge
 integer, an empty or very long string, a list, a mapping, null), a key deleted, renamed or
 duplicated, a list item duplicated or dropped, or the text itself cut, spliced or garbled.
 Each mutant goes through `crane-sim check` (and, with --run-fraction, a short `crane-sim run`
-of a small scene), and the contract is checked:
+of a small scene); with --targets the mutants are crane-opt's target files (those whose map is
+quick: TARGETS) and go through `crane-opt map`. The contract is checked:
 
   * the process ends by itself within the time limit (no hang) and not by a signal (no crash);
-  * its exit code is 0 (a valid scene), 2 (bad input) or, for `run`, 1 (solver failure);
-  * exit 2 prints one line "error: <scene file>: <where> (line L, column C): <what>";
+  * its exit code is 0 (a valid scene), 2 (bad input) or, for `run` and `map`, 1 (solver failure);
+  * exit 2 prints one line "error: <file>: <where> (line L, column C): <what>";
   * no results file is left behind by exit 2.
 
     python3 tests/fuzz/input_mutants.py --mutants 10000 --seed 1 --out benchmarks/results/input_fuzz.csv
     python3 tests/fuzz/input_mutants.py --mutants 200                # a quick look
+    python3 tests/fuzz/input_mutants.py --targets --mutants 2000 --out benchmarks/results/target_fuzz.csv
 
 Writes a CSV (one row per mutant: its seed, mutation, command, exit code, seconds, verdict)
 and prints a summary with every contract violation and the command that reproduces it.
@@ -43,6 +45,8 @@ CONFIGS = ROOT / "configs"
 # Scenes small enough for a short `run` of every mutant (a few ms of simulated time).
 RUNNABLE = ["pendulum.yaml", "rope_pendulum.yaml", "slider_crank.yaml", "double_jib_pendulum.yaml",
             "cantilever_timoshenko.yaml", "spinning_body.yaml"]
+# Targets whose static map takes milliseconds (Table 8-2's crane takes seconds a map).
+TARGETS = ["target_luffing_jib.yaml"]
 HOSTILE_VALUES = [float("nan"), float("inf"), -float("inf"), 0, -1, -1e-9, 1e308, 1e-308, 2**63, -(2**63), 10**30,
                   "", "x" * 5000, "ground", [], [1, 2], {}, {"a": 1}, None, True, 0.5, 3]
 
@@ -67,6 +71,10 @@ class Verdict:
 def scenes() -> list[Path]:
     """The shipped scenes (targets of crane-opt excluded)."""
     return sorted(p for p in CONFIGS.glob("*.yaml") if not p.name.startswith(("target", "tmp")))
+
+
+def targets() -> list[Path]:
+    return [CONFIGS / name for name in TARGETS]
 
 
 def _paths(node, prefix=""):
@@ -138,9 +146,9 @@ def _text_mutation(text: str, rng: random.Random) -> tuple[str, str]:
     return "x: &a [*a]\n" + text, "self-referential alias"
 
 
-def make_mutant(seed: int) -> Mutant:
+def make_mutant(seed: int, of_targets: bool = False) -> Mutant:
     rng = random.Random(seed)
-    source = rng.choice(scenes())
+    source = rng.choice(targets() if of_targets else scenes())
     text = source.read_text(encoding="utf-8")
     if rng.random() < 0.35:
         mutated, what = _text_mutation(text, rng)
@@ -166,11 +174,19 @@ def _short_run(text: str) -> str:
 
 
 def check_contract(binary: Path, mutant: Mutant, workdir: Path, run: bool, time_limit: float) -> Verdict:
-    """Runs one mutant (in a copy of configs/, so `base:` resolves) and judges the contract."""
+    """Runs one mutant (in a copy of configs/, so `base:` resolves) and judges the contract: a
+    scene by `crane-sim check` or, with `run`, a short `crane-sim run`; a target (binary is
+    crane-opt) by `crane-opt map`."""
     scene = workdir / f"mutant_{mutant.seed}.yaml"
+    is_target = mutant.scene in TARGETS
     scene.write_text(_short_run(mutant.text) if run else mutant.text, encoding="utf-8", errors="surrogatepass")
     out = workdir / f"mutant_{mutant.seed}.h5"
-    command = [str(binary), "run", scene.name, "-o", out.name, "--quiet"] if run else [str(binary), "check", scene.name]
+    if is_target:
+        command = [str(binary), "map", scene.name, "-o", out.name, "--quiet"]
+    elif run:
+        command = [str(binary), "run", scene.name, "-o", out.name, "--quiet"]
+    else:
+        command = [str(binary), "check", scene.name]
     start = time.perf_counter()
     try:
         done = subprocess.run(command, cwd=workdir, capture_output=True, timeout=time_limit)
@@ -185,7 +201,7 @@ def check_contract(binary: Path, mutant: Mutant, workdir: Path, run: bool, time_
         violation = f"hang: no exit within {time_limit:g} s"
     elif code < 0:
         violation = f"crash: killed by signal {-code}"
-    elif code not in ((0, 1, 2) if run else (0, 2)):
+    elif code not in ((0, 1, 2) if run or is_target else (0, 2)):
         violation = f"exit code {code}"
     elif code == 2:
         if not first_error.startswith("error: "):
@@ -196,7 +212,7 @@ def check_contract(binary: Path, mutant: Mutant, workdir: Path, run: bool, time_
             violation = "exit 2 without the line of the defect"
         elif out.exists():
             violation = "exit 2 left a results file"
-    if code == 1 and run and not out.exists():
+    if code == 1 and run and not is_target and not out.exists():
         violation = violation or "exit 1 without the results up to the failure"
     scene.unlink(missing_ok=True)
     out.unlink(missing_ok=True)
@@ -213,7 +229,9 @@ def workspace() -> tempfile.TemporaryDirectory:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--bin", default=os.environ.get("CRANESIM_BIN", str(ROOT / "build" / "crane-sim")))
+    parser.add_argument("--bin", help="crane-sim (default: $CRANESIM_BIN or build/crane-sim), with --targets crane-opt "
+                        "(default: $CRANEOPT_BIN or build/crane-opt)")
+    parser.add_argument("--targets", action="store_true", help="mutate crane-opt's target files instead of scenes")
     parser.add_argument("--mutants", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=1, help="first mutant's seed; mutant k has seed + k")
     parser.add_argument("--run-fraction", type=float, default=0.2,
@@ -221,7 +239,9 @@ def main() -> None:
     parser.add_argument("--time-limit", type=float, default=20.0, help="seconds before a mutant counts as hanging")
     parser.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "input_fuzz.csv"))
     args = parser.parse_args()
-    binary = Path(args.bin).resolve()
+    default = (os.environ.get("CRANEOPT_BIN", str(ROOT / "build" / "crane-opt")) if args.targets
+               else os.environ.get("CRANESIM_BIN", str(ROOT / "build" / "crane-sim")))
+    binary = Path(args.bin or default).resolve()
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     counts: dict[str, int] = {}
@@ -231,9 +251,9 @@ def main() -> None:
         writer = csv.writer(handle)
         writer.writerow(["seed", "scene", "mutation", "command", "exit_code", "seconds", "violation", "message"])
         for k in range(args.mutants):
-            mutant = make_mutant(args.seed + k)
+            mutant = make_mutant(args.seed + k, args.targets)
             runs = [False]
-            if mutant.scene in RUNNABLE and random.Random(mutant.seed).random() < args.run_fraction:
+            if not args.targets and mutant.scene in RUNNABLE and random.Random(mutant.seed).random() < args.run_fraction:
                 runs.append(True)
             for run in runs:
                 v = check_contract(binary, mutant, Path(tmp), run, args.time_limit)

@@ -1,4 +1,4 @@
-"""crane-sim's input contract on a fixed sample of mutated scenes (tests/fuzz/input_mutants.py).
+"""The tools' input contract on a fixed sample of mutated scenes and targets (tests/fuzz/input_mutants.py).
 
 Every mutant must end by itself, not by a signal, with exit 0 or 2 for `check` (0, 1 or 2 for a
 short `run`), and exit 2 must name the scene file and the defect's line. The campaign script runs
@@ -14,11 +14,13 @@ import pytest
 
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
+OPT_BINARY = Path(os.environ.get("CRANEOPT_BIN", SOURCE_DIR / "build" / "crane-opt")).resolve()
 sys.path.insert(0, str(SOURCE_DIR / "tests" / "fuzz"))
 
 import input_mutants  # noqa: E402
 
 SAMPLE = range(1, 601)  # seeds; the campaign found no violation among them after its fixes
+TARGET_SAMPLE = range(1, 301)  # target mutants through `crane-opt map` (~5 s)
 
 
 @pytest.fixture(scope="module")
@@ -36,6 +38,16 @@ def test_mutants_keep_the_input_contract(workdir: Path):
             verdict = input_mutants.check_contract(BINARY, mutant, workdir, run, time_limit=20.0)
             if verdict.violation:
                 violations.append(f"seed {seed} ({mutant.scene}: {mutant.mutation}): {verdict.violation}: {verdict.message}")
+    assert not violations, "\n".join(violations)
+
+
+def test_target_mutants_keep_the_input_contract(workdir: Path):
+    violations = []
+    for seed in TARGET_SAMPLE:
+        mutant = input_mutants.make_mutant(seed, of_targets=True)
+        verdict = input_mutants.check_contract(OPT_BINARY, mutant, workdir, run=False, time_limit=20.0)
+        if verdict.violation:
+            violations.append(f"seed {seed} ({mutant.scene}: {mutant.mutation}): {verdict.violation}: {verdict.message}")
     assert not violations, "\n".join(violations)
 
 
