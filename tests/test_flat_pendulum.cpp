@@ -1,6 +1,7 @@
 // Flatness of a load on a rope from a rigid luffing boom's tip (planning/flat_pendulum.hpp):
-// the rest-to-rest transition's derivatives, the static case in closed form, and the load of a
-// pendulum whose tip and rope follow the flat controls, integrated tightly, against the path.
+// the static case in closed form, and the load of a pendulum whose tip and rope follow the flat
+// controls, integrated tightly, against the path; the same through the pendulum's static map at
+// the resting point, as crane-opt's method flatness drives the crane.
 
 #include <catch2/catch.hpp>
 
@@ -9,6 +10,7 @@
 #include <numbers>
 
 #include "cranesim/planning/flat_pendulum.hpp"
+#include "cranesim/planning/rest_to_rest_path.hpp"
 
 using namespace cranesim;
 
@@ -18,11 +20,9 @@ const LuffingPendulum kJib{Eigen::Vector2d(0.0, 0.0), 20.0, 9.81};  // the luffi
 const Eigen::Vector2d kStart(-10.0, 7.320508), kTarget(-14.0, 10.0);  // target_luffing_jib.yaml's move
 constexpr double kMotion = 8.0;                                       // s: 4.7 m in 8 s, brisk for a 10 m rope
 
-Eigen::Vector2d loadPath(double t, int derivative) {
-  const double scale = std::pow(kMotion, -derivative);
-  return (derivative == 0 ? kStart : Eigen::Vector2d::Zero()) +
-         (kTarget - kStart) * scale * restToRest(t / kMotion, derivative);
-}
+const RestToRestPath kPath(kStart, kTarget, kMotion, kMotion / 2);  // no cruise: ramps of half the motion
+
+Eigen::Vector2d loadPath(double t, int derivative) { return kPath.derivative(t, derivative); }
 
 using Suspension = std::function<PendulumControls(double)>;
 
@@ -63,31 +63,6 @@ Swing swing(const Suspension& suspension) {
 
 }  // namespace
 
-TEST_CASE("Rest-to-rest transition: ends, symmetry and derivatives", "[planning][flatness]") {
-  CHECK(restToRest(0.0) == 0.0);
-  CHECK(restToRest(1.0) == 1.0);
-  CHECK(restToRest(-1.0) == 0.0);
-  CHECK(restToRest(2.0) == 1.0);
-  // Near the start s ≈ 126 τ⁵: the k-th derivative vanishes like 126 · 5!/(5 − k)! · τ^(5 − k).
-  const double tau0 = 1e-4;
-  double falling = 126.0;
-  for (int k = 1; k <= 4; ++k) {
-    falling *= 6 - k;
-    CHECK(restToRest(tau0, k) == Approx(falling * std::pow(tau0, 5 - k)).epsilon(2e-3));
-  }
-  const double h = 1e-5;
-  for (double tau : {0.1, 0.37, 0.5, 0.81}) {
-    // s(τ) + s(1 − τ) = 1, so s^(k)(1 − τ) = (−1)^(k+1) s^(k)(τ): the end mirrors the start.
-    CHECK(restToRest(tau) + restToRest(1.0 - tau) == Approx(1.0).epsilon(1e-14));
-    for (int k = 1; k <= 4; ++k)
-      CHECK(restToRest(1.0 - tau, k) == Approx((k % 2 == 1 ? 1.0 : -1.0) * restToRest(tau, k)).epsilon(1e-12).margin(1e-12));
-    for (int k = 1; k <= 4; ++k)
-      CHECK(restToRest(tau, k) ==
-            Approx((restToRest(tau + h, k - 1) - restToRest(tau - h, k - 1)) / (2 * h)).epsilon(1e-6).margin(1e-6));
-  }
-  CHECK_THROWS_AS(restToRest(0.5, 5), std::invalid_argument);
-}
-
 TEST_CASE("Flat pendulum at rest: the rope plumb, the tip on the boom's circle", "[planning][flatness]") {
   const PendulumControls c = flatPendulumControls(kJib, kStart, Eigen::Vector2d::Zero());
   CHECK(c.rope_length == Approx(10.0).epsilon(1e-7));
@@ -104,8 +79,8 @@ TEST_CASE("Flat pendulum at rest: the rope plumb, the tip on the boom's circle",
 
 TEST_CASE("Flat controls carry the load along its path and leave it still; quasi-static ones do not",
           "[planning][flatness]") {
-  // Measured: the load within 1.0e-7 m of its path and 5.9e-8 m of the target after arrival (the
-  // integration's error); with the tip held straight above the load, ±1.14 m of sway.
+  // Measured: the load within 1.9e-7 m of its path and 1.2e-7 m of the target after arrival (the
+  // integration's error); with the tip held straight above the load, ±0.77 m of sway.
   const Swing flat = swing([](double t) { return flatPendulumControls(kJib, loadPath(t, 0), loadPath(t, 2)); });
   const Swing plumb = swing([](double t) { return flatPendulumControls(kJib, loadPath(t, 0), Eigen::Vector2d::Zero()); });
   INFO("flat: path " << flat.max_path_error << " m, sway " << flat.residual_sway << " m; plumb sway " << plumb.residual_sway);
@@ -113,4 +88,34 @@ TEST_CASE("Flat controls carry the load along its path and leave it still; quasi
   CHECK(flat.residual_sway < 1e-6);
   CHECK(plumb.residual_sway > 0.5);
   CHECK(plumb.max_path_error > 0.1);
+}
+
+TEST_CASE("Flat map through the static map: the resting point's static controls carry the load", "[planning][flatness]") {
+  // crane-opt (method flatness) knows the crane only by its static map: the controls that hang the
+  // load at rest at a point. On the rigid pendulum the map is closed-form — the tip on the boom's
+  // circle straight above the point, the rope down to it — and its controls at the resting point
+  // p + ℓ (e − ẑ), with ℓ the rope those controls set (a fixed point), are the flat controls.
+  const auto staticControls = [](const Eigen::Vector2d& resting) {
+    PendulumControls c;
+    const double dx = resting.x() - kJib.foot.x();
+    c.tip = Eigen::Vector2d(resting.x(), kJib.foot.y() + std::sqrt(kJib.boom_length * kJib.boom_length - dx * dx));
+    c.rope_length = c.tip.y() - resting.y();
+    c.boom_angle = std::asin((c.tip.y() - kJib.foot.y()) / kJib.boom_length);
+    return c;
+  };
+  const auto throughRestingPoint = [&](double t) {
+    const Eigen::Vector2d p = loadPath(t, 0), a = loadPath(t, 2);
+    PendulumControls c = staticControls(p);
+    for (int iteration = 0; iteration < 30; ++iteration) c = staticControls(restingPoint(p, a, c.rope_length, kJib.gravity));
+    return c;
+  };
+  for (double t : {1.0, 2.5, 4.0, 6.3}) {
+    const PendulumControls flat = flatPendulumControls(kJib, loadPath(t, 0), loadPath(t, 2)), mapped = throughRestingPoint(t);
+    CHECK((mapped.tip - flat.tip).norm() < 1e-12);
+    CHECK(mapped.rope_length == Approx(flat.rope_length).epsilon(1e-13));
+  }
+  const Swing swung = swing(throughRestingPoint);  // measured: as the direct flat map's, 1.9e-7 / 1.2e-7 m
+  INFO("path " << swung.max_path_error << " m, sway " << swung.residual_sway << " m");
+  CHECK(swung.max_path_error < 1e-6);
+  CHECK(swung.residual_sway < 1e-6);
 }

@@ -103,15 +103,25 @@ void writeControls(Hdf5File& file, const QuasiStaticPlan& plan) {
 void writePath(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& plan) {
   writeVector(file, "/path/t", plan.path.t);
   writePoints<4>(file, "/path/state", plan.path.states);
-  const char* method = target.method == PlanMethod::ZV ? "zv" : target.method == PlanMethod::ZVD ? "zvd" : "quasi_static";
+  const char* method = target.method == PlanMethod::ZV         ? "zv"
+                       : target.method == PlanMethod::ZVD      ? "zvd"
+                       : target.method == PlanMethod::Flatness ? "flatness"
+                                                               : "quasi_static";
   file.attribute("/path", "method", std::string(method));
   file.attribute("/path", "motion_time", plan.path.t.back() - plan.path.t.front());
   file.attribute("/path", "hanging_length_start", plan.hanging_length_start);
   file.attribute("/path", "hanging_length_end", plan.hanging_length_end);
-  if (!plan.shaper.times.empty()) {
+  if (target.method != PlanMethod::QuasiStatic) {
     file.attribute("/path", "sway_period_start", plan.sway_period_start);
     file.attribute("/path", "sway_period_end", plan.sway_period_end);
     file.attribute("/path", "sway_period", plan.sway_period);
+  }
+  if (target.method == PlanMethod::Flatness) {
+    file.attribute("/path", "ramp_time", plan.load_path.ramp());
+    file.attribute("/path", "pendulum_length_start", plan.pendulum_length_start);
+    file.attribute("/path", "pendulum_length_end", plan.pendulum_length_end);
+  }
+  if (!plan.shaper.times.empty()) {
     writeVector(file, "/path/impulse_times", plan.shaper.times);
     writeVector(file, "/path/impulse_amplitudes", plan.shaper.amplitudes);
   }

@@ -7,6 +7,7 @@
 
 #include "bounded_yaml.hpp"
 #include "cranesim/io/scene_reader.hpp"
+#include "cranesim/planning/rest_to_rest_path.hpp"
 #include "yaml_field.hpp"
 
 namespace cranesim {
@@ -140,8 +141,11 @@ TargetSpec readTarget(const std::string& path) {
     scene.fail(fmt::format("in the scene '{}': {}", scene_path, e.what()));
   }
   if (const auto method = f.find("method")) {
-    const std::string m = method->choice({"quasi_static", "zv", "zvd"});
-    t.method = m == "zv" ? PlanMethod::ZV : m == "zvd" ? PlanMethod::ZVD : PlanMethod::QuasiStatic;
+    const std::string m = method->choice({"quasi_static", "zv", "zvd", "flatness"});
+    t.method = m == "zv"         ? PlanMethod::ZV
+               : m == "zvd"      ? PlanMethod::ZVD
+               : m == "flatness" ? PlanMethod::Flatness
+                                 : PlanMethod::QuasiStatic;
   }
   const YamlField crane = f.at("crane");
   t.controls = readControls(crane);
@@ -152,6 +156,13 @@ TargetSpec readTarget(const std::string& path) {
   const YamlField trajectory = f.at("trajectory");
   t.where_trajectory = trajectory.where();
   readTrajectory(trajectory, t);
+  if (t.method == PlanMethod::Flatness) {
+    try {
+      restToRestPath(t.trajectory);
+    } catch (const std::invalid_argument& e) {
+      trajectory.fail(e.what());
+    }
+  }
   if (const auto c = f.find("control_spline")) {
     c->allowKeys({"resample_points", "steady_points"});
     if (const auto r = c->find("resample_points")) t.resample_points = r->integer();

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/planning/control_trajectory.hpp"
+#include "cranesim/planning/flat_pendulum.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/modes.hpp"
 
@@ -100,6 +102,38 @@ ControlPoint pathControls(const TargetSpec& target, const QuasiStaticPlan& plan,
   }
 }
 
+/// The load's pendulum for the flat map: the simple pendulum of the crane's sway period, its
+/// length affine in the hoist rope's length between the path's start and end equilibria (as
+/// the hanging length is, for a rope of fixed reeving).
+struct EffectivePendulum {
+  double hoist_start = 0.0, hoist_end = 0.0, length_start = 0.0, length_end = 0.0;
+
+  double length(double hoist) const {
+    if (std::abs(hoist_end - hoist_start) < 1e-9) return 0.5 * (length_start + length_end);
+    return length_start + (length_end - length_start) * (hoist - hoist_start) / (hoist_end - hoist_start);
+  }
+};
+
+/// The controls that carry the load along the flat path at time t: the map's controls at the
+/// point where the load would hang at rest from the suspension that carries it
+/// (planning/flat_pendulum.hpp: restingPoint), whose pendulum length depends on the hoist rope
+/// those controls set: a fixed point, contracting by about ℓ'·‖e − ẑ‖ ≈ 1e-2 per iteration.
+ControlPoint flatControls(const TargetSpec& target, const QuasiStaticPlan& plan, const EffectivePendulum& pendulum, double t) {
+  const Eigen::Vector2d p = plan.load_path.derivative(t, 0), a = plan.load_path.derivative(t, 2);
+  const double gravity = -target.scene.gravity.z();
+  EndState resting = EndState::Zero();
+  resting.head<2>() = p;
+  ControlPoint c = pathControls(target, plan, resting);
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const Eigen::Vector2d next = restingPoint(p, a, pendulum.length(c.hoist_length), gravity);
+    const double change = (next - resting.head<2>()).norm();
+    resting.head<2>() = next;
+    c = pathControls(target, plan, resting);
+    if (change < 1e-10) return c;
+  }
+  throw std::runtime_error(fmt::format("flatness: the resting point at t = {:.4g} s does not converge", t));
+}
+
 }  // namespace
 
 QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
@@ -146,6 +180,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   // 4. map(inverse(p)) − p at five points of the trajectory, against the crane's own equilibrium;
   // at its ends also the pendulum the load hangs on.
   t0 = Clock::now();
+  EffectivePendulum pendulum;
   const int n = static_cast<int>(plan.trajectory.states.size());
   for (int k : {0, (n - 1) / 4, (n - 1) / 2, 3 * (n - 1) / 4, n - 1}) {
     InversionCheck check;
@@ -162,6 +197,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
     plan.inversion_checks.push_back(check);
     if (k != 0 && k != n - 1) continue;
     (k == 0 ? plan.hanging_length_start : plan.hanging_length_end) = hangingLength(model, eq.q, target.controls);
+    (k == 0 ? pendulum.hoist_start : pendulum.hoist_end) = c.hoist_length;
     if (target.method != PlanMethod::QuasiStatic)
       (k == 0 ? plan.sway_period_start : plan.sway_period_end) = swayPeriod(model, eq.q, eq.t, target.controls);
   }
@@ -173,9 +209,23 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   for (const InversionCheck& c : plan.inversion_checks) worst = std::max(worst, c.error);
   say(fmt::format("inversion: map(inverse(p)) − p ≤ {:.3g} m at {} trajectory points", worst, plan.inversion_checks.size()));
 
-  // 5. The path: the QR trajectory, or it input-shaped for the sway period.
+  // 5. The path: the QR trajectory, it input-shaped for the sway period, or the load's
+  // rest-to-rest path.
   plan.path = plan.trajectory;
-  if (target.method != PlanMethod::QuasiStatic) {
+  if (target.method == PlanMethod::Flatness) {
+    const double gravity = -target.scene.gravity.z();
+    for (auto [period, length] : {std::pair{plan.sway_period_start, &pendulum.length_start},
+                                  std::pair{plan.sway_period_end, &pendulum.length_end}})
+      *length = gravity * std::pow(period / (2.0 * std::numbers::pi), 2);
+    plan.pendulum_length_start = pendulum.length_start;
+    plan.pendulum_length_end = pendulum.length_end;
+    plan.load_path = restToRestPath(problem);
+    plan.path = sampleTrajectory(plan.load_path, problem.sample_time);
+    say(fmt::format("flatness: rest-to-rest path over {:.4g} s with {:.4g} s ramps; the load's pendulum {:.4g} → {:.4g} m "
+                    "(sway periods {:.4g} → {:.4g} s; hanging lengths {:.4g} → {:.4g} m)",
+                    plan.load_path.duration(), plan.load_path.ramp(), pendulum.length_start, pendulum.length_end,
+                    plan.sway_period_start, plan.sway_period_end, plan.hanging_length_start, plan.hanging_length_end));
+  } else if (target.method != PlanMethod::QuasiStatic) {
     plan.shaper = makeShaper(target.method == PlanMethod::ZV ? ShaperKind::ZV : ShaperKind::ZVD, plan.sway_period);
     plan.path = shapeTrajectory(plan.trajectory, plan.shaper);
     say(fmt::format("input shaping: {} impulses over {:.4g} s for the mean sway period {:.4g} s ({:.4g} s at the start, "
@@ -188,8 +238,9 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   // 6. Control trajectory (6.4).
   t0 = Clock::now();
   std::vector<double> luffing, hoist;
-  for (const EndState& s : plan.path.states) {
-    const ControlPoint c = pathControls(target, plan, s);
+  for (std::size_t k = 0; k < plan.path.states.size(); ++k) {
+    const ControlPoint c = target.method == PlanMethod::Flatness ? flatControls(target, plan, pendulum, plan.path.t[k])
+                                                                 : pathControls(target, plan, plan.path.states[k]);
     plan.controls.push_back(c);
     luffing.push_back(c.luffing_length);
     hoist.push_back(c.hoist_length);

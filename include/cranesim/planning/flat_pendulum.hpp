@@ -8,7 +8,7 @@
 // and the tip s = p + ℓ e lies on the boom's circle ‖s − foot‖ = R, a quadratic in ℓ:
 //   ℓ = −d·e + √((d·e)² − ‖d‖² + R²),   d = p − foot   (the root with the tip above the load).
 // So the boom angle and the rope length at t follow algebraically from p and p̈ at t, and a path
-// whose derivatives up to the fourth vanish at both ends (restToRest below) starts and ends
+// whose derivatives up to the fourth vanish at both ends (planning/rest_to_rest_path.hpp) starts and ends
 // with the rope plumb and the controls at rest: the load arrives without sway, up to the model.
 
 #include <Eigen/Dense>
@@ -32,8 +32,10 @@ struct PendulumControls {
 /// load (the load beyond the boom's reach, or accelerating downward faster than gravity).
 PendulumControls flatPendulumControls(const LuffingPendulum& crane, const Eigen::Vector2d& p, const Eigen::Vector2d& a);
 
-/// The rest-to-rest transition s(τ) = 126τ⁵ − 420τ⁶ + 540τ⁷ − 315τ⁸ + 70τ⁹ on [0, 1] and its
-/// derivatives d^k s / dτ^k, k = 0 … 4 (clamped to 0 and 1 outside): s' … s'''' vanish at both ends.
-double restToRest(double tau, int derivative = 0);
+/// Where a load on a rope of length ℓ would hang at rest from the suspension point s = p + ℓ e
+/// that carries it at p with acceleration a: s − ℓ ẑ = p + ℓ (e − ẑ). A crane whose static map
+/// gives the controls that hang the load at rest at a point gives, at this point, the controls
+/// that carry it along p (for a suspension that moves with the controls as in the statics).
+Eigen::Vector2d restingPoint(const Eigen::Vector2d& p, const Eigen::Vector2d& a, double length, double gravity);
 
 }  // namespace cranesim

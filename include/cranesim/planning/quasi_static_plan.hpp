@@ -8,6 +8,7 @@
 
 #include "cranesim/math/profile.hpp"
 #include "cranesim/planning/input_shaping.hpp"
+#include "cranesim/planning/rest_to_rest_path.hpp"
 #include "cranesim/planning/target.hpp"
 #include "cranesim/solvers/dynamics.hpp"
 
@@ -53,16 +54,21 @@ struct QuasiStaticPlan {
   MapFit fit;
   QrTrajectory trajectory;                 // relative to the target's origin
   /// The end-point path the controls follow (relative to the origin): the QR trajectory
-  /// (method quasi_static) or the trajectory shaped by `shaper` (zv, zvd).
+  /// (method quasi_static), the trajectory shaped by `shaper` (zv, zvd), or `load_path` sampled
+  /// at the QR problem's sample time (flatness).
   QrTrajectory path;
   InputShaper shaper;                      // no impulses for quasi_static
+  RestToRestPath load_path;                // flatness only
   /// The pendulum at the path's start and end equilibria: from the hoist rope's end at the boom
   /// head to the end point, m.
   double hanging_length_start = 0.0, hanging_length_end = 0.0;
-  /// Shaped methods only: the crane's sway period in its plane at the start and end equilibria
-  /// (its lowest mode in which the end point moves mostly along x), s; the shaper's period is
-  /// their mean.
+  /// Shaped and flatness methods: the crane's sway period in its plane at the start and end
+  /// equilibria (its lowest mode in which the end point moves mostly along x), s; the shaper's
+  /// period is their mean.
   double sway_period_start = 0.0, sway_period_end = 0.0, sway_period = 0.0;
+  /// Flatness only: the simple pendulums of those periods, g (T / 2π)², m; between them the
+  /// pendulum's length is interpolated linearly in the hoist rope's length.
+  double pendulum_length_start = 0.0, pendulum_length_end = 0.0;
   std::vector<ControlPoint> controls;      // per path point
   TableProfile luffing_spline, hoist_spline;
   double lead_time = 0.0;                  // steady time before the motion in the splines and the simulation

@@ -12,9 +12,10 @@
 
 namespace cranesim {
 
-/// How the end-point path is planned: the thesis' quasi-static QR trajectory (6.3), or that
-/// trajectory input-shaped for the load's sway period (planning/input_shaping.hpp).
-enum class PlanMethod { QuasiStatic, ZV, ZVD };
+/// How the end-point path is planned: the thesis' quasi-static QR trajectory (6.3), that
+/// trajectory input-shaped for the load's sway period (planning/input_shaping.hpp), or a
+/// rest-to-rest path of the load carried by the flat map of its pendulum (DESIGN §16).
+enum class PlanMethod { QuasiStatic, ZV, ZVD, Flatness };
 
 struct TargetSpec {
   std::string path, text;
