@@ -70,4 +70,8 @@ class ResultsRecorder final : public SampleSink {
   std::vector<double> residual_position_, residual_velocity_;
 };
 
+/// Refuses, before any work, a run whose results would not fit in memory (more than 4 GiB):
+/// throws SceneError at output.interval with the estimate.
+void requireResultsFit(const Scene& scene, const Model& model);
+
 }  // namespace cranesim
