@@ -2,6 +2,7 @@
 //   crane-sim run SCENE [-o results.h5] [--quiet]
 //   crane-sim check SCENE
 //   crane-sim modes SCENE [--count N] [-o modes.h5]
+//   crane-sim study STUDY [-o table.h5] [--jobs N] [--resume]
 //   crane-sim info RESULTS
 // Exit codes: 0 success, 1 solver failure (results kept, marked incomplete), 2 bad input.
 
@@ -24,6 +25,7 @@
 #include "cranesim/model/summary.hpp"
 #include "cranesim/solvers/modes.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
+#include "cranesim/study/study_command.hpp"
 #include "cranesim/version.hpp"
 
 namespace {
@@ -277,6 +279,14 @@ int main(int argc, char** argv) {
   modes_cmd->add_option("-n,--count", mode_count, "number of lowest modes (0: all)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   modes_cmd->add_option("-o,--output", out_path, "modes file (default: <scene name>_modes.h5 in the current directory)");
+  StudyCommand study;
+  auto* study_cmd = app.add_subcommand("study", "run a study: one analysis per case over parameter grids or random draws");
+  study_cmd->add_option("study", study.study_path, "study file (YAML)")->required();
+  study_cmd->add_option("-o,--output", study.out, "case table (default: <study name>.h5 in the current directory)");
+  study_cmd->add_option("-j,--jobs", study.jobs, "cases computed at once by this process (threads)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  study_cmd->add_flag("--resume", study.resume, "continue a stopped study from its checkpoint (<output>.checkpoint)");
+  study_cmd->add_flag("-q,--quiet", study.quiet, "no progress and no summary");
   auto* info_cmd = app.add_subcommand("info", "describe what a results file holds");
   info_cmd->add_option("results", results_path, "results file (HDF5)")->required();
 
@@ -291,12 +301,18 @@ int main(int argc, char** argv) {
     if (*check_cmd) return check(scene_path);
     if (*static_cmd) return statics(scene_path, out_path);
     if (*modes_cmd) return modes(scene_path, out_path, mode_count);
+    if (*study_cmd) {
+      stopOnSignals();
+      study.stop = &g_interrupted;
+      study.signal = &g_signal;
+      return runStudyCommand(study);
+    }
     if (*info_cmd) {
       fmt::print("{}", describeResults(results_path));
       return 0;
     }
   } catch (const SceneError& e) {
-    fmt::print(stderr, "error: {}: {}\n", scene_path, e.what());
+    fmt::print(stderr, "error: {}: {}\n", *study_cmd ? study.study_path : scene_path, e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
