@@ -13,7 +13,6 @@ comparisons run when mpirun is on PATH and crane-sim was built with MPI.
 
 import math
 import os
-import re
 import shutil
 import signal
 import subprocess
@@ -24,13 +23,14 @@ import h5py
 import numpy as np
 import pytest
 
+from bad_input import EXIT_BAD_INPUT, assert_reported, expectations
+
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
 BAD_STUDIES = sorted((SOURCE_DIR / "tests" / "bad_studies").glob("*.yaml"))
 RUN_STUDY = SOURCE_DIR / "configs" / "study_rope_pendulum.yaml"
 ROPE_PENDULUM = SOURCE_DIR / "configs" / "rope_pendulum.yaml"
 
-EXIT_BAD_INPUT = 2
 GRAVITY = 9.81
 # rope_pendulum.yaml: a 10 m steel rope of radius 1 cm, E = 1e11 Pa, ρ = 7800 kg/m³.
 ROPE_LENGTH = 10.0
@@ -87,14 +87,6 @@ def assert_bitwise_equal(a: dict, b: dict) -> None:
             assert np.array_equal(a[key], b[key]), key
 
 
-def expectations(study: Path) -> tuple[str, str]:
-    lines = study.read_text(encoding="utf-8").splitlines()
-    expect = re.fullmatch(r"# expect: (.+)", lines[0])
-    path = re.fullmatch(r"# path: (.+)", lines[1])
-    assert expect and path, f"{study.name} must start with '# expect: ...' and '# path: ...' lines"
-    return expect[1].strip(), path[1].strip()
-
-
 def test_bad_study_collection_is_complete():
     assert len(BAD_STUDIES) >= 10
     for study in BAD_STUDIES:
@@ -105,10 +97,7 @@ def test_bad_study_collection_is_complete():
 def test_bad_study_is_rejected(study: Path, tmp_path: Path):
     expect, path = expectations(study)
     result = crane_sim("study", study, "-o", tmp_path / "study.h5", cwd=tmp_path)
-    assert result.returncode == EXIT_BAD_INPUT, result.stderr
-    assert expect in result.stderr
-    location = re.escape(f"error: {study}: {path} (line ") + r"\d+, column \d+\): "
-    assert re.search(location, result.stderr), f"path '{path}' not reported in:\n{result.stderr}"
+    assert_reported(result, study, expect, path)
     assert list(tmp_path.iterdir()) == []  # no table, no partial file, no checkpoint
 
 
