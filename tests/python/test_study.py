@@ -264,3 +264,28 @@ def test_interrupted_study_resumes_without_recomputing(tmp_path: Path):
     with h5py.File(out, "r") as f:
         done = np.array(statuses) == "complete"
         assert np.array_equal(f["cases/wall_time_s"][...][done], wall_before[done])  # not computed again
+
+
+def test_modes_study_gives_the_frequencies_of_crane_sim_modes(tmp_path: Path):
+    """A modes case is `crane-sim modes` of the case's scene: the same frequencies, bit for bit."""
+    study = tmp_path / "modes.yaml"
+    study.write_text(f"""\
+scene: {ROPE_PENDULUM}
+analysis: modes
+modes: 6
+parameters:
+  - {{path: bodies.ball.mass, values: [1000]}}
+figures:
+  - {{name: f4, quantity: frequency, mode: 4}}
+  - {{name: f6, quantity: frequency, mode: 6}}
+  - {{name: hook_tension, quantity: rope_tension, rope: rope}}
+""")
+    result = crane_sim("study", study, "-o", tmp_path / "modes_study.h5", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    modes = crane_sim("modes", ROPE_PENDULUM, "-n", 6, "-o", tmp_path / "modes.h5", cwd=tmp_path)
+    assert modes.returncode == 0, modes.stderr
+    with h5py.File(tmp_path / "modes_study.h5", "r") as s, h5py.File(tmp_path / "modes.h5", "r") as m:
+        frequency = m["modes/frequency"][...]
+        assert s["figures/f4"][0] == frequency[3] and s["figures/f6"][0] == frequency[5]
+        assert frequency[3] > 0.1  # the swing, ≈ √(g/ℓ)/2π = 0.158 Hz, not a rigid mode
+        assert s["figures/hook_tension"][0] == pytest.approx(1000 * GRAVITY, rel=1e-9)
