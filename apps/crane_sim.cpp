@@ -284,7 +284,7 @@ int main(int argc, char** argv) {
   study_cmd->add_option("study", study.study_path, "study file (YAML)")->required();
   study_cmd->add_option("-o,--output", study.out, "case table (default: <study name>.h5 in the current directory)");
   study_cmd->add_option("-j,--jobs", study.jobs, "cases computed at once by this process (threads)")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(CLI::Range(1, 1024))->capture_default_str();
   study_cmd->add_flag("--resume", study.resume, "continue a stopped study from its checkpoint (<output>.checkpoint)");
   study_cmd->add_flag("-q,--quiet", study.quiet, "no progress and no summary");
   auto* info_cmd = app.add_subcommand("info", "describe what a results file holds");

@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <mutex>
@@ -87,6 +88,12 @@ std::string readJointOf(const YamlField& f, const Model& model) {
   return joint;
 }
 
+std::string readReferenceJoint(const YamlField& f, const Model& model) {
+  const std::string joint = f.text();
+  if (model.findJoint(joint) < 0) f.fail(fmt::format("the scene has no joint '{}' (joints are named <body>.<joint>)", joint));
+  return joint;
+}
+
 /// The constraint holding a rope's end: its force is the rope's tension there.
 std::string constraintAtRopeEnd(const YamlField& f, const Scene& scene, const Model& model) {
   const YamlField rope_field = f.at("rope");
@@ -122,14 +129,15 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
   fig.name = f.at("name").identifier();
   if (kReservedFigureNames.count(fig.name)) f.at("name").fail(fmt::format("'{}' is a column of every case table already", fig.name));
   const std::string quantity =
-      f.at("quantity").choice({"rope_tension", "constraint_force", "position", "horizontal_sway", "frequency"});
+      f.at("quantity").choice({"rope_tension", "constraint_force", "constraint_moment", "position", "horizontal_distance",
+                               "horizontal_sway", "frequency"});
   if (quantity == "rope_tension") {
     f.allowKeys({"name", "quantity", "rope", "end", "statistic", "after"});
     fig.quantity = FigureQuantity::ConstraintForce;
     fig.constraint = constraintAtRopeEnd(f, scene, model);
-  } else if (quantity == "constraint_force") {
+  } else if (quantity == "constraint_force" || quantity == "constraint_moment") {
     f.allowKeys({"name", "quantity", "constraint", "statistic", "after"});
-    fig.quantity = FigureQuantity::ConstraintForce;
+    fig.quantity = quantity == "constraint_force" ? FigureQuantity::ConstraintForce : FigureQuantity::ConstraintMoment;
     const YamlField c = f.at("constraint");
     fig.constraint = c.text();
     std::string known;
@@ -145,15 +153,17 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
     fig.joint = readJointOf(f, model);
     const std::string axis = f.at("component").choice({"x", "y", "z"});
     fig.component = axis[0] - 'x';
+  } else if (quantity == "horizontal_distance") {
+    f.allowKeys({"name", "quantity", "body", "joint", "relative_to", "statistic", "after"});
+    fig.quantity = FigureQuantity::HorizontalDistance;
+    fig.joint = readJointOf(f, model);
+    fig.relative_to = readReferenceJoint(f.at("relative_to"), model);
   } else if (quantity == "horizontal_sway") {
     f.allowKeys({"name", "quantity", "body", "joint", "relative_to", "after"});
     fig.quantity = FigureQuantity::HorizontalSway;
     fig.statistic = FigureStatistic::Max;
     fig.joint = readJointOf(f, model);
-    if (const auto r = f.find("relative_to")) {
-      fig.relative_to = r->text();
-      if (model.findJoint(fig.relative_to) < 0) r->fail(fmt::format("the scene has no joint '{}'", fig.relative_to));
-    }
+    if (const auto r = f.find("relative_to")) fig.relative_to = readReferenceJoint(*r, model);
   } else {
     f.allowKeys({"name", "quantity", "mode"});
     fig.quantity = FigureQuantity::Frequency;
@@ -168,6 +178,22 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
   if (fig.quantity != FigureQuantity::HorizontalSway) fig.statistic = readStatistic(f);
   if (const auto after = f.find("after")) fig.after = after->number();
   return fig;
+}
+
+StudyCriterion readCriterion(const YamlField& f, const std::vector<FigureSpec>& figures) {
+  f.allowKeys({"figure", "min", "max", "source"});
+  StudyCriterion c;
+  const YamlField figure = f.at("figure");
+  const std::string name = figure.text();
+  const auto named = std::find_if(figures.begin(), figures.end(), [&](const FigureSpec& s) { return s.name == name; });
+  if (named == figures.end()) figure.fail(fmt::format("no figure named '{}' in figures", name));
+  c.figure = static_cast<std::size_t>(named - figures.begin());
+  if (!f.has("min") && !f.has("max")) f.fail("a criterion needs min, max or both");
+  if (const auto min = f.find("min")) c.min = min->number();
+  if (const auto max = f.find("max")) c.max = max->number();
+  if (!(c.max >= c.min)) f.at("max").fail(fmt::format("must not be below min ({:g}), found {:g}", c.min, c.max));
+  c.source = f.at("source").text();
+  return c;
 }
 
 StudyParameter readParameter(const YamlField& f, YAML::Node scene_root, std::vector<YamlField>& paths) {
@@ -195,6 +221,11 @@ StudyParameter readParameter(const YamlField& f, YAML::Node scene_root, std::vec
 
 }  // namespace
 
+double StudyCriterion::holds(double value) const {
+  if (std::isnan(value)) return value;
+  return value >= min && value <= max ? 1.0 : 0.0;
+}
+
 std::vector<double> Study::parameterValues(long index) const {
   std::vector<double> values(parameters.size());
   long grid = index / samples;
@@ -218,7 +249,7 @@ Study readStudy(const std::string& path) {
   const YAML::Node root = loadBoundedYaml(study.text);
   const YamlField f(root, "");
   if (!f.isMap()) f.fail("a study file is a mapping (scene, analysis, parameters, figures, …)");
-  f.allowKeys({"name", "scene", "analysis", "modes", "parameters", "samples", "seed", "figures", "keep_results"});
+  f.allowKeys({"name", "scene", "analysis", "modes", "parameters", "samples", "seed", "figures", "criteria", "keep_results"});
 
   auto source = std::make_shared<StudySceneSource>();
   const YamlField scene_field = f.at("scene");
@@ -283,6 +314,8 @@ Study readStudy(const std::string& path) {
       if (!names.insert(study.figures.back().name).second) fig.at("name").fail("duplicate figure name");
     }
   }
+  if (const auto criteria = f.find("criteria"))
+    for (const YamlField& c : criteria->items()) study.criteria.push_back(readCriterion(c, study.figures));
   if (const auto keep = f.find("keep_results")) study.keep_results = keep->boolean();
   study.source = std::move(source);
   return study;

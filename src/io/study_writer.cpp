@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "cranesim/version.hpp"
 #include "hdf5_file.hpp"
 
@@ -63,6 +66,23 @@ void writeStudyResults(const std::string& path, const Study& study, const std::v
     for (std::size_t k = 0; k < study.figures.size(); ++k) {
       for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].figures[k];
       file.writeDoubles("/figures/" + study.figures[k].name, {n}, column.data());
+    }
+    if (!study.criteria.empty()) {
+      std::vector<double> admissible(n, 1.0);
+      for (std::size_t k = 0; k < study.criteria.size(); ++k) {
+        const StudyCriterion& c = study.criteria[k];
+        for (std::size_t i = 0; i < n; ++i) {
+          column[i] = c.holds(rows[i].figures[c.figure]);
+          admissible[i] = std::isnan(column[i]) ? column[i] : std::min(admissible[i], column[i]);
+        }
+        const std::string dataset = fmt::format("/criteria/{}", k);
+        file.writeDoubles(dataset, {n}, column.data());
+        file.attribute(dataset, "figure", study.figures[c.figure].name);
+        file.attribute(dataset, "min", c.min);
+        file.attribute(dataset, "max", c.max);
+        file.attribute(dataset, "source", c.source);
+      }
+      file.writeDoubles("/cases/admissible", {n}, admissible.data());
     }
     std::vector<std::string> status(n), messages(n);
     for (std::size_t i = 0; i < n; ++i) status[i] = rows[i].status, messages[i] = rows[i].message;

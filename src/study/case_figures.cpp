@@ -11,8 +11,8 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// The recorded constraint force of `name` at every sample.
-std::vector<double> constraintForces(const Model& model, const ResultsRecorder& recorder, const std::string& name) {
+/// The recorded force (or, with `moment`, the moment) constraint `name` carries at every sample.
+std::vector<double> constraintLoads(const Model& model, const ResultsRecorder& recorder, const std::string& name, bool moment) {
   const Constraint& c = *std::find_if(model.constraints.begin(), model.constraints.end(),
                                       [&](const Constraint& k) { return k.name == name; });
   std::vector<std::vector<double>> rows;
@@ -21,7 +21,8 @@ std::vector<double> constraintForces(const Model& model, const ResultsRecorder& 
   VecX lambda = VecX::Zero(model.m);
   for (std::size_t s = 0; s < forces.size(); ++s) {
     for (int k = 0; k < c.rows; ++k) lambda(c.row + k) = rows[k][s];
-    forces[s] = constraintLoad(c, lambda.data()).force;
+    const ConstraintLoad load = constraintLoad(c, lambda.data());
+    forces[s] = moment ? load.other : load.force;
   }
   return forces;
 }
@@ -33,10 +34,10 @@ std::vector<double> coordinate(const Model& model, const ResultsRecorder& record
   return out;
 }
 
-/// The largest horizontal distance, over the samples in the window, of a joint from the
-/// reference joint at the same time, or from its own mean position over the window.
-double horizontalSway(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder,
-                      const std::vector<std::size_t>& window) {
+/// The horizontal distance of a joint, at every sample, from the reference joint at the same
+/// time, or (no reference) from its own mean position over the samples in the window.
+std::vector<double> horizontalDistances(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder,
+                                        const std::vector<std::size_t>& window) {
   std::vector<double> x = coordinate(model, recorder, fig.joint, 0), y = coordinate(model, recorder, fig.joint, 1);
   if (!fig.relative_to.empty()) {
     const std::vector<double> rx = coordinate(model, recorder, fig.relative_to, 0), ry = coordinate(model, recorder, fig.relative_to, 1);
@@ -48,9 +49,9 @@ double horizontalSway(const FigureSpec& fig, const Model& model, const ResultsRe
     my /= static_cast<double>(window.size());
     for (std::size_t s = 0; s < x.size(); ++s) x[s] -= mx, y[s] -= my;
   }
-  double sway = 0.0;
-  for (const std::size_t s : window) sway = std::max(sway, std::hypot(x[s], y[s]));
-  return sway;
+  std::vector<double> distances(x.size());
+  for (std::size_t s = 0; s < x.size(); ++s) distances[s] = std::hypot(x[s], y[s]);
+  return distances;
 }
 
 double reduce(const std::vector<double>& series, const std::vector<std::size_t>& window, FigureStatistic statistic) {
@@ -81,13 +82,16 @@ std::vector<double> caseFigures(const Study& study, const Model& model, const Re
     }
     switch (fig.quantity) {
       case FigureQuantity::ConstraintForce:
-        figures.push_back(reduce(constraintForces(model, recorder, fig.constraint), window, fig.statistic));
+      case FigureQuantity::ConstraintMoment:
+        figures.push_back(reduce(constraintLoads(model, recorder, fig.constraint, fig.quantity == FigureQuantity::ConstraintMoment),
+                                 window, fig.statistic));
         break;
       case FigureQuantity::Position:
         figures.push_back(reduce(coordinate(model, recorder, fig.joint, fig.component), window, fig.statistic));
         break;
+      case FigureQuantity::HorizontalDistance:
       case FigureQuantity::HorizontalSway:
-        figures.push_back(horizontalSway(fig, model, recorder, window));
+        figures.push_back(reduce(horizontalDistances(fig, model, recorder, window), window, fig.statistic));
         break;
       case FigureQuantity::Frequency:
         break;

@@ -16,6 +16,7 @@ import os
 import shutil
 import signal
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -289,3 +290,42 @@ figures:
         assert s["figures/f4"][0] == frequency[3] and s["figures/f6"][0] == frequency[5]
         assert frequency[3] > 0.1  # the swing, ≈ √(g/ℓ)/2π = 0.158 Hz, not a rigid mode
         assert s["figures/hook_tension"][0] == pytest.approx(1000 * GRAVITY, rel=1e-9)
+
+
+def test_criteria_and_load_chart(tmp_path: Path):
+    """A case is admissible when its figures are within the study's criteria; the load chart of
+    scripts/plot_load_chart.py is, per configuration, the largest load whose lighter loads are all
+    admissible: a hook tension limit of 15 kN admits m g ≤ 15 kN, m ≤ 1529 kg, so 1500 kg."""
+    study = tmp_path / "chart.yaml"
+    study.write_text(f"""\
+scene: {ROPE_PENDULUM}
+analysis: static
+parameters:
+  - {{path: members.rope.length, values: [9.5, 10]}}
+  - {{path: bodies.ball.mass, range: {{from: 500, to: 3000, count: 6}}}}
+figures:
+  - {{name: radius, quantity: horizontal_distance, body: ball, relative_to: ground.suspension}}
+  - {{name: hook_tension, quantity: rope_tension, rope: rope}}
+criteria:
+  - {{figure: hook_tension, max: 15000, source: a test limit}}
+  - {{figure: radius, max: 1.0, source: hangs straight down}}
+""")
+    table = tmp_path / "chart.h5"
+    result = crane_sim("study", study, "-o", table, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    with h5py.File(table, "r") as f:
+        mass = f["parameters/bodies.ball.mass"][...]
+        assert np.array_equal(f["criteria/0"][...], (mass * GRAVITY <= 15000).astype(float))
+        assert np.all(f["criteria/1"][...] == 1.0)
+        assert np.array_equal(f["cases/admissible"][...], f["criteria/0"][...])
+        assert f["criteria/0"].attrs["source"] == "a test limit" and f["criteria/0"].attrs["figure"] == "hook_tension"
+
+    chart = subprocess.run([sys.executable, str(SOURCE_DIR / "scripts" / "plot_load_chart.py"), str(table),
+                            "--load", "bodies.ball.mass", "--configuration", "members.rope.length",
+                            "-o", str(tmp_path / "chart.png")], capture_output=True, text=True)
+    assert chart.returncode == 0, chart.stderr
+    rows = [line.split() for line in chart.stdout.splitlines()[1:3]]
+    assert [row[0] for row in rows] == ["9.5", "10"]
+    assert all(row[2] == "1500" and row[3] == "hook_tension" for row in rows), chart.stdout
+    assert all(float(row[1]) < 1e-6 for row in rows)  # hanging under the suspension
+    assert (tmp_path / "chart.png").stat().st_size > 0

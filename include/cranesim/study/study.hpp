@@ -35,10 +35,12 @@ struct StudyParameter {
 /// What a figure measures. Time series (all but frequency) are reduced over the samples at
 /// t ≥ after by the figure's statistic; a static case has one sample.
 enum class FigureQuantity {
-  ConstraintForce,  // ‖force rows of λ‖ of a constraint, N (rope_tension: the one at the rope's end)
-  Position,         // one coordinate of a joint's origin, m
-  HorizontalSway,   // max horizontal distance of a joint from a reference joint or its mean, m
-  Frequency,        // a mode's frequency, Hz (analysis: modes)
+  ConstraintForce,     // ‖force rows of λ‖ of a constraint, N (rope_tension: the one at the rope's end)
+  ConstraintMoment,    // ‖other rows of λ‖ of a constraint: its moments (and drive torque), N·m
+  Position,            // one coordinate of a joint's origin, m
+  HorizontalDistance,  // horizontal distance of a joint from another joint, m (a radius)
+  HorizontalSway,      // max horizontal distance of a joint from a reference joint or its mean, m
+  Frequency,           // a mode's frequency, Hz (analysis: modes)
 };
 enum class FigureStatistic { Final, Max, Min };
 
@@ -48,10 +50,19 @@ struct FigureSpec {
   FigureStatistic statistic = FigureStatistic::Final;
   std::string constraint;   // ConstraintForce
   std::string joint;        // Position, HorizontalSway
-  std::string relative_to;  // HorizontalSway: the reference joint; empty: the mean position
+  std::string relative_to;  // HorizontalDistance, HorizontalSway: the reference joint; empty (sway): the mean position
   int component = 0;        // Position: 0, 1, 2 for x, y, z
   double after = -std::numeric_limits<double>::infinity();  // s
   int mode = 0;             // Frequency: 1-based, as `crane-sim modes` numbers them
+};
+
+/// A bound on a figure: a case is admissible when every criterion holds (a load chart's limits).
+struct StudyCriterion {
+  std::size_t figure = 0;  // index into Study::figures
+  double min = -std::numeric_limits<double>::infinity(), max = std::numeric_limits<double>::infinity();
+  std::string source;      // where the limit comes from (a standard, a rating), stored with the results
+  /// 1 when `value` lies within [min, max], 0 when not, NaN when the figure is NaN.
+  double holds(double value) const;
 };
 
 /// The base scene's YAML, from which each case's scene is built (io/study_reader.cpp).
@@ -67,6 +78,7 @@ struct Study {
   long samples = 1;        // draws per grid point (random parameters)
   std::uint64_t seed = 0;
   std::vector<FigureSpec> figures;
+  std::vector<StudyCriterion> criteria;
   bool keep_results = false;
   long cases = 1;          // the product of the grids' sizes × samples
   std::shared_ptr<const StudySceneSource> source;
