@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -117,6 +118,11 @@ class StudyBook {
   std::string error_;
 };
 
+/// The case table's path: -o, or <study stem>.h5 in the working directory.
+std::string tablePath(const StudyCommand& command) {
+  return command.out.empty() ? std::filesystem::path(command.study_path).stem().string() + ".h5" : command.out;
+}
+
 /// The directory each case's full results go to: `<out stem>_cases` beside the results.
 std::string casesDirectory(const std::string& out) {
   const std::filesystem::path path(out);
@@ -153,13 +159,16 @@ int runStudyCommand(const StudyCommand& command) {
   try {
     study = readStudy(command.study_path);
     if (master) {
-      const std::string out = outputPath(command.study_path, command.out, ".h5");
+      const std::string out = outputPath(command.study_path, tablePath(command), ".h5");
       book.emplace(*study, command, out);
       if (study->keep_results) createCasesDirectory(cases_dir = casesDirectory(out));
     }
   } catch (const SceneError& e) {
     if (master) fmt::print(stderr, "error: {}: {}\n", command.study_path, e.what());
     verdict = kExitBadInput;
+  } catch (const std::exception& e) {
+    if (master) fmt::print(stderr, "error: {}\n", e.what());
+    verdict = kExitSolverFailure;
   }
 #ifdef CRANESIM_WITH_MPI
   if (mpi) {
@@ -172,8 +181,7 @@ int runStudyCommand(const StudyCommand& command) {
   StudyExecution execution{command.stop, cases_dir};
 #ifdef CRANESIM_WITH_MPI
   if (mpi && !master) {
-    const std::string out = command.out.empty() ? std::filesystem::path(command.study_path).stem().string() + ".h5" : command.out;
-    if (study->keep_results) execution.cases_dir = casesDirectory(out);
+    if (study->keep_results) execution.cases_dir = casesDirectory(tablePath(command));
     computeCasesForRank0(*study, execution);
     return 0;
   }
