@@ -21,6 +21,13 @@ def expectations(bad_file: Path) -> tuple[str, str]:
     return expect[1].strip(), path[1].strip()
 
 
+def assert_collection(bad_files: list[Path], minimum: int) -> None:
+    """The collection holds at least `minimum` files, each declaring its expectations."""
+    assert len(bad_files) >= minimum
+    for bad_file in bad_files:
+        expectations(bad_file)
+
+
 def assert_reported(result: subprocess.CompletedProcess, bad_file: Path, expect: str, path: str) -> None:
     """Exit 2, and an error naming the file, the YAML path with its line and column, and the problem."""
     assert result.returncode == EXIT_BAD_INPUT, result.stderr

@@ -21,7 +21,7 @@ from pathlib import Path
 import h5py
 import pytest
 
-from bad_input import EXIT_BAD_INPUT, assert_reported, expectations
+from bad_input import EXIT_BAD_INPUT, assert_collection, assert_reported, expectations
 
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
@@ -85,9 +85,7 @@ def results_attributes(path: Path) -> dict:
 
 
 def test_bad_scene_collection_is_complete():
-    assert len(BAD_SCENES) >= 14
-    for scene in BAD_SCENES:
-        expectations(scene)
+    assert_collection(BAD_SCENES, 14)
 
 
 @pytest.mark.parametrize("scene", BAD_SCENES, ids=[s.stem for s in BAD_SCENES])

@@ -24,7 +24,7 @@ import h5py
 import numpy as np
 import pytest
 
-from bad_input import EXIT_BAD_INPUT, assert_reported, expectations
+from bad_input import EXIT_BAD_INPUT, assert_collection, assert_reported, expectations
 
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
@@ -89,9 +89,7 @@ def assert_bitwise_equal(a: dict, b: dict) -> None:
 
 
 def test_bad_study_collection_is_complete():
-    assert len(BAD_STUDIES) >= 10
-    for study in BAD_STUDIES:
-        expectations(study)
+    assert_collection(BAD_STUDIES, 10)
 
 
 @pytest.mark.parametrize("study", BAD_STUDIES, ids=[s.stem for s in BAD_STUDIES])
