@@ -84,10 +84,11 @@ void writeStudyResults(const std::string& path, const Study& study, const std::v
       }
       file.writeDoubles("/cases/admissible", {n}, admissible.data());
     }
-    std::vector<std::string> status(n), messages(n);
-    for (std::size_t i = 0; i < n; ++i) status[i] = rows[i].status, messages[i] = rows[i].message;
+    std::vector<std::string> status(n), messages(n), workers(n);
+    for (std::size_t i = 0; i < n; ++i) status[i] = rows[i].status, messages[i] = rows[i].message, workers[i] = rows[i].worker;
     file.writeStrings("/cases/status", {n}, status);
     file.writeStrings("/cases/message", {n}, messages);
+    file.writeStrings("/cases/worker", {n}, workers);
     for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].steps;
     file.writeDoubles("/cases/steps", {n}, column.data());
     for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].wall_time_s;

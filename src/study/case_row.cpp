@@ -45,7 +45,8 @@ std::string unescaped(const std::string& text) {
 }  // namespace
 
 std::string encodeRow(const CaseRow& row) {
-  std::string line = fmt::format("{}\t{}\t{}\t{}", row.index, row.status, bitsOf(row.steps), bitsOf(row.wall_time_s));
+  std::string line =
+      fmt::format("{}\t{}\t{}\t{}\t{}", row.index, row.status, bitsOf(row.steps), bitsOf(row.wall_time_s), escaped(row.worker));
   for (const double f : row.figures) line += "\t" + bitsOf(f);
   return line + "\t" + escaped(row.message);
 }
@@ -55,7 +56,7 @@ std::optional<CaseRow> decodeRow(const std::string& line, std::size_t figures) {
   std::stringstream in(line);
   for (std::string field; std::getline(in, field, '\t');) fields.push_back(field);
   if (!line.empty() && line.back() == '\t') fields.emplace_back();  // an empty message
-  if (fields.size() != 5 + figures) return std::nullopt;
+  if (fields.size() != 6 + figures) return std::nullopt;
   CaseRow row;
   try {
     std::size_t used = 0;
@@ -69,8 +70,9 @@ std::optional<CaseRow> decodeRow(const std::string& line, std::size_t figures) {
   if (!steps || !wall) return std::nullopt;
   row.steps = *steps;
   row.wall_time_s = *wall;
+  row.worker = unescaped(fields[4]);
   for (std::size_t k = 0; k < figures; ++k) {
-    const auto value = doubleOf(fields[4 + k]);
+    const auto value = doubleOf(fields[5 + k]);
     if (!value) return std::nullopt;
     row.figures.push_back(*value);
   }

@@ -1,5 +1,6 @@
 #include "cranesim/study/mpi_study.hpp"
 
+#include <fmt/format.h>
 #include <mpi.h>
 
 #include <chrono>
@@ -67,6 +68,8 @@ void serveCasesToRanks(const MpiSession& session, CaseQueue& queue, std::size_t 
 }
 
 void computeCasesForRank0(const Study& study, const StudyExecution& execution) {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::string line;
   for (;;) {
     MPI_Send(line.data(), static_cast<int>(line.size()), MPI_CHAR, 0, kTagRow, MPI_COMM_WORLD);
@@ -74,7 +77,9 @@ void computeCasesForRank0(const Study& study, const StudyExecution& execution) {
     MPI_Status status;
     MPI_Recv(&index, 1, MPI_LONG, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
     if (status.MPI_TAG == kTagStop) return;
-    line = encodeRow(computeCase(study, index, execution));
+    CaseRow row = computeCase(study, index, execution);
+    row.worker = fmt::format("rank {}", rank);
+    line = encodeRow(row);
   }
 }
 

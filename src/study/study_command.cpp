@@ -188,15 +188,18 @@ int runStudyCommand(const StudyCommand& command) {
 #endif
   CaseQueue queue(book->pending(), command.stop);
   const RowSink sink = [&](CaseRow row) { book->record(std::move(row), queue); };
-  LocalWorkers local(*study, queue, command.jobs, execution, sink);
+  std::string workers = fmt::format("{} thread{}", command.jobs, command.jobs == 1 ? "" : "s"), label;
+#ifdef CRANESIM_WITH_MPI
+  if (mpi) {
+    workers = fmt::format("{} MPI rank{} ({} on rank 0, one on each other rank)", mpi->size(), mpi->size() == 1 ? "" : "s", workers);
+    label = "rank 0 ";
+  }
+#endif
+  LocalWorkers local(*study, queue, command.jobs, execution, sink, label);
 #ifdef CRANESIM_WITH_MPI
   if (mpi) serveCasesToRanks(*mpi, queue, study->figures.size(), sink);
 #endif
   local.join();
-  std::string workers = fmt::format("{} thread{}", command.jobs, command.jobs == 1 ? "" : "s");
-#ifdef CRANESIM_WITH_MPI
-  if (mpi) workers = fmt::format("{} MPI rank{} ({} on rank 0, one on each other rank)", mpi->size(), mpi->size() == 1 ? "" : "s", workers);
-#endif
   return book->finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), workers);
 }
 

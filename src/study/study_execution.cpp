@@ -21,10 +21,14 @@ CaseRow computeCase(const Study& study, long index, const StudyExecution& execut
 }
 
 LocalWorkers::LocalWorkers(const Study& study, CaseQueue& queue, int jobs, const StudyExecution& execution,
-                           const RowSink& sink) {
+                           const RowSink& sink, const std::string& label) {
   for (int k = 0; k < jobs; ++k)
-    threads_.emplace_back([&study, &queue, execution, sink] {
-      while (const std::optional<long> index = queue.next()) sink(computeCase(study, *index, execution));
+    threads_.emplace_back([&study, &queue, execution, sink, worker = fmt::format("{}thread {}", label, k)] {
+      while (const std::optional<long> index = queue.next()) {
+        CaseRow row = computeCase(study, *index, execution);
+        row.worker = worker;
+        sink(std::move(row));
+      }
     });
 }
 

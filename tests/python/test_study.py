@@ -78,6 +78,11 @@ def case_table(path: Path) -> dict:
     return table
 
 
+def workers(path: Path) -> list[str]:
+    with h5py.File(path, "r") as f:
+        return list(f["cases/worker"].asstr()[...])
+
+
 def assert_bitwise_equal(a: dict, b: dict) -> None:
     assert a.keys() == b.keys()
     for key in a:
@@ -138,27 +143,27 @@ def test_static_study_keeps_each_case_results(static_study: Path):
 
 
 @pytest.fixture(scope="module")
-def run_tables(tmp_path_factory) -> dict:
+def run_study(tmp_path_factory) -> dict:
     """The example study (a grid of masses × random rope stiffnesses, 2 s swings) computed by
     one thread, two threads, one MPI rank and two MPI ranks."""
     directory = tmp_path_factory.mktemp("run_study")
-    tables = {}
+    tables, who = {}, {}
     for jobs in (1, 2):
         out = directory / f"jobs{jobs}.h5"
         result = crane_sim("study", RUN_STUDY, "-o", out, "--jobs", jobs, cwd=directory)
         assert result.returncode == 0, result.stderr
-        tables[f"jobs {jobs}"] = case_table(out)
+        tables[f"jobs {jobs}"], who[f"jobs {jobs}"] = case_table(out), workers(out)
     if shutil.which("mpirun"):
         for ranks in (1, 2):
             out = directory / f"ranks{ranks}.h5"
             result = mpirun(ranks, "study", RUN_STUDY, "-o", out, cwd=directory)
             assert result.returncode == 0, result.stdout + result.stderr
-            tables[f"ranks {ranks}"] = case_table(out)
-    return tables
+            tables[f"ranks {ranks}"], who[f"ranks {ranks}"] = case_table(out), workers(out)
+    return {"tables": tables, "workers": who}
 
 
-def test_run_study_figures(run_tables: dict):
-    table = run_tables["jobs 1"]
+def test_run_study_figures(run_study: dict):
+    table = run_study["tables"]["jobs 1"]
     mass = table["parameters/bodies.ball.mass"]
     assert np.array_equal(mass, [500, 500, 1000, 1000, 2000, 2000])
     stiffness = table["parameters/members.rope.material.youngs_modulus"]
@@ -166,7 +171,7 @@ def test_run_study_figures(run_tables: dict):
     assert list(table["cases/status"].astype(str)) == ["complete"] * 6
     # Released at rest 30° out, the ball is farthest from the vertical at the start, where the
     # rope holds it at its drawn place: its sway over the whole run is that distance.
-    swing_start = run_tables["jobs 1"]["figures/ball_sway"]
+    swing_start = table["figures/ball_sway"]
     assert np.all(swing_start < BALL_DRAWN_X)
     # The rope pulls the ball up and in: the tension at the hook peaks above the weight at the
     # lowest point, and never pushes.
@@ -174,12 +179,23 @@ def test_run_study_figures(run_tables: dict):
     assert np.all(table["figures/hook_tension_min"] >= 0.0)
 
 
-def test_run_study_is_bitwise_identical_on_threads_and_ranks(run_tables: dict):
+def test_run_study_is_bitwise_identical_on_threads_and_ranks(run_study: dict):
     if not shutil.which("mpirun"):
         pytest.skip("mpirun not installed: threads compared only")
-    for name, table in run_tables.items():
-        assert_bitwise_equal(run_tables["jobs 1"], table)
-    assert len(run_tables) == 4
+    tables = run_study["tables"]
+    for table in tables.values():
+        assert_bitwise_equal(tables["jobs 1"], table)
+    assert len(tables) == 4
+
+
+def test_every_worker_takes_part(run_study: dict):
+    """Each case was computed by one of the workers there were; with two of them, by both."""
+    who = run_study["workers"]
+    assert set(who["jobs 1"]) == {"thread 0"}
+    assert set(who["jobs 2"]) == {"thread 0", "thread 1"}
+    if "ranks 2" in who:
+        assert set(who["ranks 1"]) == {"rank 0 thread 0"}
+        assert set(who["ranks 2"]) == {"rank 0 thread 0", "rank 1"}
 
 
 def test_sway_of_a_released_pendulum(tmp_path: Path):

@@ -25,6 +25,7 @@ struct CaseRow {
   std::string message;
   double steps = 0.0;        // time steps of a run, Newton iterations of an equilibrium
   double wall_time_s = 0.0;
+  std::string worker;           // who computed it: "thread 0", "rank 3"; not part of the results proper
   std::vector<double> figures;  // in the study's order; NaN unless the case is complete
 };
 

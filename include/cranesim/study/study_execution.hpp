@@ -45,10 +45,12 @@ CaseRow computeCase(const Study& study, long index, const StudyExecution& execut
 /// Receives each finished row; must be thread-safe.
 using RowSink = std::function<void(CaseRow)>;
 
-/// `jobs` threads, each taking the queue's next case until it runs dry.
+/// `jobs` threads, each taking the queue's next case until it runs dry; their rows name them
+/// `<label> thread <k>`.
 class LocalWorkers {
  public:
-  LocalWorkers(const Study& study, CaseQueue& queue, int jobs, const StudyExecution& execution, const RowSink& sink);
+  LocalWorkers(const Study& study, CaseQueue& queue, int jobs, const StudyExecution& execution, const RowSink& sink,
+               const std::string& label);
   /// Waits for every thread to finish.
   void join();
   ~LocalWorkers() { join(); }
