@@ -2,6 +2,7 @@
 //   crane-sim run SCENE [-o results.h5] [--quiet]
 //   crane-sim check SCENE
 //   crane-sim modes SCENE [--count N] [-o modes.h5]
+//   crane-sim study STUDY [-o table.h5] [--jobs N] [--resume]
 //   crane-sim info RESULTS
 // Exit codes: 0 success, 1 solver failure (results kept, marked incomplete), 2 bad input.
 
@@ -23,9 +24,8 @@
 #include "cranesim/model/compile.hpp"
 #include "cranesim/model/summary.hpp"
 #include "cranesim/solvers/modes.hpp"
-#include "cranesim/solvers/equilibrium_path.hpp"
-#include "cranesim/solvers/relaxation.hpp"
-#include "cranesim/solvers/statics.hpp"
+#include "cranesim/solvers/scene_equilibrium.hpp"
+#include "cranesim/study/study_command.hpp"
 #include "cranesim/version.hpp"
 
 namespace {
@@ -98,43 +98,6 @@ class CheckpointClock {
   bool failed_ = false;
 };
 
-/// The scene's drawing, posed at its drives and assembled; a move beyond rounding is reported.
-DynamicState drawnState(const Model& model, const Assembler& assembler, bool quiet) {
-  AssemblyMove move;
-  DynamicState drawn =
-      assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance, &move);
-  if (!quiet && move.visible())
-    fmt::print(stderr, "assembled: the drawing closed by moving {}\n", move.describe());
-  return drawn;
-}
-
-/// Static equilibrium of the scene at its start time by the scene's method (solver.statics):
-/// Newton along the path from the drawn controls, or relaxation from the drawn state. Throws
-/// when it is not found.
-StaticResult equilibrium(const Scene& scene, const Model& model, const Assembler& assembler, bool quiet) {
-  drawnState(model, assembler, quiet);  // reports the assembly move, refuses a drawing that is off
-  if (model.solver.static_method == StaticMethod::Relaxation) {
-    RelaxationOptions options;
-    options.damping = model.solver.relaxation_damping;
-    options.duration = model.solver.relaxation_duration;
-    const RelaxationResult r = relaxToEquilibrium(scene, options);
-    if (!quiet)
-      fmt::print(stderr, "relaxation: {:.4g} s of damped motion (α = {:g}/s) in {} steps, kinetic energy down to {:.2g} of its peak\n",
-                 r.relaxation_time, options.damping, r.steps, r.final_kinetic_ratio);
-    if (!r.equilibrium.converged) throw std::runtime_error(r.equilibrium.message);
-    return r.equilibrium;
-  }
-  StaticResult eq = solveEquilibrium(scene, model, model.solver.t_start);
-  if (!eq.converged) throw std::runtime_error(eq.message);
-  return eq;
-}
-
-void printEquilibrium(const StaticResult& eq) {
-  fmt::print(stderr, "static equilibrium: {} Newton iterations in {} load steps and {} path steps; max |F + Gᵀλ| {:.3g}, "
-                     "max |Φ| {:.3g}; in {:.3g} s\n",
-             eq.iterations, eq.load_steps, eq.path_steps, eq.force_residual, eq.constraint_residual, eq.seconds);
-}
-
 /// The equilibrium as an engineer reads it: where the bodies are, and what each joint carries
 /// (the force of its x, y, z rows; the norm of its other rows: moments, or a drive's force or
 /// torque). A rope's tension is the force of the joint at its end.
@@ -147,54 +110,9 @@ void printEquilibriumReport(const Model& model, const StaticResult& eq) {
   }
   fmt::print("{:<24} {:>12} {:>22}\n", "constraint", "force [N]", "moment or drive");
   for (const Constraint& c : model.constraints) {
-    double force = 0.0, other = 0.0;
-    for (int k = 0; k < c.rows; ++k) {
-      const std::string& label = c.row_labels[k];
-      const std::string axis = label.substr(label.rfind('/') + 1);
-      (axis == "x" || axis == "y" || axis == "z" ? force : other) += eq.lambda(c.row + k) * eq.lambda(c.row + k);
-    }
-    fmt::print("{:<24} {:>12.5g} {:>22.5g}\n", c.name, std::sqrt(force), std::sqrt(other));
+    const ConstraintLoad load = constraintLoad(c, eq.lambda.data());
+    fmt::print("{:<24} {:>12.5g} {:>22.5g}\n", c.name, load.force, load.other);
   }
-}
-
-/// Models up to this many velocity coordinates get the equilibrium's stability checked (dense
-/// modal analysis without the shapes, O(nv³): ~5 ms for the thesis crane's 160, 0.5 s for its
-/// full-member model's 1230, a few seconds at 2000).
-constexpr int kStabilityCheckLimit = 2000;
-
-/// Why the equilibrium is unstable (its reduced stiffness has a negative eigenvalue), or empty;
-/// the lowest elastic mode is reported.
-std::string instability(const Model& model, const StaticResult& eq, bool quiet = false) {
-  if (model.nv > kStabilityCheckLimit) {
-    if (!quiet) fmt::print(stderr, "stability: not checked ({} velocity coordinates, more than {})\n", model.nv, kStabilityCheckLimit);
-    return {};
-  }
-  const ModalResult modal = computeModes(model, eq.q, eq.t, 0, ModeShapes::Skipped);
-  if (modal.omega_squared.size() == 0) return {};
-  if (modal.omega_squared(0) < -modal.zero_threshold)
-    return fmt::format("the equilibrium found is unstable: its lowest mode has ω² = {:.4g} rad²/s² (a perturbation grows "
-                       "like e^({:.3g} t)); try solver.statics.method: relaxation, which settles into a stable one",
-                       modal.omega_squared(0), std::sqrt(-modal.omega_squared(0)));
-  for (Eigen::Index k = 0; k < modal.frequencies.size(); ++k)
-    if (!modal.rigid[k]) {
-      if (!quiet) fmt::print(stderr, "stability: stable; lowest elastic mode {:.4g} Hz (period {:.4g} s), {} rigid-body mode(s)\n",
-                 modal.frequencies(k), 1.0 / modal.frequencies(k), modal.rigid_modes);
-      break;
-    }
-  return {};
-}
-
-/// Refuses, before any work, a run whose results would not fit in memory (`run`, `check`).
-void requireResultsFit(const Scene& scene, const Model& model) {
-  constexpr double kMaxResultsBytes = 4.0 * (1u << 30);
-  const double samples = (scene.solver.t_end - scene.solver.t_start) / scene.output.interval + 1.0;
-  const double bytes = ResultsRecorder::estimatedBytes(model, samples);
-  if (!(bytes <= kMaxResultsBytes))
-    throw SceneError(scene.output.where,
-                     fmt::format("output.interval = {:g} s asks for {:.3g} samples over {:g} s, about {:.3g} GB of results "
-                                 "(at most {:.3g} GB); choose a longer interval",
-                                 scene.output.interval, samples, scene.solver.t_end - scene.solver.t_start, bytes / 1e9,
-                                 kMaxResultsBytes / 1e9));
 }
 
 /// How far the energy balance may drift, relative to the run's energy scale, in units of rtol
@@ -222,18 +140,7 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   const Model model = compileModel(scene);
   requireResultsFit(scene, model);
   const Assembler assembler(model);
-  DynamicState initial;
-  if (model.solver.start_from_equilibrium) {
-    const StaticResult eq = equilibrium(scene, model, assembler, quiet);
-    if (!quiet) printEquilibrium(eq);
-    if (const std::string unstable = instability(model, eq, quiet); !unstable.empty()) {
-      fmt::print(stderr, "error: initial_state: equilibrium: {}\n", unstable);
-      return kExitSolverFailure;
-    }
-    initial = consistentInitialState(assembler, model.solver.t_start, eq.q, VecX::Zero(model.nv), model.solver.assembly_tolerance);
-  } else {
-    initial = drawnState(model, assembler, quiet);
-  }
+  const DynamicState initial = runInitialState(scene, model, assembler, quiet);
 
   ResultsRecorder recorder(assembler);
   const ResultsRecorder::Metadata meta{scene_path, scene.text,
@@ -284,8 +191,7 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
 /// The equilibrium `static` and `modes` start from, solved from the scene's consistent initial
 /// state and reported.
 StaticResult reportedEquilibrium(const Scene& scene, const Model& model, const Assembler& assembler) {
-  const StaticResult eq = equilibrium(scene, model, assembler, false);
-  printEquilibrium(eq);
+  const StaticResult eq = sceneEquilibrium(scene, model, assembler, false);
   printEquilibriumReport(model, eq);
   return eq;
 }
@@ -296,12 +202,9 @@ int statics(const std::string& scene_path, std::string out) {
   const Model model = compileModel(scene);
   const Assembler assembler(model);
   const StaticResult eq = reportedEquilibrium(scene, model, assembler);
-  const std::string unstable = instability(model, eq);
+  const std::string unstable = equilibriumInstability(model, eq, false);
   ResultsRecorder recorder(assembler);
-  VecX y = VecX::Zero(assembler.size());
-  y.head(model.nq) = eq.q;
-  y.segment(assembler.lambdaOffset(), model.m) = eq.lambda;
-  recorder.sample(eq.t, y.data(), WorkTerms{});
+  recorder.sample(eq.t, equilibriumSample(assembler, eq).data(), WorkTerms{});
   SimulationOutcome outcome;
   outcome.complete = unstable.empty();
   outcome.t_reached = eq.t;
@@ -376,6 +279,14 @@ int main(int argc, char** argv) {
   modes_cmd->add_option("-n,--count", mode_count, "number of lowest modes (0: all)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
   modes_cmd->add_option("-o,--output", out_path, "modes file (default: <scene name>_modes.h5 in the current directory)");
+  StudyCommand study;
+  auto* study_cmd = app.add_subcommand("study", "run a study: one analysis per case over parameter grids or random draws");
+  study_cmd->add_option("study", study.study_path, "study file (YAML)")->required();
+  study_cmd->add_option("-o,--output", study.out, "case table (default: <study name>.h5 in the current directory)");
+  study_cmd->add_option("-j,--jobs", study.jobs, "cases computed at once by this process (threads)")
+      ->check(CLI::Range(1, 1024))->capture_default_str();
+  study_cmd->add_flag("--resume", study.resume, "continue a stopped study from its checkpoint (<output>.checkpoint)");
+  study_cmd->add_flag("-q,--quiet", study.quiet, "no progress and no summary");
   auto* info_cmd = app.add_subcommand("info", "describe what a results file holds");
   info_cmd->add_option("results", results_path, "results file (HDF5)")->required();
 
@@ -390,12 +301,18 @@ int main(int argc, char** argv) {
     if (*check_cmd) return check(scene_path);
     if (*static_cmd) return statics(scene_path, out_path);
     if (*modes_cmd) return modes(scene_path, out_path, mode_count);
+    if (*study_cmd) {
+      stopOnSignals();
+      study.stop = &g_interrupted;
+      study.signal = &g_signal;
+      return runStudyCommand(study);
+    }
     if (*info_cmd) {
       fmt::print("{}", describeResults(results_path));
       return 0;
     }
   } catch (const SceneError& e) {
-    fmt::print(stderr, "error: {}: {}\n", scene_path, e.what());
+    fmt::print(stderr, "error: {}: {}\n", *study_cmd ? study.study_path : scene_path, e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());

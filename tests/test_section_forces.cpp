@@ -54,7 +54,7 @@ std::vector<Eigen::Matrix<double, 12, 1>> sectionForces(const Equilibrium& eq) {
 Vec3 jointAt(const Equilibrium& eq, const std::string& joint) { return eq.model.jointFrame(eq.q.data(), eq.model.findJoint(joint)).r; }
 
 /// Mass of the rope and the load hanging from the jib's tip.
-double hangingMass(const Model& model) {
+double hangingMass() {
   const Scene scene = test::loadScene("jib_fidelities.yaml");
   const MemberSpec& rope = scene.members.at(1);
   return scene.bodies.at(1).mass + rope.material.density * rope.section.area * 8.0;
@@ -68,7 +68,7 @@ TEST_CASE("Section forces: the equivalent-beam jib is a free body in equilibrium
   REQUIRE(forces.size() == 1);
   const Eigen::Matrix<double, 12, 1>& s = forces[0];
   const Scene scene = test::loadScene("jib_fidelities.yaml");
-  const double jib = equivalentBeam(buildTrussGeometry(scene.trusses.at(0))).mass, hanging = hangingMass(eq.model);
+  const double jib = equivalentBeam(buildTrussGeometry(scene.trusses.at(0))).mass, hanging = hangingMass();
   const Vec3 root = jointAt(eq, "jib.start"), tip = jointAt(eq, "jib.end"), hook = jointAt(eq, "load.hook");
   const double arm = tip.x() - root.x();
   // Section axes: x along the jib, z up (the scene's z_axis). The rope pulls the tip down.
@@ -106,7 +106,7 @@ TEST_CASE("Section forces: the tubes cut at the root of the full-member jib carr
   }
   CHECK(cut == 8);
   const Scene scene = test::loadScene("jib_fidelities.yaml");
-  const double jib = equivalentBeam(buildTrussGeometry(scene.trusses.at(0))).mass, hanging = hangingMass(model);
+  const double jib = equivalentBeam(buildTrussGeometry(scene.trusses.at(0))).mass, hanging = hangingMass();
   const double arm = jointAt(eq, "jib.end").x() - root.x();
   const double expected = (hanging * arm + jib * arm / 2) * kG;  // M_y at the root: the top chords in tension
   INFO("root moment of the cut tubes " << moment << " N·m, of the loads " << expected << " N·m");

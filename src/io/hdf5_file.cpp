@@ -62,6 +62,11 @@ void Hdf5File::save(const std::string& path) {
 
 namespace hdf5_detail {
 
+std::mutex& libraryLock() {
+  static std::mutex lock;
+  return lock;
+}
+
 void abandon(const std::string& partial, const std::string& path, const std::string& why) {
   std::error_code ignored;
   std::filesystem::remove(partial, ignored);

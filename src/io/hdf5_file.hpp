@@ -8,6 +8,7 @@
 #include <hdf5.h>
 
 #include <filesystem>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -40,16 +41,20 @@ inline std::string partialPath(const std::string& path) { return path + ".partia
 
 /// Writes `path` by `write(Hdf5File&)`: the image saved to `path`.partial, then renamed over
 /// `path`. On any failure the partial file is removed and the error rethrown naming `path`: an
-/// older file at `path` stays as it was.
+/// older file at `path` stays as it was. Debian's serial HDF5 library is not thread-safe, so
+/// files written from several threads (a study's cases) are written one at a time.
 template <class Write> void writeResultsFile(const std::string& path, const Write& write);
 
 namespace hdf5_detail {
+/// The lock every use of the HDF5 library in this process holds.
+std::mutex& libraryLock();
 /// Removes `partial` and throws a runtime_error "cannot write `path`: why (…kept)".
 [[noreturn]] void abandon(const std::string& partial, const std::string& path, const std::string& why);
 }  // namespace hdf5_detail
 
 template <class Write> void writeResultsFile(const std::string& path, const Write& write) {
   const std::string partial = partialPath(path);
+  const std::lock_guard<std::mutex> lock(hdf5_detail::libraryLock());
   try {
     Hdf5File file;
     write(file);

@@ -49,7 +49,7 @@ herr_t listAttribute(hid_t object, const char* name, const H5A_info_t*, void* da
   const hid_t attr = H5Aopen(object, name, H5P_DEFAULT);
   std::string value = attributeText(attr);
   H5Aclose(attr);
-  if (std::string(name) == "scene_text") value = fmt::format("<{} lines of YAML>", std::count(value.begin(), value.end(), '\n'));
+  if (const std::string_view key(name); key == "scene_text" || key == "study_text") value = fmt::format("<{} lines of YAML>", std::count(value.begin(), value.end(), '\n'));
   *out += fmt::format("    {:<22} {}\n", name, value);
   return 0;
 }

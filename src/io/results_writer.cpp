@@ -239,4 +239,16 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
   });
 }
 
+void requireResultsFit(const Scene& scene, const Model& model) {
+  constexpr double kMaxResultsBytes = 4.0 * (1u << 30);
+  const double samples = (scene.solver.t_end - scene.solver.t_start) / scene.output.interval + 1.0;
+  const double bytes = ResultsRecorder::estimatedBytes(model, samples);
+  if (!(bytes <= kMaxResultsBytes))
+    throw SceneError(scene.output.where,
+                     fmt::format("output.interval = {:g} s asks for {:.3g} samples over {:g} s, about {:.3g} GB of results "
+                                 "(at most {:.3g} GB); choose a longer interval",
+                                 scene.output.interval, samples, scene.solver.t_end - scene.solver.t_start, bytes / 1e9,
+                                 kMaxResultsBytes / 1e9));
+}
+
 }  // namespace cranesim

@@ -16,6 +16,12 @@ namespace {
 
 constexpr int kMaxBaseDepth = 8;
 
+std::string keysOf(const YAML::Node& mapping) {
+  std::string keys;
+  for (const auto& kv : mapping) keys += (keys.empty() ? "" : ", ") + kv.first.as<std::string>();
+  return keys;
+}
+
 std::vector<std::string> splitDots(const std::string& key) {
   std::vector<std::string> parts;
   std::stringstream in(key);
@@ -23,8 +29,10 @@ std::vector<std::string> splitDots(const std::string& key) {
   return parts;
 }
 
-/// Sets base[key path] = value for one `modify` entry.
-void applyModification(YAML::Node base, const YamlField& entry, const std::string& key, const YAML::Node& value) {
+}  // namespace
+
+void modifyScene(YAML::Node base, const YamlField& entry, const std::string& key, const YAML::Node& value,
+                 bool require_field) {
   const std::vector<std::string> parts = splitDots(key);
   if (parts.size() < 2 || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
     entry.fail("expected <list>.<item name>.<field> or <mapping>.<field>");
@@ -52,8 +60,12 @@ void applyModification(YAML::Node base, const YamlField& entry, const std::strin
     target.reset(child);
   }
   if (!target.IsMap()) entry.fail(fmt::format("'{}' is not a mapping in the base scene", parts[next - 1]));
+  if (require_field && !static_cast<const YAML::Node&>(target)[parts.back()])
+    entry.fail(fmt::format("the base scene has no field '{}' here (known: {})", parts.back(), keysOf(target)));
   target[parts.back()] = value;
 }
+
+namespace {
 
 ComposedScene compose(const std::string& text, const std::string& path, const BaseValidator& validate, int depth) {
   ComposedScene out;
@@ -92,7 +104,7 @@ ComposedScene compose(const std::string& text, const std::string& path, const Ba
     if (!modify.IsMap()) field.fail("expected a mapping of <path>: <value>");
     for (const auto& kv : modify) {
       const std::string key = kv.first.as<std::string>();
-      applyModification(base.root, YamlField(kv.second, "modify." + key), key, kv.second);
+      modifyScene(base.root, YamlField(kv.second, "modify." + key), key, kv.second);
     }
   }
   out.root.reset(base.root);

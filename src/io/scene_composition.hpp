@@ -18,6 +18,8 @@
 #include <functional>
 #include <string>
 
+#include "cranesim/model/scene.hpp"
+
 namespace cranesim {
 
 struct ComposedScene {
@@ -25,11 +27,21 @@ struct ComposedScene {
   std::string text;  // this file's text followed by its bases' texts (stored in the results)
 };
 
+class YamlField;
+
+/// Sets `base`[key] = value for one `modify` entry `key`; fails at `entry` when the base lacks
+/// the item or a field on the way, and with `require_field` also when it lacks the field itself.
+void modifyScene(YAML::Node base, const YamlField& entry, const std::string& key, const YAML::Node& value,
+                 bool require_field = false);
+
 /// Reads a composed scene, throwing SceneError on bad content (the scene reader).
 using BaseValidator = std::function<void(const ComposedScene& base, const std::string& base_path)>;
 
 /// Parses `text` (the scene file at `path`) and applies `base` and `modify`; every base scene is
 /// checked by `validate_base` before it is modified. Throws SceneError.
 ComposedScene composeScene(const std::string& text, const std::string& path, const BaseValidator& validate_base);
+
+/// Reads and validates a composed scene as readScene does (scene_reader.cpp). Throws SceneError.
+Scene sceneFromComposed(const ComposedScene& composed, const std::string& path);
 
 }  // namespace cranesim

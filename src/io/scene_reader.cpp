@@ -459,7 +459,9 @@ SolverSpec readSolver(const YamlField& f) {
   return s;
 }
 
-Scene sceneFromYaml(const ComposedScene& composed, const std::string& path) {
+}  // namespace
+
+Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) {
   const YAML::Node& root = composed.root;
   const YamlField f(root, "");
   if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
@@ -520,10 +522,8 @@ Scene sceneFromYaml(const ComposedScene& composed, const std::string& path) {
   return s;
 }
 
-}  // namespace
-
 Scene parseScene(const std::string& text, const std::string& path) {
-  return sceneFromYaml(composeScene(text, path, [](const ComposedScene& base, const std::string& base_path) { sceneFromYaml(base, base_path); }), path);
+  return sceneFromComposed(composeScene(text, path, [](const ComposedScene& base, const std::string& base_path) { sceneFromComposed(base, base_path); }), path);
 }
 
 Scene readScene(const std::string& path) {

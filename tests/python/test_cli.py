@@ -21,13 +21,14 @@ from pathlib import Path
 import h5py
 import pytest
 
+from bad_input import EXIT_BAD_INPUT, assert_collection, assert_reported, expectations
+
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
 BAD_SCENES = sorted((SOURCE_DIR / "tests" / "bad_scenes").glob("*.yaml"))
 PENDULUM = SOURCE_DIR / "configs" / "pendulum.yaml"
 
 EXIT_SOLVER_FAILURE = 1
-EXIT_BAD_INPUT = 2
 
 # A slider on a rail along x, held by a rope from an anchor 1 m above the rail whose length is
 # wound in at 1 m/s from 1.1 m. At t = 0.1 s the rope is vertical; after that no position of the
@@ -78,32 +79,13 @@ def crane_sim(*arguments, cwd: Path, timeout: float = 30) -> subprocess.Complete
                           cwd=cwd, timeout=timeout)
 
 
-def expectations(scene: Path) -> tuple[str, str]:
-    lines = scene.read_text(encoding="utf-8").splitlines()
-    expect = re.fullmatch(r"# expect: (.+)", lines[0])
-    path = re.fullmatch(r"# path: (.+)", lines[1])
-    assert expect and path, f"{scene.name} must start with '# expect: ...' and '# path: ...' lines"
-    return expect[1].strip(), path[1].strip()
-
-
-def assert_reported(result: subprocess.CompletedProcess, scene: Path, expect: str, path: str) -> None:
-    """The error names the scene, the YAML path with its line and column, and the problem."""
-    assert result.returncode == EXIT_BAD_INPUT, result.stderr
-    assert expect in result.stderr
-    location = re.escape(f"error: {scene}: {path} (line ") + r"\d+, column \d+\): "
-    assert re.search(location, result.stderr), f"path '{path}' not reported in:\n{result.stderr}"
-    assert "Traceback" not in result.stderr and "terminate called" not in result.stderr
-
-
 def results_attributes(path: Path) -> dict:
     with h5py.File(path, "r") as f:
         return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f.attrs.items()}
 
 
 def test_bad_scene_collection_is_complete():
-    assert len(BAD_SCENES) >= 14
-    for scene in BAD_SCENES:
-        expectations(scene)
+    assert_collection(BAD_SCENES, 14)
 
 
 @pytest.mark.parametrize("scene", BAD_SCENES, ids=[s.stem for s in BAD_SCENES])

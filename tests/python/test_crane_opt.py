@@ -11,7 +11,6 @@ Environment: CRANEOPT_BIN (default <repo>/build/crane-opt), CRANESIM_BIN (defaul
 """
 
 import os
-import re
 import subprocess
 from pathlib import Path
 
@@ -20,35 +19,24 @@ import numpy as np
 import pytest
 import yaml
 
+from bad_input import assert_reported, expectations
+
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANEOPT_BIN", SOURCE_DIR / "build" / "crane-opt")).resolve()
 CRANE_SIM = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
 BAD_TARGETS = sorted((SOURCE_DIR / "tests" / "bad_targets").glob("*.yaml"))
 JIB_TARGET = SOURCE_DIR / "configs" / "target_luffing_jib.yaml"
 
-EXIT_BAD_INPUT = 2
-
 
 def crane_opt(*arguments, cwd: Path, timeout: float = 120) -> subprocess.CompletedProcess:
     return subprocess.run([str(BINARY), *map(str, arguments)], cwd=cwd, capture_output=True, text=True, timeout=timeout)
-
-
-def expectations(target: Path) -> tuple[str, str]:
-    lines = target.read_text().splitlines()
-    expect = re.fullmatch(r"# expect: (.+)", lines[0])
-    path = re.fullmatch(r"# path: (.+)", lines[1])
-    assert expect and path, f"{target.name} must start with '# expect: ...' and '# path: ...' lines"
-    return expect[1].strip(), path[1].strip()
 
 
 @pytest.mark.parametrize("target", BAD_TARGETS, ids=lambda p: p.stem)
 def test_bad_target_is_rejected(target: Path, tmp_path: Path):
     expect, path = expectations(target)
     result = crane_opt("plan", target, "-o", tmp_path / "plan.h5", "--quiet", cwd=tmp_path)
-    assert result.returncode == EXIT_BAD_INPUT, result.stderr
-    assert expect in result.stderr
-    location = re.escape(f"error: {target}: {path} (line ") + r"\d+, column \d+\): "
-    assert re.search(location, result.stderr), f"path '{path}' not reported in:\n{result.stderr}"
+    assert_reported(result, target, expect, path)
     assert list(tmp_path.iterdir()) == []  # no result file, not even a partial one
 
 

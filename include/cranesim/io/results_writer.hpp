@@ -73,4 +73,8 @@ class ResultsRecorder final : public SampleSink {
   std::vector<std::vector<double>> section_forces_;  // per Model::section_force_groups: 12 per element and sample
 };
 
+/// Refuses, before any work, a run whose results would not fit in memory (more than 4 GiB):
+/// throws SceneError at output.interval with the estimate.
+void requireResultsFit(const Scene& scene, const Model& model);
+
 }  // namespace cranesim

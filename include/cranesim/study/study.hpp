@@ -1,0 +1,104 @@
+#pragma once
+// A study (DESIGN §15): one base scene, parameters varied over grids or drawn at random, one
+// analysis per case (static, run or modes) and the figures extracted from each case. Cases are
+// numbered 0 … caseCount() − 1; a case's parameter values are a function of its number alone
+// (grid position, and random draws from the seed and the number), so any worker computes any
+// case and the case table does not depend on who computed it.
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cranesim/model/scene.hpp"
+#include "cranesim/model/source_location.hpp"
+
+namespace cranesim {
+
+enum class StudyAnalysis { Static, Run, Modes };
+
+/// A random parameter's distribution. Truncated normal: the normal restricted to [low, high].
+struct RandomDistribution {
+  enum class Kind { Uniform, Normal, TruncatedNormal } kind = Kind::Uniform;
+  double low = 0.0, high = 1.0;   // uniform, truncated normal
+  double mean = 0.0, std_dev = 1.0;  // normal, truncated normal
+};
+
+struct StudyParameter {
+  std::string path;            // a `modify` key into the scene, e.g. bodies.load.mass
+  std::vector<double> values;  // a grid parameter's values; empty for a random one
+  std::optional<RandomDistribution> random;
+};
+
+/// What a figure measures. Time series (all but frequency) are reduced over the samples at
+/// t ≥ after by the figure's statistic; a static case has one sample.
+enum class FigureQuantity {
+  ConstraintForce,     // ‖force rows of λ‖ of a constraint, N (rope_tension: the one at the rope's end)
+  ConstraintMoment,    // ‖other rows of λ‖ of a constraint: its moments (and drive torque), N·m
+  Position,            // one coordinate of a joint's origin, m
+  HorizontalDistance,  // horizontal distance of a joint from another joint, m (a radius)
+  HorizontalSway,      // max horizontal distance of a joint from a reference joint or its mean, m
+  Frequency,           // a mode's frequency, Hz (analysis: modes)
+};
+enum class FigureStatistic { Final, Max, Min };
+
+struct FigureSpec {
+  std::string name;
+  FigureQuantity quantity = FigureQuantity::Position;
+  FigureStatistic statistic = FigureStatistic::Final;
+  std::string constraint;   // ConstraintForce
+  std::string joint;        // Position, HorizontalSway
+  std::string relative_to;  // HorizontalDistance, HorizontalSway: the reference joint; empty (sway): the mean position
+  int component = 0;        // Position: 0, 1, 2 for x, y, z
+  double after = -std::numeric_limits<double>::infinity();  // s
+  int mode = 0;             // Frequency: 1-based, as `crane-sim modes` numbers them
+};
+
+/// A bound on a figure: a case is admissible when every criterion holds (a load chart's limits).
+struct StudyCriterion {
+  std::size_t figure = 0;  // index into Study::figures
+  double min = -std::numeric_limits<double>::infinity(), max = std::numeric_limits<double>::infinity();
+  std::string source;      // where the limit comes from (a standard, a rating), stored with the results
+  /// 1 when `value` lies within [min, max], 0 when not, NaN when the figure is NaN.
+  double holds(double value) const;
+};
+
+/// The base scene's YAML, from which each case's scene is built (io/study_reader.cpp).
+struct StudySceneSource;
+
+struct Study {
+  std::string path, text;  // the study file
+  std::string scene_path;  // the base scene
+  std::string scene_text;  // its text with its own bases
+  StudyAnalysis analysis = StudyAnalysis::Static;
+  int mode_count = 10;     // analysis: modes
+  std::vector<StudyParameter> parameters;
+  long samples = 1;        // draws per grid point (random parameters)
+  std::uint64_t seed = 0;
+  std::vector<FigureSpec> figures;
+  std::vector<StudyCriterion> criteria;
+  bool keep_results = false;
+  long cases = 1;          // the product of the grids' sizes × samples
+  std::shared_ptr<const StudySceneSource> source;
+
+  /// The parameters' values of case `index`, in the order of `parameters`. The last grid
+  /// parameter varies fastest, then the draws: index = grid position × samples + draw.
+  std::vector<double> parameterValues(long index) const;
+};
+
+/// More cases than any study on one machine or a cluster allocation comes near; refused up front.
+inline constexpr double kMaxStudyCases = 1e7;
+
+/// Reads and checks a study file: unknown keys, parameter paths the base scene lacks, empty or
+/// absurd grids, figures naming ropes, joints or constraints the scene lacks, all refused with
+/// SceneError naming the study file's YAML path and line (a problem in the base scene names it).
+Study readStudy(const std::string& path);
+
+/// The scene of case `index`: the base scene with the case's parameter values set, its text
+/// prefixed by the case's values. Throws SceneError (naming the parameter's path in the study
+/// file) when those values make a bad scene. Safe to call from several threads.
+Scene caseScene(const Study& study, long index);
+
+}  // namespace cranesim

@@ -1,0 +1,100 @@
+"""A load chart from a crane-sim study's case table: per crane configuration (e.g. luffing rope
+length), the largest load such that it and every lighter load of the grid are admissible (every
+criterion of the study holds: /cases/admissible), with the radius of that case. Prints the chart
+as a table, with the criterion that the next heavier load violates, and plots load over radius.
+
+Example:
+
+    crane-sim study configs/study_load_chart.yaml -o chart.h5 --jobs 2
+    python scripts/plot_load_chart.py chart.h5 -o chart.png
+"""
+
+import argparse
+import sys
+from pathlib import Path
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+from cranesim_results import ResultsError, run_command
+
+
+def parse_arguments() -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("table", help="a study's results file (crane-sim study)")
+    parser.add_argument("--load", default="bodies.load.mass", help="the parameter that is the load (default: %(default)s)")
+    parser.add_argument("--configuration", default="members.luffing_rope.length",
+                        help="the parameter that sets the crane's configuration (default: %(default)s)")
+    parser.add_argument("--radius", default="radius", help="the figure that is the radius (default: %(default)s)")
+    parser.add_argument("-o", "--output", help="output image (default: <table>_chart.png)")
+    return parser.parse_args()
+
+
+def dataset(table: h5py.File, path: str) -> np.ndarray:
+    if path not in table:
+        group = path.rsplit("/", 1)[0]
+        known = ", ".join(table[group]) if group in table else "none"
+        raise ResultsError(f"{table.filename} has no {path} (in {group}: {known})")
+    return table[path][...]
+
+
+def load_chart(table: h5py.File, load_name: str, configuration_name: str, radius_name: str) -> list[dict]:
+    """One row per configuration: its largest admissible load, the radius there and what limits it."""
+    if table.attrs.get("contents") != "study":
+        raise ResultsError(f"{table.filename} is not a study's case table")
+    load = dataset(table, f"parameters/{load_name}")
+    configuration = dataset(table, f"parameters/{configuration_name}")
+    radius = dataset(table, f"figures/{radius_name}")
+    admissible = dataset(table, "cases/admissible") == 1.0  # NaN (not computed) is not admissible
+    criteria = [(table[f"criteria/{k}"].attrs["figure"], table[f"criteria/{k}"][...] == 1.0)
+                for k in sorted(table["criteria"], key=int)]
+    chart = []
+    for value in np.unique(configuration):
+        cases = np.flatnonzero(configuration == value)
+        cases = cases[np.argsort(load[cases], kind="stable")]
+        held = np.cumprod(admissible[cases]).astype(bool)  # every lighter load admissible too
+        row = {"configuration": value, "load": np.nan, "radius": np.nan, "limit": "none in the grid"}
+        if held.any():
+            last = cases[np.flatnonzero(held)[-1]]
+            row.update(load=load[last], radius=radius[last])
+        count = int(held.sum())
+        if count < len(cases):
+            beyond = cases[count]
+            violated = [figure for figure, holds in criteria if not holds[beyond]]
+            status = table["cases/status"].asstr()[beyond]
+            row["limit"] = ", ".join(violated) if violated else f"case {beyond} {status}"
+        elif held.any():
+            row["limit"] = "the grid's heaviest load"
+        chart.append(row)
+    return chart
+
+
+def main() -> None:
+    args = parse_arguments()
+    path = Path(args.table)
+    with h5py.File(path, "r") as table:
+        chart = load_chart(table, args.load, args.configuration, args.radius)
+    print(f"{args.configuration:>28} {args.radius + ' [m]':>12} {args.load:>20}   limited by")
+    for row in chart:
+        print(f"{row['configuration']:>28.6g} {row['radius']:>12.2f} {row['load']:>20.6g}   {row['limit']}")
+    figure, axes = plt.subplots(figsize=(8, 5))
+    radius = np.array([row["radius"] for row in chart])
+    load = np.array([row["load"] for row in chart])
+    order = np.argsort(radius)
+    axes.plot(radius[order], load[order] / 1e3, "o-")
+    axes.set_xlabel(f"{args.radius} [m]")
+    axes.set_ylabel(f"largest admissible {args.load} [t]")
+    axes.grid(True, alpha=0.3)
+    axes.set_title(f"{path.name}: load chart")
+    figure.tight_layout()
+    output = Path(args.output) if args.output else path.with_name(f"{path.stem}_chart.png")
+    figure.savefig(output, dpi=100)
+    print(f"wrote {output}")
+
+
+if __name__ == "__main__":
+    sys.exit(run_command(main))

@@ -1,0 +1,336 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <mutex>
+#include <set>
+
+#include "bounded_yaml.hpp"
+#include "cranesim/model/compile.hpp"
+#include "cranesim/study/random_draw.hpp"
+#include "cranesim/study/study.hpp"
+#include "scene_composition.hpp"
+#include "yaml_field.hpp"
+
+namespace cranesim {
+
+/// yaml-cpp's nodes are not safe to read from several threads at once (reading a node may
+/// change its reference counts and zombie children), so case scenes are built one at a time.
+struct StudySceneSource {
+  ComposedScene base;
+  std::vector<YamlField> parameter_paths;  // where each parameter is named in the study file
+  mutable std::mutex lock;
+};
+
+namespace {
+
+/// No grid on one axis comes near this many values; refused before it is allocated.
+constexpr double kMaxGridValues = 1e6;
+
+/// Names a figure may not take: the case table's own columns.
+const std::set<std::string> kReservedFigureNames = {"status", "message", "steps", "wall_time_s"};
+
+std::vector<double> readRange(const YamlField& f) {
+  f.allowKeys({"from", "to", "count"});
+  const double from = f.at("from").number(), to = f.at("to").number();
+  const YamlField count_field = f.at("count");
+  const double count = count_field.number();
+  if (count != std::floor(count) || count < 1) count_field.fail(fmt::format("expected a whole number of values ≥ 1, found {:g}", count));
+  if (count > kMaxGridValues) count_field.fail(fmt::format("{:g} values: at most {:g} per parameter", count, kMaxGridValues));
+  if (count == 1 && from != to) count_field.fail(fmt::format("one value cannot span {:g} … {:g}: give count ≥ 2, or from = to", from, to));
+  std::vector<double> values(static_cast<std::size_t>(count));
+  for (std::size_t k = 0; k < values.size(); ++k) values[k] = from + (to - from) * static_cast<double>(k) / (count - 1);
+  values.back() = to;
+  return values;
+}
+
+RandomDistribution readDistribution(const YamlField& f) {
+  RandomDistribution d;
+  const std::string kind = f.at("distribution").choice({"uniform", "normal", "truncated_normal"});
+  if (kind == "uniform") {
+    f.allowKeys({"distribution", "low", "high"});
+    d.kind = RandomDistribution::Kind::Uniform;
+  } else if (kind == "normal") {
+    f.allowKeys({"distribution", "mean", "std"});
+    d.kind = RandomDistribution::Kind::Normal;
+  } else {
+    f.allowKeys({"distribution", "mean", "std", "low", "high"});
+    d.kind = RandomDistribution::Kind::TruncatedNormal;
+  }
+  if (kind != "uniform") {
+    d.mean = f.at("mean").number();
+    d.std_dev = f.at("std").positive();
+  }
+  if (kind != "normal") {
+    d.low = f.at("low").number();
+    d.high = f.at("high").number();
+    if (!(d.high > d.low)) f.at("high").fail(fmt::format("must be above low ({:g}), found {:g}", d.low, d.high));
+  }
+  if (kind == "truncated_normal" && normalMassWithin(d) < kMinTruncatedMass)
+    f.fail(fmt::format("[{:g}, {:g}] holds only {:.2g} of the normal's probability: at least {:g}", d.low, d.high,
+                       normalMassWithin(d), kMinTruncatedMass));
+  return d;
+}
+
+/// A joint named by `body` (its origin) or `joint`; fails unless exactly one is given and exists.
+std::string readJointOf(const YamlField& f, const Model& model) {
+  if (f.has("body") == f.has("joint")) f.fail("name exactly one of body (its origin) or joint");
+  const YamlField named = f.has("body") ? f.at("body") : f.at("joint");
+  const std::string joint = f.has("body") ? named.text() + ".origin" : named.text();
+  if (model.findJoint(joint) < 0) {
+    std::string bodies;
+    for (const Node& n : model.nodes)
+      if (n.member.empty()) bodies += (bodies.empty() ? "" : ", ") + n.name;
+    named.fail(fmt::format("the scene has no {} '{}' (bodies: {}; joints are named <body>.<joint>)",
+                           f.has("body") ? "body" : "joint", named.text(), bodies));
+  }
+  return joint;
+}
+
+std::string readReferenceJoint(const YamlField& f, const Model& model) {
+  const std::string joint = f.text();
+  if (model.findJoint(joint) < 0) f.fail(fmt::format("the scene has no joint '{}' (joints are named <body>.<joint>)", joint));
+  return joint;
+}
+
+/// The constraint holding a rope's end: its force is the rope's tension there.
+std::string constraintAtRopeEnd(const YamlField& f, const Scene& scene, const Model& model) {
+  const YamlField rope_field = f.at("rope");
+  const std::string rope = rope_field.text();
+  std::string ropes;
+  bool found = false;
+  for (const MemberSpec& m : scene.members)
+    if (m.type == MemberType::Rope) {
+      ropes += (ropes.empty() ? "" : ", ") + m.name;
+      found = found || m.name == rope;
+    }
+  if (!found) rope_field.fail(fmt::format("the scene has no rope '{}' (ropes: {})", rope, ropes.empty() ? "none" : ropes));
+  const std::string end = f.has("end") ? f.at("end").choice({"start", "end"}) : "end";
+  const int node = model.joints[model.findJoint(rope + "." + end)].node;
+  std::vector<std::string> held_by;
+  for (const Constraint& c : model.constraints)
+    if (model.joints[c.joint1].node == node || model.joints[c.joint2].node == node) held_by.push_back(c.name);
+  if (held_by.size() != 1)
+    rope_field.fail(fmt::format("the {} of rope '{}' is held by {} constraints{}: name one with quantity: constraint_force",
+                                end, rope, held_by.size(), held_by.empty() ? "" : fmt::format(" ({})", fmt::join(held_by, ", "))));
+  return held_by.front();
+}
+
+FigureStatistic readStatistic(const YamlField& f) {
+  if (!f.has("statistic")) return FigureStatistic::Final;
+  const std::string s = f.at("statistic").choice({"final", "max", "min"});
+  return s == "final" ? FigureStatistic::Final : s == "max" ? FigureStatistic::Max : FigureStatistic::Min;
+}
+
+FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene, const Model& model) {
+  FigureSpec fig;
+  if (!f.isMap()) f.fail("expected a mapping {name, quantity, …}");
+  fig.name = f.at("name").identifier();
+  if (kReservedFigureNames.count(fig.name)) f.at("name").fail(fmt::format("'{}' is a column of every case table already", fig.name));
+  const std::string quantity =
+      f.at("quantity").choice({"rope_tension", "constraint_force", "constraint_moment", "position", "horizontal_distance",
+                               "horizontal_sway", "frequency"});
+  if (quantity == "rope_tension") {
+    f.allowKeys({"name", "quantity", "rope", "end", "statistic", "after"});
+    fig.quantity = FigureQuantity::ConstraintForce;
+    fig.constraint = constraintAtRopeEnd(f, scene, model);
+  } else if (quantity == "constraint_force" || quantity == "constraint_moment") {
+    f.allowKeys({"name", "quantity", "constraint", "statistic", "after"});
+    fig.quantity = quantity == "constraint_force" ? FigureQuantity::ConstraintForce : FigureQuantity::ConstraintMoment;
+    const YamlField c = f.at("constraint");
+    fig.constraint = c.text();
+    std::string known;
+    bool found = false;
+    for (const Constraint& k : model.constraints) {
+      known += (known.empty() ? "" : ", ") + k.name;
+      found = found || k.name == fig.constraint;
+    }
+    if (!found) c.fail(fmt::format("the scene has no constraint '{}' (constraints: {})", fig.constraint, known));
+  } else if (quantity == "position") {
+    f.allowKeys({"name", "quantity", "body", "joint", "component", "statistic", "after"});
+    fig.quantity = FigureQuantity::Position;
+    fig.joint = readJointOf(f, model);
+    const std::string axis = f.at("component").choice({"x", "y", "z"});
+    fig.component = axis[0] - 'x';
+  } else if (quantity == "horizontal_distance") {
+    f.allowKeys({"name", "quantity", "body", "joint", "relative_to", "statistic", "after"});
+    fig.quantity = FigureQuantity::HorizontalDistance;
+    fig.joint = readJointOf(f, model);
+    fig.relative_to = readReferenceJoint(f.at("relative_to"), model);
+  } else if (quantity == "horizontal_sway") {
+    f.allowKeys({"name", "quantity", "body", "joint", "relative_to", "after"});
+    fig.quantity = FigureQuantity::HorizontalSway;
+    fig.statistic = FigureStatistic::Max;
+    fig.joint = readJointOf(f, model);
+    if (const auto r = f.find("relative_to")) fig.relative_to = readReferenceJoint(*r, model);
+  } else {
+    f.allowKeys({"name", "quantity", "mode"});
+    fig.quantity = FigureQuantity::Frequency;
+    if (study.analysis != StudyAnalysis::Modes) f.at("quantity").fail("a frequency needs analysis: modes");
+    const YamlField mode = f.at("mode");
+    fig.mode = mode.integer();
+    if (fig.mode < 1 || fig.mode > study.mode_count)
+      mode.fail(fmt::format("mode {} of the {} computed (modes: {}): expected 1 … {}", fig.mode, study.mode_count,
+                            study.mode_count, study.mode_count));
+    return fig;
+  }
+  if (fig.quantity != FigureQuantity::HorizontalSway) fig.statistic = readStatistic(f);
+  if (const auto after = f.find("after")) fig.after = after->number();
+  return fig;
+}
+
+StudyCriterion readCriterion(const YamlField& f, const std::vector<FigureSpec>& figures) {
+  f.allowKeys({"figure", "min", "max", "source"});
+  StudyCriterion c;
+  const YamlField figure = f.at("figure");
+  const std::string name = figure.text();
+  const auto named = std::find_if(figures.begin(), figures.end(), [&](const FigureSpec& s) { return s.name == name; });
+  if (named == figures.end()) figure.fail(fmt::format("no figure named '{}' in figures", name));
+  c.figure = static_cast<std::size_t>(named - figures.begin());
+  if (!f.has("min") && !f.has("max")) f.fail("a criterion needs min, max or both");
+  if (const auto min = f.find("min")) c.min = min->number();
+  if (const auto max = f.find("max")) c.max = max->number();
+  if (!(c.max >= c.min)) f.at("max").fail(fmt::format("must not be below min ({:g}), found {:g}", c.min, c.max));
+  c.source = f.at("source").text();
+  return c;
+}
+
+StudyParameter readParameter(const YamlField& f, YAML::Node scene_root, std::vector<YamlField>& paths) {
+  f.allowKeys({"path", "values", "range", "random"});
+  StudyParameter p;
+  const YamlField path = f.at("path");
+  p.path = path.text();
+  if (f.has("values") + f.has("range") + f.has("random") != 1) f.fail("give exactly one of values, range or random");
+  if (const auto values = f.find("values")) {
+    if (!values->isSequence()) values->fail("expected a list of numbers");
+    p.values = values->numbers();
+    if (p.values.empty()) values->fail("an empty grid: give at least one value");
+    if (static_cast<double>(p.values.size()) > kMaxGridValues)
+      values->fail(fmt::format("{} values: at most {:g} per parameter", p.values.size(), kMaxGridValues));
+  } else if (const auto range = f.find("range")) {
+    p.values = readRange(*range);
+  } else {
+    p.random = readDistribution(f.at("random"));
+  }
+  // The path must name a field the scene gives (a study varies what the scene says).
+  modifyScene(YAML::Clone(scene_root), path, p.path, YAML::Node(0.0), /*require_field=*/true);
+  paths.push_back(path);
+  return p;
+}
+
+}  // namespace
+
+double StudyCriterion::holds(double value) const {
+  if (std::isnan(value)) return value;
+  return value >= min && value <= max ? 1.0 : 0.0;
+}
+
+std::vector<double> Study::parameterValues(long index) const {
+  std::vector<double> values(parameters.size());
+  long grid = index / samples;
+  for (std::size_t k = parameters.size(); k-- > 0;) {
+    const StudyParameter& p = parameters[k];
+    if (p.random) {
+      values[k] = randomDraw(*p.random, seed, static_cast<std::uint64_t>(index), k);
+    } else {
+      const long n = static_cast<long>(p.values.size());
+      values[k] = p.values[static_cast<std::size_t>(grid % n)];
+      grid /= n;
+    }
+  }
+  return values;
+}
+
+Study readStudy(const std::string& path) {
+  Study study;
+  study.path = path;
+  study.text = readInputFile(path, "study file", {path, 0, 0});
+  const YAML::Node root = loadBoundedYaml(study.text);
+  const YamlField f(root, "");
+  if (!f.isMap()) f.fail("a study file is a mapping (scene, analysis, parameters, figures, …)");
+  f.allowKeys({"name", "scene", "analysis", "modes", "parameters", "samples", "seed", "figures", "criteria", "keep_results"});
+
+  auto source = std::make_shared<StudySceneSource>();
+  const YamlField scene_field = f.at("scene");
+  study.scene_path = (std::filesystem::path(path).parent_path() / scene_field.text()).string();
+  Scene scene;
+  try {
+    const auto validate = [](const ComposedScene& base, const std::string& base_path) { sceneFromComposed(base, base_path); };
+    source->base = composeScene(readInputFile(study.scene_path, "scene file", {study.scene_path, 0, 0}), study.scene_path, validate);
+    scene = sceneFromComposed(source->base, study.scene_path);
+  } catch (const SceneError& e) {
+    scene_field.fail(fmt::format("in the scene '{}': {}", study.scene_path, e.what()));
+  }
+  study.scene_text = source->base.text;
+  const Model model = compileModel(scene);
+
+  const std::string analysis = f.at("analysis").choice({"static", "run", "modes"});
+  study.analysis = analysis == "static" ? StudyAnalysis::Static : analysis == "run" ? StudyAnalysis::Run : StudyAnalysis::Modes;
+  if (const auto modes = f.find("modes")) {
+    if (study.analysis != StudyAnalysis::Modes) modes->fail("modes counts the modes of analysis: modes");
+    study.mode_count = modes->integer();
+    if (study.mode_count < 1 || study.mode_count > model.nv)
+      modes->fail(fmt::format("expected 1 … {} (the model's velocity coordinates), found {}", model.nv, study.mode_count));
+  }
+
+  double cases = 1.0;
+  bool random = false;
+  if (const auto parameters = f.find("parameters")) {
+    std::set<std::string> seen;
+    for (const YamlField& p : parameters->items()) {
+      study.parameters.push_back(readParameter(p, source->base.root, source->parameter_paths));
+      if (!seen.insert(study.parameters.back().path).second) p.at("path").fail("this path is varied twice");
+      random = random || study.parameters.back().random.has_value();
+      cases *= static_cast<double>(std::max<std::size_t>(1, study.parameters.back().values.size()));
+    }
+  }
+  if (const auto samples = f.find("samples")) {
+    if (!random) samples->fail("samples are draws of the random parameters, and no parameter is random");
+    const double n = samples->number();
+    if (n != std::floor(n) || n < 1) samples->fail(fmt::format("expected a whole number ≥ 1, found {:g}", n));
+    if (n > kMaxStudyCases) samples->fail(fmt::format("{:g} draws: a study has at most {:g} cases", n, kMaxStudyCases));
+    study.samples = static_cast<long>(n);
+  } else if (random) {
+    f.fail("random parameters need samples: the number of draws per grid point");
+  }
+  cases *= static_cast<double>(study.samples);
+  if (cases > kMaxStudyCases)
+    (f.has("parameters") ? f.at("parameters") : f).fail(
+        fmt::format("{:.4g} cases: a study has at most {:g} (split it into several studies)", cases, kMaxStudyCases));
+  study.cases = static_cast<long>(cases);
+  if (const auto seed = f.find("seed")) {
+    const double s = seed->number();
+    if (s != std::floor(s) || s < 0 || s > 0x1.0p53) seed->fail(fmt::format("expected a whole number 0 … 2⁵³, found {:g}", s));
+    study.seed = static_cast<std::uint64_t>(s);
+  } else if (random) {
+    f.fail("random parameters need a seed (a whole number), so that the study can be repeated");
+  }
+
+  if (const auto figures = f.find("figures")) {
+    std::set<std::string> names;
+    for (const YamlField& fig : figures->items()) {
+      study.figures.push_back(readFigure(fig, study, scene, model));
+      if (!names.insert(study.figures.back().name).second) fig.at("name").fail("duplicate figure name");
+    }
+  }
+  if (const auto criteria = f.find("criteria"))
+    for (const YamlField& c : criteria->items()) study.criteria.push_back(readCriterion(c, study.figures));
+  if (const auto keep = f.find("keep_results")) study.keep_results = keep->boolean();
+  study.source = std::move(source);
+  return study;
+}
+
+Scene caseScene(const Study& study, long index) {
+  const std::vector<double> values = study.parameterValues(index);
+  std::string header = fmt::format("# study {}, case {}:", study.path, index);
+  for (std::size_t k = 0; k < values.size(); ++k) header += fmt::format(" {} = {}", study.parameters[k].path, values[k]);
+  const StudySceneSource& source = *study.source;
+  const std::lock_guard<std::mutex> lock(source.lock);
+  ComposedScene composed{YAML::Clone(source.base.root), header + "\n" + source.base.text};
+  for (std::size_t k = 0; k < values.size(); ++k)
+    modifyScene(composed.root, source.parameter_paths[k], study.parameters[k].path, YAML::Node(fmt::format("{}", values[k])));
+  return sceneFromComposed(composed, study.scene_path);
+}
+
+}  // namespace cranesim

@@ -1,0 +1,103 @@
+#include "cranesim/study/case_figures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cranesim/solvers/scene_equilibrium.hpp"
+
+namespace cranesim {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// The recorded force (or, with `moment`, the moment) constraint `name` carries at every sample.
+std::vector<double> constraintLoads(const Model& model, const ResultsRecorder& recorder, const std::string& name, bool moment) {
+  const Constraint& c = *std::find_if(model.constraints.begin(), model.constraints.end(),
+                                      [&](const Constraint& k) { return k.name == name; });
+  std::vector<std::vector<double>> rows;
+  for (int k = 0; k < c.rows; ++k) rows.push_back(recorder.stateColumn(model.nq + model.nv + c.row + k));
+  std::vector<double> forces(recorder.samples());
+  VecX lambda = VecX::Zero(model.m);
+  for (std::size_t s = 0; s < forces.size(); ++s) {
+    for (int k = 0; k < c.rows; ++k) lambda(c.row + k) = rows[k][s];
+    const ConstraintLoad load = constraintLoad(c, lambda.data());
+    forces[s] = moment ? load.other : load.force;
+  }
+  return forces;
+}
+
+std::vector<double> coordinate(const Model& model, const ResultsRecorder& recorder, const std::string& joint, int axis) {
+  const std::vector<double>& p = recorder.jointPositions(model.findJoint(joint));
+  std::vector<double> out(recorder.samples());
+  for (std::size_t s = 0; s < out.size(); ++s) out[s] = p[3 * s + axis];
+  return out;
+}
+
+/// The horizontal distance of a joint, at every sample, from the reference joint at the same
+/// time, or (no reference) from its own mean position over the samples in the window.
+std::vector<double> horizontalDistances(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder,
+                                        const std::vector<std::size_t>& window) {
+  std::vector<double> x = coordinate(model, recorder, fig.joint, 0), y = coordinate(model, recorder, fig.joint, 1);
+  if (!fig.relative_to.empty()) {
+    const std::vector<double> rx = coordinate(model, recorder, fig.relative_to, 0), ry = coordinate(model, recorder, fig.relative_to, 1);
+    for (std::size_t s = 0; s < x.size(); ++s) x[s] -= rx[s], y[s] -= ry[s];
+  } else {
+    double mx = 0.0, my = 0.0;
+    for (const std::size_t s : window) mx += x[s], my += y[s];
+    mx /= static_cast<double>(window.size());
+    my /= static_cast<double>(window.size());
+    for (std::size_t s = 0; s < x.size(); ++s) x[s] -= mx, y[s] -= my;
+  }
+  std::vector<double> distances(x.size());
+  for (std::size_t s = 0; s < x.size(); ++s) distances[s] = std::hypot(x[s], y[s]);
+  return distances;
+}
+
+double reduce(const std::vector<double>& series, const std::vector<std::size_t>& window, FigureStatistic statistic) {
+  double out = series[window.front()];
+  for (const std::size_t s : window)
+    out = statistic == FigureStatistic::Final ? series[s]
+        : statistic == FigureStatistic::Max   ? std::max(out, series[s])
+                                              : std::min(out, series[s]);
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> caseFigures(const Study& study, const Model& model, const ResultsRecorder& recorder,
+                                const ModalResult* modes) {
+  std::vector<double> figures;
+  for (const FigureSpec& fig : study.figures) {
+    if (fig.quantity == FigureQuantity::Frequency) {
+      figures.push_back(modes && fig.mode <= modes->frequencies.size() ? modes->frequencies(fig.mode - 1) : kNaN);
+      continue;
+    }
+    std::vector<std::size_t> window;
+    for (std::size_t s = 0; s < recorder.samples(); ++s)
+      if (recorder.time()[s] >= fig.after) window.push_back(s);
+    if (window.empty()) {
+      figures.push_back(kNaN);
+      continue;
+    }
+    switch (fig.quantity) {
+      case FigureQuantity::ConstraintForce:
+      case FigureQuantity::ConstraintMoment:
+        figures.push_back(reduce(constraintLoads(model, recorder, fig.constraint, fig.quantity == FigureQuantity::ConstraintMoment),
+                                 window, fig.statistic));
+        break;
+      case FigureQuantity::Position:
+        figures.push_back(reduce(coordinate(model, recorder, fig.joint, fig.component), window, fig.statistic));
+        break;
+      case FigureQuantity::HorizontalDistance:
+      case FigureQuantity::HorizontalSway:
+        figures.push_back(reduce(horizontalDistances(fig, model, recorder, window), window, fig.statistic));
+        break;
+      case FigureQuantity::Frequency:
+        break;
+    }
+  }
+  return figures;
+}
+
+}  // namespace cranesim

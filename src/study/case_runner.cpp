@@ -1,0 +1,84 @@
+#include "cranesim/study/case_runner.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "cranesim/io/modes_writer.hpp"
+#include "cranesim/io/results_writer.hpp"
+#include "cranesim/model/compile.hpp"
+#include "cranesim/solvers/scene_equilibrium.hpp"
+#include "cranesim/study/case_figures.hpp"
+
+namespace cranesim {
+namespace {
+
+/// The analysis of one case; fills the row's status, message and steps and, when complete, its
+/// figures.
+void analyse(const Study& study, long index, const CaseOptions& options, CaseRow& row) {
+  const Scene scene = caseScene(study, index);
+  const Model model = compileModel(scene);
+  if (study.analysis == StudyAnalysis::Run) requireResultsFit(scene, model);
+  const Assembler assembler(model);
+  ResultsRecorder recorder(assembler);
+  const bool keep = !options.results_path.empty();
+  std::optional<ModalResult> modal;
+  bool complete = false;
+  if (study.analysis == StudyAnalysis::Run) {
+    const DynamicState initial = runInitialState(scene, model, assembler, true);
+    SimulationControl control;
+    control.stop_requested = options.stop;
+    const SimulationOutcome outcome = simulate(assembler, initial, recorder, control);
+    if (keep)
+      recorder.write(options.results_path,
+                     {scene.path, scene.text, model.solver.formulation == Formulation::GGL ? "ggl" : "baumgarte", model.solver.t_end},
+                     outcome);
+    complete = outcome.complete;
+    row.steps = static_cast<double>(outcome.statistics.steps);
+    row.message = outcome.message;
+    if (!complete) row.status = options.stop && *options.stop ? kCaseInterrupted : kCaseFailed;
+  } else {
+    const StaticResult eq = sceneEquilibrium(scene, model, assembler, true);
+    row.steps = eq.iterations;
+    recorder.sample(eq.t, equilibriumSample(assembler, eq).data(), WorkTerms{});
+    if (study.analysis == StudyAnalysis::Modes) {
+      modal = computeModes(model, eq.q, eq.t, study.mode_count);
+      if (keep) writeModes(options.results_path, model, eq.q, *modal, {scene.path, scene.text, eq.t});
+      complete = true;
+    } else {
+      row.message = equilibriumInstability(model, eq, true);
+      complete = row.message.empty();
+      SimulationOutcome outcome;
+      outcome.complete = complete;
+      outcome.t_reached = eq.t;
+      outcome.message = row.message;
+      if (keep) recorder.write(options.results_path, {scene.path, scene.text, "static", eq.t}, outcome);
+      if (!complete) row.status = kCaseFailed;
+    }
+  }
+  if (!complete) return;
+  row.status = kCaseComplete;
+  row.figures = caseFigures(study, model, recorder, modal ? &*modal : nullptr);
+}
+
+}  // namespace
+
+CaseRow runCase(const Study& study, long index, const CaseOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CaseRow row;
+  row.index = index;
+  row.figures.assign(study.figures.size(), std::numeric_limits<double>::quiet_NaN());
+  try {
+    analyse(study, index, options, row);
+  } catch (const SceneError& e) {
+    row.status = kCaseBadInput;
+    row.message = e.what();
+  } catch (const std::exception& e) {
+    row.status = kCaseFailed;
+    row.message = e.what();
+  }
+  row.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return row;
+}
+
+}  // namespace cranesim

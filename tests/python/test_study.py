@@ -1,0 +1,345 @@
+"""crane-sim study: the case table, its determinism over threads and MPI ranks, failed cases,
+interruption and --resume, and bad study files.
+
+Every tests/bad_studies/*.yaml is a study with one defect. Its first two lines say what the error
+must contain and which YAML path of the study file it names:
+
+    # expect: <substring of the error message>
+    # path: <YAML path the error is reported at>
+
+Environment: CRANESIM_BIN (default <repo>/build/crane-sim) and CRANESIM_SOURCE_DIR. The MPI
+comparisons run when mpirun is on PATH and crane-sim was built with MPI.
+"""
+
+import math
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+from bad_input import EXIT_BAD_INPUT, assert_collection, assert_reported, expectations
+
+SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
+BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
+BAD_STUDIES = sorted((SOURCE_DIR / "tests" / "bad_studies").glob("*.yaml"))
+RUN_STUDY = SOURCE_DIR / "configs" / "study_rope_pendulum.yaml"
+ROPE_PENDULUM = SOURCE_DIR / "configs" / "rope_pendulum.yaml"
+
+GRAVITY = 9.81
+# rope_pendulum.yaml: a 10 m steel rope of radius 1 cm, E = 1e11 Pa, ρ = 7800 kg/m³.
+ROPE_LENGTH = 10.0
+ROPE_AREA = math.pi * 0.01**2
+ROPE_MASS = 7800 * ROPE_AREA * ROPE_LENGTH
+ROPE_EA = 1.0e11 * ROPE_AREA
+# Where the ball is drawn: 30° out, on the rope's stretched chord.
+BALL_DRAWN_X = 5.001368700748983
+
+STATIC_STUDY = f"""\
+scene: {ROPE_PENDULUM}
+analysis: static
+parameters:
+  - {{path: bodies.ball.mass, range: {{from: 500, to: 3000, count: 6}}}}
+figures:
+  - {{name: hook_tension, quantity: rope_tension, rope: rope}}
+  - {{name: top_tension, quantity: rope_tension, rope: rope, end: start}}
+  - {{name: ball_z, quantity: position, body: ball, component: z}}
+  - {{name: ball_x, quantity: position, joint: ball.origin, component: x}}
+keep_results: true
+"""
+
+
+def crane_sim(*arguments, cwd: Path, timeout: float = 120) -> subprocess.CompletedProcess:
+    return subprocess.run([str(BINARY), *map(str, arguments)], capture_output=True, text=True, cwd=cwd,
+                          timeout=timeout)
+
+
+def mpirun(ranks: int, *arguments, cwd: Path) -> subprocess.CompletedProcess:
+    launcher = ["mpirun", "--oversubscribe", "-n", str(ranks)]
+    if os.geteuid() == 0:
+        launcher.insert(1, "--allow-run-as-root")
+    return subprocess.run(launcher + [str(BINARY), *map(str, arguments)], capture_output=True, text=True, cwd=cwd,
+                          timeout=300)
+
+
+def case_table(path: Path) -> dict:
+    """Everything of a case table that must not depend on who computed it: all but wall times."""
+    with h5py.File(path, "r") as f:
+        table = {f"parameters/{k}": f["parameters"][k][...] for k in f["parameters"]}
+        table.update({f"figures/{k}": f["figures"][k][...] for k in f["figures"]})
+        for k in ("status", "message", "steps"):
+            table[f"cases/{k}"] = f["cases"][k][...]
+    return table
+
+
+def workers(path: Path) -> list[str]:
+    with h5py.File(path, "r") as f:
+        return list(f["cases/worker"].asstr()[...])
+
+
+def assert_bitwise_equal(a: dict, b: dict) -> None:
+    assert a.keys() == b.keys()
+    for key in a:
+        assert a[key].dtype == b[key].dtype, key
+        if a[key].dtype.kind == "f":
+            assert a[key].tobytes() == b[key].tobytes(), key
+        else:
+            assert np.array_equal(a[key], b[key]), key
+
+
+def test_bad_study_collection_is_complete():
+    assert_collection(BAD_STUDIES, 10)
+
+
+@pytest.mark.parametrize("study", BAD_STUDIES, ids=[s.stem for s in BAD_STUDIES])
+def test_bad_study_is_rejected(study: Path, tmp_path: Path):
+    expect, path = expectations(study)
+    result = crane_sim("study", study, "-o", tmp_path / "study.h5", cwd=tmp_path)
+    assert_reported(result, study, expect, path)
+    assert list(tmp_path.iterdir()) == []  # no table, no partial file, no checkpoint
+
+
+@pytest.fixture(scope="module")
+def static_study(tmp_path_factory) -> Path:
+    directory = tmp_path_factory.mktemp("static_study")
+    study = directory / "masses.yaml"
+    study.write_text(STATIC_STUDY)
+    result = crane_sim("study", study, "-o", directory / "masses.h5", cwd=directory)
+    assert result.returncode == 0, result.stderr
+    return directory / "masses.h5"
+
+
+def test_static_study_figures_match_the_hanging_rope(static_study: Path):
+    """At rest the hook carries the ball's weight, the suspension the ball's and the rope's, and the
+    ball hangs below the suspension by the rope's length plus its stretch under the linearly
+    varying tension, ∫ T/EA ds = (m g L + ρ A g L²/2)/EA."""
+    with h5py.File(static_study, "r") as f:
+        mass = f["parameters/bodies.ball.mass"][...]
+        assert np.array_equal(mass, [500, 1000, 1500, 2000, 2500, 3000])
+        assert list(f["cases/status"].asstr()[...]) == ["complete"] * 6
+        assert f.attrs["contents"] == "study" and f.attrs["status"] == "complete"
+        assert "bodies.ball.mass" in f.attrs["study_text"]
+        np.testing.assert_allclose(f["figures/hook_tension"][...], mass * GRAVITY, rtol=1e-9)
+        np.testing.assert_allclose(f["figures/top_tension"][...], (mass + ROPE_MASS) * GRAVITY, rtol=1e-9)
+        stretch = (mass * GRAVITY * ROPE_LENGTH + ROPE_MASS * GRAVITY * ROPE_LENGTH / 2) / ROPE_EA
+        np.testing.assert_allclose(f["figures/ball_z"][...], -(ROPE_LENGTH + stretch), atol=1e-7)
+        np.testing.assert_allclose(f["figures/ball_x"][...], 0.0, atol=1e-9)
+        assert np.all(f["cases/steps"][...] > 0)
+
+
+def test_static_study_keeps_each_case_results(static_study: Path):
+    cases = sorted((static_study.parent / "masses_cases").iterdir())
+    assert [c.name for c in cases] == [f"case_{i:05d}.h5" for i in range(6)]
+    with h5py.File(cases[3], "r") as f:
+        assert f.attrs["status"] == "complete"
+        assert "case 3: bodies.ball.mass = 2000" in f.attrs["scene_text"]
+        assert f["bodies/ball/position"][0, 2] < -ROPE_LENGTH
+
+
+@pytest.fixture(scope="module")
+def run_study(tmp_path_factory) -> dict:
+    """The example study (a grid of masses × random rope stiffnesses, 2 s swings) computed by
+    one thread, two threads, one MPI rank and two MPI ranks."""
+    directory = tmp_path_factory.mktemp("run_study")
+    tables, who = {}, {}
+    for jobs in (1, 2):
+        out = directory / f"jobs{jobs}.h5"
+        result = crane_sim("study", RUN_STUDY, "-o", out, "--jobs", jobs, cwd=directory)
+        assert result.returncode == 0, result.stderr
+        tables[f"jobs {jobs}"], who[f"jobs {jobs}"] = case_table(out), workers(out)
+    if shutil.which("mpirun"):
+        for ranks in (1, 2):
+            out = directory / f"ranks{ranks}.h5"
+            result = mpirun(ranks, "study", RUN_STUDY, "-o", out, cwd=directory)
+            assert result.returncode == 0, result.stdout + result.stderr
+            tables[f"ranks {ranks}"], who[f"ranks {ranks}"] = case_table(out), workers(out)
+    return {"tables": tables, "workers": who}
+
+
+def test_run_study_figures(run_study: dict):
+    table = run_study["tables"]["jobs 1"]
+    mass = table["parameters/bodies.ball.mass"]
+    assert np.array_equal(mass, [500, 500, 1000, 1000, 2000, 2000])
+    stiffness = table["parameters/members.rope.material.youngs_modulus"]
+    assert np.all((stiffness >= 8e10) & (stiffness <= 1.2e11)) and len(set(stiffness)) == 6
+    assert list(table["cases/status"].astype(str)) == ["complete"] * 6
+    # Released at rest 30° out, the ball is farthest from the vertical at the start, where the
+    # rope holds it at its drawn place: its sway over the whole run is that distance.
+    swing_start = table["figures/ball_sway"]
+    assert np.all(swing_start < BALL_DRAWN_X)
+    # The rope pulls the ball up and in: the tension at the hook peaks above the weight at the
+    # lowest point, and never pushes.
+    assert np.all(table["figures/hook_tension_max"] > mass * GRAVITY)
+    assert np.all(table["figures/hook_tension_min"] >= 0.0)
+
+
+def test_run_study_is_bitwise_identical_on_threads_and_ranks(run_study: dict):
+    if not shutil.which("mpirun"):
+        pytest.skip("mpirun not installed: threads compared only")
+    tables = run_study["tables"]
+    for table in tables.values():
+        assert_bitwise_equal(tables["jobs 1"], table)
+    assert len(tables) == 4
+
+
+def test_every_worker_takes_part(run_study: dict):
+    """Each case was computed by one of the workers there were; with two of them, by both."""
+    who = run_study["workers"]
+    assert set(who["jobs 1"]) == {"thread 0"}
+    assert set(who["jobs 2"]) == {"thread 0", "thread 1"}
+    if "ranks 2" in who:
+        assert set(who["ranks 1"]) == {"rank 0 thread 0"}
+        assert set(who["ranks 2"]) == {"rank 0 thread 0", "rank 1"}
+
+
+def test_sway_of_a_released_pendulum(tmp_path: Path):
+    """The sway relative to the suspension, over a run that starts at rest at the drawn 30°, is
+    the drawn horizontal distance; after 1 s it is less."""
+    study = tmp_path / "sway.yaml"
+    study.write_text(f"""\
+scene: {ROPE_PENDULUM}
+analysis: run
+parameters:
+  - {{path: solver.t_end, values: [1.5]}}
+figures:
+  - {{name: sway, quantity: horizontal_sway, body: ball, relative_to: ground.suspension}}
+  - {{name: sway_late, quantity: horizontal_sway, body: ball, relative_to: ground.suspension, after: 1.0}}
+  - {{name: sway_too_late, quantity: horizontal_sway, body: ball, after: 100}}
+""")
+    result = crane_sim("study", study, "-o", tmp_path / "sway.h5", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    with h5py.File(tmp_path / "sway.h5", "r") as f:
+        assert abs(f["figures/sway"][0] - BALL_DRAWN_X) < 1e-6
+        assert f["figures/sway_late"][0] < BALL_DRAWN_X - 0.1
+        assert math.isnan(f["figures/sway_too_late"][0])  # no sample after 100 s
+
+
+def test_failed_case_is_a_row_and_the_study_goes_on(tmp_path: Path):
+    study = tmp_path / "failing.yaml"
+    study.write_text(f"""\
+scene: {ROPE_PENDULUM}
+analysis: static
+parameters:
+  - {{path: bodies.ball.mass, values: [-1, 1000]}}
+figures:
+  - {{name: hook_tension, quantity: rope_tension, rope: rope}}
+""")
+    result = crane_sim("study", study, "-o", tmp_path / "failing.h5", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "case 0: bad_input: bodies[0].mass: must be positive, found -1" in result.stderr
+    with h5py.File(tmp_path / "failing.h5", "r") as f:
+        assert list(f["cases/status"].asstr()[...]) == ["bad_input", "complete"]
+        assert "must be positive" in f["cases/message"].asstr()[0]
+        tension = f["figures/hook_tension"][...]
+        assert math.isnan(tension[0]) and tension[1] == pytest.approx(1000 * GRAVITY, rel=1e-9)
+
+
+def test_interrupted_study_resumes_without_recomputing(tmp_path: Path):
+    """SIGINT stops the study with its finished rows written and checkpointed; --resume computes
+    only the others, and the table is bitwise the one of an uninterrupted study."""
+    study = tmp_path / "long.yaml"
+    study.write_text(RUN_STUDY.read_text().replace("scene: rope_pendulum.yaml", f"scene: {ROPE_PENDULUM}")
+                     .replace("values: [2]", "values: [8]"))
+    reference = tmp_path / "reference.h5"
+    assert crane_sim("study", study, "-o", reference, "-q", cwd=tmp_path).returncode == 0
+
+    out, checkpoint = tmp_path / "long.h5", tmp_path / "long.h5.checkpoint"
+    process = subprocess.Popen([str(BINARY), "study", str(study), "-o", str(out)], cwd=tmp_path,
+                               stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while not (checkpoint.exists() and len(checkpoint.read_text().splitlines()) >= 2):  # header + a row
+        assert time.monotonic() < deadline and process.poll() is None
+        time.sleep(0.01)
+    process.send_signal(signal.SIGINT)
+    _, stderr = process.communicate(timeout=60)
+    assert process.returncode == 128 + signal.SIGINT, stderr
+    with h5py.File(out, "r") as f:
+        assert f.attrs["status"] == "incomplete" and "--resume" in f.attrs["message"]
+        statuses = list(f["cases/status"].asstr()[...])
+        finished = statuses.count("complete")
+        assert 1 <= finished < 6 and statuses.count("not_run") == 6 - finished
+        wall_before = f["cases/wall_time_s"][...]
+    assert checkpoint.exists()
+
+    again = crane_sim("study", study, "-o", out, cwd=tmp_path)
+    assert again.returncode == EXIT_BAD_INPUT and "--resume" in again.stderr
+
+    resumed = crane_sim("study", study, "-o", out, "--resume", cwd=tmp_path)
+    assert resumed.returncode == 0, resumed.stderr
+    assert f"resuming: {finished} of 6 cases finished before" in resumed.stderr
+    assert f"{6 - finished} computed" in resumed.stderr
+    assert not checkpoint.exists()
+    assert_bitwise_equal(case_table(reference), case_table(out))
+    with h5py.File(out, "r") as f:
+        done = np.array(statuses) == "complete"
+        assert np.array_equal(f["cases/wall_time_s"][...][done], wall_before[done])  # not computed again
+
+
+def test_modes_study_gives_the_frequencies_of_crane_sim_modes(tmp_path: Path):
+    """A modes case is `crane-sim modes` of the case's scene: the same frequencies, bit for bit."""
+    study = tmp_path / "modes.yaml"
+    study.write_text(f"""\
+scene: {ROPE_PENDULUM}
+analysis: modes
+modes: 6
+parameters:
+  - {{path: bodies.ball.mass, values: [1000]}}
+figures:
+  - {{name: f4, quantity: frequency, mode: 4}}
+  - {{name: f6, quantity: frequency, mode: 6}}
+  - {{name: hook_tension, quantity: rope_tension, rope: rope}}
+""")
+    result = crane_sim("study", study, "-o", tmp_path / "modes_study.h5", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    modes = crane_sim("modes", ROPE_PENDULUM, "-n", 6, "-o", tmp_path / "modes.h5", cwd=tmp_path)
+    assert modes.returncode == 0, modes.stderr
+    with h5py.File(tmp_path / "modes_study.h5", "r") as s, h5py.File(tmp_path / "modes.h5", "r") as m:
+        frequency = m["modes/frequency"][...]
+        assert s["figures/f4"][0] == frequency[3] and s["figures/f6"][0] == frequency[5]
+        assert frequency[3] > 0.1  # the swing, ≈ √(g/ℓ)/2π = 0.158 Hz, not a rigid mode
+        assert s["figures/hook_tension"][0] == pytest.approx(1000 * GRAVITY, rel=1e-9)
+
+
+def test_criteria_and_load_chart(tmp_path: Path):
+    """A case is admissible when its figures are within the study's criteria; the load chart of
+    scripts/plot_load_chart.py is, per configuration, the largest load whose lighter loads are all
+    admissible: a hook tension limit of 15 kN admits m g ≤ 15 kN, m ≤ 1529 kg, so 1500 kg."""
+    study = tmp_path / "chart.yaml"
+    study.write_text(f"""\
+scene: {ROPE_PENDULUM}
+analysis: static
+parameters:
+  - {{path: members.rope.length, values: [9.5, 10]}}
+  - {{path: bodies.ball.mass, range: {{from: 500, to: 3000, count: 6}}}}
+figures:
+  - {{name: radius, quantity: horizontal_distance, body: ball, relative_to: ground.suspension}}
+  - {{name: hook_tension, quantity: rope_tension, rope: rope}}
+criteria:
+  - {{figure: hook_tension, max: 15000, source: a test limit}}
+  - {{figure: radius, max: 1.0, source: hangs straight down}}
+""")
+    table = tmp_path / "chart.h5"
+    result = crane_sim("study", study, "-o", table, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    with h5py.File(table, "r") as f:
+        mass = f["parameters/bodies.ball.mass"][...]
+        assert np.array_equal(f["criteria/0"][...], (mass * GRAVITY <= 15000).astype(float))
+        assert np.all(f["criteria/1"][...] == 1.0)
+        assert np.array_equal(f["cases/admissible"][...], f["criteria/0"][...])
+        assert f["criteria/0"].attrs["source"] == "a test limit" and f["criteria/0"].attrs["figure"] == "hook_tension"
+
+    chart = subprocess.run([sys.executable, str(SOURCE_DIR / "scripts" / "plot_load_chart.py"), str(table),
+                            "--load", "bodies.ball.mass", "--configuration", "members.rope.length",
+                            "-o", str(tmp_path / "chart.png")], capture_output=True, text=True)
+    assert chart.returncode == 0, chart.stderr
+    rows = [line.split() for line in chart.stdout.splitlines()[1:3]]
+    assert [row[0] for row in rows] == ["9.5", "10"]
+    assert all(row[2] == "1500" and row[3] == "hook_tension" for row in rows), chart.stdout
+    assert all(float(row[1]) < 1e-6 for row in rows)  # hanging under the suspension
+    assert (tmp_path / "chart.png").stat().st_size > 0
