@@ -144,6 +144,13 @@ class Results:
     def time(self) -> np.ndarray:
         return self.dataset("time")[()]
 
+    def sampled_time(self) -> np.ndarray:
+        """The output times of a file that has samples; one without is an error."""
+        time = self.time()
+        if time.size == 0:
+            raise ResultsError(f"{self.path} holds no samples")
+        return time
+
     def has(self, path: str) -> bool:
         return path.strip("/") in self.file
 

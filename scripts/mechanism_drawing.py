@@ -37,9 +37,7 @@ class MechanismGeometry:
 
     @classmethod
     def load(cls, results: Results) -> "MechanismGeometry":
-        time = results.time()
-        if time.size == 0:
-            raise ResultsError(f"{results.path} holds no samples")
+        time = results.sampled_time()
         bodies = list(results.names("model/bodies"))
         joints = list(results.names("model/joints"))
         joint_bodies = [body_of(joint) for joint in joints]

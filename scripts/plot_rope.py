@@ -67,9 +67,7 @@ def main() -> None:
     path = Path(args.results)
     with Results(path) as results:
         rope = rope_name(results, args.rope)
-        time = results.time()
-        if time.size == 0:
-            raise ResultsError(f"{path} holds no samples")
+        time = results.sampled_time()
         hook = end_constraint(results, f"{rope}.end")
         if hook is None:
             raise ResultsError(f"no constraint holds {rope}.end in {path}: there is no load to plot")

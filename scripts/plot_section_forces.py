@@ -51,9 +51,7 @@ def main() -> None:
     path = Path(args.results)
     with Results(path) as results:
         member = member_name(results, args.member)
-        time = results.time()
-        if time.size == 0:
-            raise ResultsError(f"{path} holds no samples")
+        time = results.sampled_time()
         forces = results.get(f"section_forces/{member}/forces")  # (samples, beams, 12)
         nodes = results.names(f"/section_forces/{member}/element_nodes")
         status = results.status

@@ -46,9 +46,7 @@ def read_runs(paths: list[Path], quantities: list[str]) -> list[tuple[str, np.nd
     runs = []
     for path in paths:
         with Results(path) as results:
-            time = results.time()
-            if time.size == 0:
-                raise ResultsError(f"{path} holds no samples")
+            time = results.sampled_time()
             values = {}
             for quantity in quantities:
                 data = results.get(quantity)
