@@ -234,7 +234,11 @@ struct TimoshenkoBeamKernel {
   template <class S>
   V<S> elasticForce(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2, const Mat3T<S>& R2, const V<S>& v,
                     const Mat12& K) const {
-    const CoRotatedTangent<S> c = coRotateWithTangent<S>(r1, R1, r2, R2);
+    return elasticForce<S>(coRotateWithTangent<S>(r1, R1, r2, R2), v, K);
+  }
+
+  /// The same from a co-rotation already made.
+  template <class S> V<S> elasticForce(const CoRotatedTangent<S>& c, const V<S>& v, const Mat12& K) const {
     Eigen::Matrix<S, 12, 1> strain = c.d;
     if (damping > 0.0) strain.noalias() += S(damping) * (c.Jd * v);
     return c.Jd.transpose() * (K.template cast<S>() * strain);
@@ -247,8 +251,9 @@ struct TimoshenkoBeamKernel {
   /// resultant, at end 1 with the opposite sign (its face points the other way).
   Eigen::Matrix<double, 12, 1> sectionForces(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2, const V<double>& v,
                                              const V<double>& a, const Vec3& gravity, const Mat12& K) const {
-    const V<double> r = inertialAndGravityForce<double>(r1, R1, r2, R2, v, gravity, &a) + elasticForce<double>(r1, R1, r2, R2, v, K);
-    const Mat3 RB = coRotate<double>(r1, R1, r2, R2).R;
+    const CoRotatedTangent<double> c = coRotateWithTangent<double>(r1, R1, r2, R2);
+    const V<double> r = inertialAndGravityForce<double>(r1, R1, r2, R2, v, gravity, &a) + elasticForce<double>(c, v, K);
+    const Mat3& RB = c.R;
     Eigen::Matrix<double, 12, 1> out;
     for (int e = 0; e < 2; ++e) {
       const double face = e == 0 ? -1.0 : 1.0;
