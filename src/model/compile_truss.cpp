@@ -84,21 +84,24 @@ Mat3 closestSectionAxes(const Mat3& R, const Mat3& axes) {
   return best;
 }
 
+/// A frame node of member m at `truss_position` in its truss frame (R: truss frame → inertial),
+/// with the truss frame's axes, and a joint of the node's name on it.
+int addTrussNode(Model& model, const MemberSpec& m, const Mat3& R, const std::string& name, const Vec3& truss_position) {
+  const int n = model.addNode(name, NodeKind::Frame, m.name);
+  const Node& node = model.nodes[n];
+  model.q0.segment<3>(node.q) = m.start + R * truss_position;
+  model.q0.segment<3>(node.q + 3) = rotationVector(R);
+  model.joints.push_back({name, n, Vec3::Zero(), Mat3::Identity()});
+  return n;
+}
+
 void compileMembers(Model& model, const MemberSpec& m, const TrussGeometry& g) {
   const Mat3 R = memberFrame(m.start, m.end, m.z_axis);  // truss frame → inertial
   const Vec3 phi = rotationVector(R);
-  const auto addFrameNode = [&](const std::string& name, const Vec3& truss_position, const std::string& member) {
-    const int n = model.addNode(name, NodeKind::Frame, member);
-    const Node& node = model.nodes[n];
-    model.q0.segment<3>(node.q) = m.start + R * truss_position;
-    model.q0.segment<3>(node.q + 3) = phi;
-    model.joints.push_back({name, n, Vec3::Zero(), Mat3::Identity()});
-    return n;
-  };
 
   const std::vector<std::string> names = nodeNames(m, g);
   std::vector<int> node_of(g.nodes.size());
-  for (std::size_t n = 0; n < g.nodes.size(); ++n) node_of[n] = addFrameNode(names[n], g.nodes[n].position, m.name);
+  for (std::size_t n = 0; n < g.nodes.size(); ++n) node_of[n] = addTrussNode(model, m, R, names[n], g.nodes[n].position);
   for (const TrussMember& tube : g.members) model.drawing_lines.push_back({model.findJoint(names[tube.node1]), model.findJoint(names[tube.node2])});
 
   for (int s = 0; s < 2; ++s) {
@@ -135,7 +138,8 @@ void compileMembers(Model& model, const MemberSpec& m, const TrussGeometry& g) {
     const Vec3 from = reversed ? p2 : p1, to = reversed ? p1 : p2;
     std::vector<int> chain = {node_of[reversed ? tube.node2 : tube.node1]};
     for (int j = 1; j < m.segments; ++j)
-      chain.push_back(addFrameNode(fmt::format("{}.t{}n{}", m.name, t + 1, j), from + (static_cast<double>(j) / m.segments) * (to - from), m.name));
+      chain.push_back(addTrussNode(model, m, R, fmt::format("{}.t{}n{}", m.name, t + 1, j),
+                                   from + (static_cast<double>(j) / m.segments) * (to - from)));
     chain.push_back(node_of[reversed ? tube.node1 : tube.node2]);
     TimoshenkoBeamKernel beam;
     beam.length = (to - from).norm() / m.segments;
@@ -185,14 +189,8 @@ void compileEquivalentBeam(Model& model, const MemberSpec& m, const TrussGeometr
   beam.damping = m.damping;
   const Mat3 R = memberFrame(m.start, m.end, m.z_axis);
   std::vector<int> chain = {section[0]};
-  for (int j = 1; j < m.segments; ++j) {
-    const int n = model.addNode(fmt::format("{}.b{}", m.name, j), NodeKind::Frame, m.name);
-    const Node& node = model.nodes[n];
-    model.q0.segment<3>(node.q) = m.start + R * Vec3(j * beam.length, 0.0, 0.0);
-    model.q0.segment<3>(node.q + 3) = rotationVector(R);
-    model.joints.push_back({model.nodes[n].name, n, Vec3::Zero(), Mat3::Identity()});
-    chain.push_back(n);
-  }
+  for (int j = 1; j < m.segments; ++j)
+    chain.push_back(addTrussNode(model, m, R, fmt::format("{}.b{}", m.name, j), Vec3(j * beam.length, 0.0, 0.0)));
   chain.push_back(section[1]);
   for (int j = 0; j < m.segments; ++j) addElement(model, beam, {chain[j], chain[j + 1]});
 }
