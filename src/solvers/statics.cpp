@@ -59,16 +59,29 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
     // A Jacobian that factorises but would turn a node by thousands of turns is singular to
     // rounding (a body hanging on its joint before the joint carries load). A shift barely
     // above rounding leaves the stiffness-free directions to rounding too: the shift grows
-    // until the step turns or moves no node by more than the caps of stepLimit.
+    // while the step exceeds the caps of stepLimit and the growth still tames it. A step that
+    // stays beyond the caps whatever the shift is a real correction of the stiff directions
+    // (a predicted crane whose boom head is metres off its arc); shifting further would only
+    // damp it into many short Levenberg–Marquardt steps (shifts of 1e-4…1e-2 of the largest
+    // stiffness cost the corrector of a luffing path 12 iterations and a linear rate of
+    // convergence). The line search then scales it to the caps.
     const double magnitude = J.coeffs().cwiseAbs().maxCoeff();
     bool shifted_step = false;
-    const auto wild = [&](double limit) { return lu.info() != Eigen::Success || stepLimit(model, x, dx) < limit; };
-    for (double shift = 1e-10 * magnitude; wild(shifted_step ? 1.0 : 1e-3) && shift < magnitude; shift *= 100.0) {
+    const auto limitOf = [&] { return lu.info() == Eigen::Success ? stepLimit(model, x, dx) : 0.0; };
+    double limit = limitOf(), previous_limit = 0.0;
+    const auto wild = [&] {
+      if (lu.info() != Eigen::Success) return true;
+      if (!shifted_step) return limit < 1e-3;
+      return limit < 1.0 && limit > 1.1 * previous_limit;
+    };
+    for (double shift = 1e-10 * magnitude; wild() && shift < magnitude; shift *= 100.0) {
       Eigen::SparseMatrix<double> shifted = J;
       for (int k = 0; k < model.nv; ++k) shifted.coeffRef(k, k) += shift;
       lu.compute(shifted);
       shifted_step = true;
+      previous_limit = limit;
       if (lu.info() == Eigen::Success) dx = -lu.solve(r);
+      limit = limitOf();
     }
     if (lu.info() != Eigen::Success) {
       why = "singular equilibrium Jacobian (a mechanism without stiffness in some direction?)";
@@ -88,7 +101,7 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
     // (stiffness × the spacing of q's doubles) and a step below that spacing cannot lower it.
     const double scale = 1.0 + x.head(model.nq).cwiseAbs().maxCoeff();
     if (!shifted_step && dx.head(model.nq).cwiseAbs().maxCoeff() < options.tolerance * scale) {
-      x += dx;
+      addStep(model, x, dx, 1.0);
       reparameteriseRotations(model, x);
       return it;
     }
@@ -97,7 +110,8 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
     VecX trial;
     VecX r_trial;
     for (int k = 0; k < 30; ++k, step *= 0.5) {
-      trial = x + step * dx;
+      trial = x;
+      addStep(model, trial, dx, step);
       r_trial = system.residual(trial);
       if (!r_trial.allFinite()) continue;
       if (r_trial.squaredNorm() <= (1.0 - 1e-4 * step) * merit) break;
