@@ -105,9 +105,9 @@ TEST_CASE("Equilibrium path: the slewing drive turns the whole crane", "[statics
       // The slewing ring turns about the vertical through the origin, parallel to gravity: the
       // turned equilibrium is the unturned one turned.
       CHECK((turned.load - axisAngle(Vec3::UnitZ(), angle * kDegree) * unturned.load).norm() < 1e-6);
-      // Newton and the predictor turn rotations on the rotation group (addStep), so the path
-      // does not depend on how far the crane is slewed (with summed rotation vectors the 16 m
-      // case took 16 iterations at 180° and 18–20 at the other angles).
+      // The predictor turns rotations about their body axes, so the path does not depend on
+      // how far the crane is slewed (with summed rotation vectors the 16 m case took 16
+      // iterations at 180° and 18–20 at the other angles).
       CHECK(turned.result.iterations == unturned.result.iterations);
     }
   }

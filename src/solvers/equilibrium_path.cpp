@@ -62,6 +62,28 @@ VecX pathTangent(EquilibriumSystem& system, const Eigen::SparseLU<Eigen::SparseM
   return -lu.solve(dr);
 }
 
+/// The predictor x + h dx/dτ with every rotation turned about its body axis,
+/// R(φ) exp(h T(φ) dφ/dτ) (2-5), rather than its rotation vector moved along dφ/dτ: the two
+/// agree to first order, but a sum of rotation vectors far from the identity turns about a skewed
+/// axis, so a crane slewed by 155° was predicted worse than the same crane at 0° (54 against 47
+/// iterations). The rotation vector kept is the representative nearest the old one.
+VecX predict(const Model& model, const VecX& x, const VecX& tangent, double h) {
+  VecX next = x + h * tangent;
+  for (const Node& n : model.nodes) {
+    if (!n.hasRotation()) continue;
+    const Vec3 phi = x.segment<3>(n.q + 3);
+    const Vec3 turn = h * (angularVelocityMap<double>(phi) * tangent.segment<3>(n.q + 3));
+    Vec3 turned = rotationVector(rotationMatrix<double>(phi) * rotationMatrix<double>(turn));
+    const double angle = turned.norm();
+    if (angle > 0.0) {
+      const Vec3 other = turned * (1.0 - 2.0 * std::numbers::pi / angle);  // the same rotation, angle 2π − θ
+      if ((other - phi).squaredNorm() < (turned - phi).squaredNorm()) turned = other;
+    }
+    next.segment<3>(n.q + 3) = turned;
+  }
+  return next;
+}
+
 }  // namespace
 
 // At the chord itself every Gauss point sits on the kink of the tension-only law, where the
@@ -156,8 +178,7 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
     step = std::min(step, max_step);
     for (;;) {
       const double next = std::min(1.0, tau + step);
-      VecX trial = x;
-      addStep(path, trial, tangent, next - tau);
+      VecX trial = predict(path, x, tangent, next - tau);
       reparameteriseRotations(path, trial);
       system.setTime(next);
       step_newton.tolerance = next < 1.0 ? std::max(options.newton.tolerance, options.intermediate_tolerance)

@@ -1,7 +1,5 @@
 #include "cranesim/solvers/equilibrium_system.hpp"
 
-#include <numbers>
-
 #include "cranesim/math/rotation.hpp"
 
 namespace cranesim {
@@ -68,23 +66,6 @@ bool factoriseShifted(Eigen::SparseMatrix<double> J, int coordinates, Eigen::Spa
     lu.compute(J);
   }
   return lu.info() == Eigen::Success;
-}
-
-void addStep(const Model& model, VecX& x, const VecX& dx, double s) {
-  VecX turned = x + s * dx;
-  for (const Node& n : model.nodes) {
-    if (!n.hasRotation()) continue;
-    const Vec3 phi = x.segment<3>(n.q + 3);
-    const Vec3 turn = s * (angularVelocityMap<double>(phi) * dx.segment<3>(n.q + 3));
-    Vec3 next = rotationVector(rotationMatrix<double>(phi) * rotationMatrix<double>(turn));
-    const double angle = next.norm();
-    if (angle > 0.0) {
-      const Vec3 other = next * (1.0 - 2.0 * std::numbers::pi / angle);  // the same rotation, angle 2π − θ
-      if ((other - phi).squaredNorm() < (next - phi).squaredNorm()) next = other;
-    }
-    turned.segment<3>(n.q + 3) = next;
-  }
-  x = std::move(turned);
 }
 
 void reparameteriseRotations(const Model& model, VecX& x) {

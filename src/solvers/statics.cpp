@@ -101,7 +101,7 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
     // (stiffness × the spacing of q's doubles) and a step below that spacing cannot lower it.
     const double scale = 1.0 + x.head(model.nq).cwiseAbs().maxCoeff();
     if (!shifted_step && dx.head(model.nq).cwiseAbs().maxCoeff() < options.tolerance * scale) {
-      addStep(model, x, dx, 1.0);
+      x += dx;
       reparameteriseRotations(model, x);
       return it;
     }
@@ -110,8 +110,7 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
     VecX trial;
     VecX r_trial;
     for (int k = 0; k < 30; ++k, step *= 0.5) {
-      trial = x;
-      addStep(model, trial, dx, step);
+      trial = x + step * dx;
       r_trial = system.residual(trial);
       if (!r_trial.allFinite()) continue;
       if (r_trial.squaredNorm() <= (1.0 - 1e-4 * step) * merit) break;

@@ -47,13 +47,4 @@ bool factoriseShifted(Eigen::SparseMatrix<double> J, int coordinates, Eigen::Spa
 /// Maps every node's rotation vector of x = [q, …] back into the first turn (|φ| ≤ π).
 void reparameteriseRotations(const Model& model, VecX& x);
 
-/// x ← x ⊕ s dx for x = [q, …]: positions, slopes and multipliers move by s dx; a node's
-/// rotation turns about its body axis, R(φ) exp(s T(φ) dφ) (2-5), instead of adding to its
-/// rotation vector. The two agree to first order, so Newton keeps its rate; but the update
-/// depends only on the rotation, not on its parameterisation: a step that turns a boom about its
-/// foot stays a turn about that axis in a crane slewed by 160° as in one slewed by 0°, where the
-/// sum of rotation vectors far from the identity turns it about a skewed axis. The rotation
-/// vector kept is the representative nearest the old one (no jump across θ = π).
-void addStep(const Model& model, VecX& x, const VecX& dx, double s);
-
 }  // namespace cranesim
