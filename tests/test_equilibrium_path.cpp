@@ -85,6 +85,37 @@ void checkAgainstMap(const std::string& config, const std::vector<double>& angle
               << double(iterations) / (map.rows() * map.columns()) << ", max " << worst);
 }
 
+/// The slewing drive at any angle turns the whole crane: at the thesis' controls, and with the
+/// boom luffed far out (the path turns it by ~0.5 rad).
+void checkSlewing(const std::string& config) {
+  for (double luffing : {kThesisLuffing, 16.0}) {
+    const CraneEquilibrium unturned = solveCrane(config, {luffing, kThesisHoist, 0.0, kLoadMass});
+    for (double angle : {10.0, 45.0, 90.0, 180.0, -135.0}) {
+      const CraneEquilibrium turned = solveCrane(config, {luffing, kThesisHoist, angle, kLoadMass});
+      INFO(config << ": luffing rope " << luffing << " m, slewing " << angle << "°");
+      // The slewing ring turns about the vertical through the origin, parallel to gravity: the
+      // turned equilibrium is the unturned one turned.
+      CHECK((turned.load - axisAngle(Vec3::UnitZ(), angle * kDegree) * unturned.load).norm() < 1e-6);
+      // The predictor turns rotations about their body axes, so the path does not depend on
+      // how far the crane is slewed (with summed rotation vectors the condensed crane's 16 m
+      // case took 16 iterations at 180° and 18–20 at the other angles).
+      CHECK(turned.result.iterations == unturned.result.iterations);
+    }
+  }
+}
+
+/// Loads from 10 t to 500 t at the thesis' controls, each equilibrium stable.
+void checkLoads(const std::string& config) {
+  for (double mass : {10e3, 100e3, 500e3}) {
+    const CraneEquilibrium eq = solveCrane(config, {kThesisLuffing, kThesisHoist, 0.0, mass});
+    INFO(config << ": load " << mass << " kg");
+    CHECK(-eq.hook_force.z() == Approx(mass * kGravity).epsilon(1e-9));
+    const Model model = compileModel(craneScene(config, {kThesisLuffing, kThesisHoist, 0.0, mass}));
+    const ModalResult modes = computeModes(model, eq.result.q, 0.0, 3);
+    CHECK(modes.omega_squared.minCoeff() > -modes.zero_threshold);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("Equilibrium path: the condensed crane over its working range, against the static map", "[statics][crane]") {
@@ -96,32 +127,13 @@ TEST_CASE("Equilibrium path: the super truss crane over its working range, again
 }
 
 TEST_CASE("Equilibrium path: the slewing drive turns the whole crane", "[statics][crane]") {
-  // At the thesis' controls, and with the boom luffed far out (the path turns it by ~0.5 rad).
-  for (double luffing : {kThesisLuffing, 16.0}) {
-    const CraneEquilibrium unturned = solveCrane("crane_condensed.yaml", {luffing, kThesisHoist, 0.0, kLoadMass});
-    for (double angle : {10.0, 45.0, 90.0, 180.0, -135.0}) {
-      const CraneEquilibrium turned = solveCrane("crane_condensed.yaml", {luffing, kThesisHoist, angle, kLoadMass});
-      INFO("luffing rope " << luffing << " m, slewing " << angle << "°");
-      // The slewing ring turns about the vertical through the origin, parallel to gravity: the
-      // turned equilibrium is the unturned one turned.
-      CHECK((turned.load - axisAngle(Vec3::UnitZ(), angle * kDegree) * unturned.load).norm() < 1e-6);
-      // The predictor turns rotations about their body axes, so the path does not depend on
-      // how far the crane is slewed (with summed rotation vectors the 16 m case took 16
-      // iterations at 180° and 18–20 at the other angles).
-      CHECK(turned.result.iterations == unturned.result.iterations);
-    }
-  }
+  checkSlewing("crane_condensed.yaml");
+  checkSlewing("crane.yaml");
 }
 
 TEST_CASE("Equilibrium path: loads from 10 t to 500 t, each equilibrium stable", "[statics][crane]") {
-  for (double mass : {10e3, 100e3, 500e3}) {
-    const CraneEquilibrium eq = solveCrane("crane_condensed.yaml", {kThesisLuffing, kThesisHoist, 0.0, mass});
-    INFO("load " << mass << " kg");
-    CHECK(-eq.hook_force.z() == Approx(mass * kGravity).epsilon(1e-9));
-    const Model model = compileModel(craneScene("crane_condensed.yaml", {kThesisLuffing, kThesisHoist, 0.0, mass}));
-    const ModalResult modes = computeModes(model, eq.result.q, 0.0, 3);
-    CHECK(modes.omega_squared.minCoeff() > -modes.zero_threshold);
-  }
+  checkLoads("crane_condensed.yaml");
+  checkLoads("crane.yaml");
 }
 
 TEST_CASE("Relaxation, the independent second method: the condensed crane reeled from its drawing to far controls",
