@@ -96,3 +96,36 @@ TEST_CASE("Natural spline has zero curvature at its ends", "[profiles]") {
   CHECK(jet(p, 1e-9)[2] == Approx(0.0).margin(1e-6));
   CHECK(jet(p, 3.0 - 1e-9)[2] == Approx(0.0).margin(1e-6));
 }
+
+TEST_CASE("Linear and step tables: values, one-sided limits at the knots, a breakpoint at every knot", "[profiles]") {
+  TableProfile table{{0.0, 1.0, 2.5, 4.0}, {0.0, 1.0, -0.5, 2.0}, {}, Interpolation::Linear};
+  const Profile linear(table);
+  CHECK(linear(0.5) == Approx(0.5));
+  CHECK(linear(1.75) == Approx(0.25));
+  CHECK(linear(5.0) == Approx(2.0));
+  // Slopes: 1 on (0, 1), −1 on (1, 2.5); at the knot the left and the right limit's.
+  Dual<double, 1> at_knot(1.0, Eigen::Matrix<double, 1, 1>::Ones());
+  CHECK(linear(at_knot, Limit::Left).derivatives()(0) == Approx(1.0));
+  CHECK(linear(at_knot, Limit::Right).derivatives()(0) == Approx(-1.0));
+  CHECK(linear.breakpoints() == table.t);
+  // Its integral is the trapezoid rule's, exactly (2-point Gauss per interval integrates lines).
+  double integral = 0.0;
+  for (std::size_t k = 0; k + 1 < table.t.size(); ++k) {
+    const double a = table.t[k], h = table.t[k + 1] - a, c = 0.5 / std::sqrt(3.0);
+    integral += 0.5 * h * (linear(a + (0.5 - c) * h) + linear(a + (0.5 + c) * h));
+  }
+  CHECK(integral == Approx(0.5 * 1.0 + 0.25 * 1.5 + 0.75 * 1.5).epsilon(1e-14));
+
+  table.interpolation = Interpolation::Step;
+  const Profile step(table);
+  CHECK(step(0.5) == 0.0);
+  CHECK(step(1.0, Limit::Left) == 0.0);
+  CHECK(step(1.0, Limit::Right) == 1.0);
+  CHECK(step(3.0) == -0.5);
+  CHECK(step(4.0, Limit::Left) == -0.5);
+  CHECK(step(4.0, Limit::Right) == 2.0);
+  CHECK(step(9.0) == 2.0);
+  CHECK(step(at_knot, Limit::Right).derivatives()(0) == 0.0);
+  CHECK(step.jumps());
+  CHECK_FALSE(linear.jumps());
+}

@@ -51,8 +51,14 @@ Profile readProfile(const YamlField& f) {
     if (!(t1 > t0)) f.at("t_end").fail(fmt::format("t_end ({}) must be after t_start ({})", t1, t0));
     return Profile(CosineFullProfile{f.number("base", 0.0), f.at("peak").number(), t0, t1}, scale);
   }
-  f.allowKeys({"type", "unit", "t", "value", "end_slopes"});
+  f.allowKeys({"type", "unit", "t", "value", "interpolation", "end_slopes"});
   TableProfile p;
+  if (const auto i = f.find("interpolation")) {
+    const std::string kind = i->choice({"cubic", "linear", "step"});
+    p.interpolation = kind == "cubic" ? Interpolation::Cubic : kind == "linear" ? Interpolation::Linear : Interpolation::Step;
+    if (p.interpolation != Interpolation::Cubic && f.has("end_slopes"))
+      f.at("end_slopes").fail(fmt::format("end slopes belong to a cubic table, not a {} one", kind));
+  }
   p.t = f.at("t").numbers();
   p.y = f.at("value").numbers();
   if (p.t.size() < 2) f.at("t").fail("a table needs at least two points");

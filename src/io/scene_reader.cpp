@@ -282,6 +282,16 @@ void readMemberEnd(const YamlField& f, Vec3& position, std::string& joint, Sourc
   else position = f.position();
 }
 
+/// A drive's or a rope length's profile: any but a step table, whose jump would have to move a
+/// joint or reel a rope in no time (a load's `scale` may step).
+Profile readDrive(const YamlField& f) {
+  Profile p = readProfile(f);
+  if (p.jumps())
+    f.at("interpolation").fail("a drive or a rope length cannot jump (it would move a joint or reel a rope in no "
+                               "time): use interpolation: linear or cubic");
+  return p;
+}
+
 MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& trusses) {
   MemberSpec m;
   m.where = f.where();
@@ -319,7 +329,7 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
   double poisson = 0.3;
   m.material = readMaterial(f.at("material"), poisson);
   m.section = readSection(f.at("section"), poisson);
-  if (const auto l = f.find("length")) m.length = readProfile(*l);
+  if (const auto l = f.find("length")) m.length = readDrive(*l);
   if (const auto cv = f.find("constant_volume")) m.constant_volume = cv->boolean();
   if (const auto h = f.find("smoothing")) m.smoothing = h->nonNegative();
   return m;
@@ -348,13 +358,13 @@ ConstraintSpec readConstraint(const YamlField& f) {
   } else if (type == "distance") {
     f.allowKeys({"name", "type", "joints", "length"});
     c.type = ConstraintType::Distance;
-    c.drive = readProfile(f.at("length"));
+    c.drive = readDrive(f.at("length"));
     if (!((*c.drive)(0.0) > 0.0)) f.at("length").fail("a distance must be positive");
   } else {
     f.allowKeys({"name", "type", "joints", "axis", "drive"});
     c.type = type == "revolute" ? ConstraintType::Revolute : ConstraintType::Prismatic;
     c.axis = readAxis(f.at("axis"));
-    if (const auto d = f.find("drive")) c.drive = readProfile(*d);
+    if (const auto d = f.find("drive")) c.drive = readDrive(*d);
   }
   return c;
 }

@@ -40,10 +40,16 @@ struct TanhProfile {
   double from = 0.0, to = 0.0, t_start = 0.0, t_end = 1.0, lambda = 2.6476;
 };
 
-/// Cubic spline through (t_i, y_i), held constant outside [t_0, t_n]. `slopes` are the
-/// first derivatives at the knots (computed once when the table is read).
+/// How a table passes between its knots: a C² cubic spline, straight lines, or steps that
+/// hold each value until the next knot.
+enum class Interpolation { Cubic, Linear, Step };
+
+/// A table through (t_i, y_i), held constant outside [t_0, t_n]. `slopes` are the cubic
+/// spline's first derivatives at the knots (computed once when the table is read; unused by
+/// the linear and step tables).
 struct TableProfile {
   std::vector<double> t, y, slopes;
+  Interpolation interpolation = Interpolation::Cubic;
 };
 
 /// λ(c) of Table E-1: atanh(c), the argument at which tanh reaches the confidence c.
@@ -78,6 +84,12 @@ class Profile {
   std::vector<double> breakpoints() const;
 
   bool isConstant() const { return std::holds_alternative<ConstantProfile>(kind_); }
+
+  /// Whether the value itself jumps somewhere (a step table).
+  bool jumps() const {
+    const auto* table = std::get_if<TableProfile>(&kind_);
+    return table && table->interpolation == Interpolation::Step;
+  }
 
  private:
   /// Whether time tv lies before breakpoint b, seen from the given side.
@@ -136,10 +148,17 @@ class Profile {
     const double tv = valueOf(t);
     if (before(tv, p.t.front(), limit)) return S(p.y.front());
     if (!before(tv, p.t.back(), limit)) return S(p.y.back());
+    // The interval (t_{i−1}, t_i] seen from the left, [t_{i−1}, t_i) from the right: at an
+    // interior knot a linear table's slope and a step table's value are one-sided.
     std::size_t i = 1;
-    while (p.t[i] < tv) ++i;
+    if (limit == Limit::Left)
+      while (p.t[i] < tv) ++i;
+    else
+      while (p.t[i] <= tv) ++i;
     const double h = p.t[i] - p.t[i - 1];
     const S s = (t - p.t[i - 1]) / h;
+    if (p.interpolation == Interpolation::Step) return S(p.y[i - 1]);
+    if (p.interpolation == Interpolation::Linear) return p.y[i - 1] + s * (p.y[i] - p.y[i - 1]);
     const S s2 = s * s, s3 = s2 * s;
     // Cubic Hermite basis (A-9..A-11).
     return (2.0 * s3 - 3.0 * s2 + 1.0) * p.y[i - 1] + (s3 - 2.0 * s2 + s) * (h * p.slopes[i - 1]) +
