@@ -352,9 +352,16 @@ ConstraintSpec readConstraint(const YamlField& f) {
   c.joint2 = items[1].text();
   c.where_joint1 = items[0].where();
   c.where_joint2 = items[1].where();
-  if (type == "fixed" || type == "spherical") {
+  if (type == "fixed") {
+    f.allowKeys({"name", "type", "joints", "pose"});
+    c.type = ConstraintType::Fixed;
+    if (const auto pose = f.find("pose")) {
+      c.keep_drawn_pose = pose->choice({"joints", "drawn"}) == "drawn";
+      c.where_pose = pose->where();
+    }
+  } else if (type == "spherical") {
     f.allowKeys({"name", "type", "joints"});
-    c.type = type == "fixed" ? ConstraintType::Fixed : ConstraintType::Spherical;
+    c.type = ConstraintType::Spherical;
   } else if (type == "distance") {
     f.allowKeys({"name", "type", "joints", "length"});
     c.type = ConstraintType::Distance;

@@ -100,6 +100,30 @@ void compileMember(Model& model, const MemberSpec& m) {
   }
 }
 
+/// `pose: drawn`: the fixed constraint acts on a copy of one of its joints, placed on the same
+/// node so that in the drawing (q0) it coincides with the other joint, origin and axes. It
+/// then keeps the relative pose the drawing gives the two joints: two members meeting at an
+/// angle, without a corner body. The copy goes on a node that turns (a body or a beam node):
+/// joint 2's, or joint 1's when joint 2's node cannot carry it.
+void keepDrawnPose(Model& model, Constraint& c, const ConstraintSpec& cs) {
+  const auto turns = [&](int joint) {
+    const int node = model.joints[joint].node;
+    return node >= 0 && model.nodes[node].hasRotation();
+  };
+  int& moved = turns(c.joint2) ? c.joint2 : c.joint1;
+  if (!turns(moved))
+    throw SceneError(cs.where_pose, "pose: drawn keeps a relative rotation, so one joint must be on a body or a beam "
+                                    "node (a frame that turns); neither is");
+  const int other = &moved == &c.joint2 ? c.joint1 : c.joint2;
+  const Joint& original = model.joints[moved];
+  const Frame node = model.nodeFrame(model.q0.data(), original.node);
+  const Frame target = model.jointFrame(model.q0.data(), other);
+  Joint copy{original.name + "@" + c.name, original.node, node.R.transpose() * (target.r - node.r),
+             node.R.transpose() * target.R};
+  model.joints.push_back(std::move(copy));
+  moved = static_cast<int>(model.joints.size()) - 1;
+}
+
 }  // namespace
 
 Model compileModel(const Scene& scene) {
@@ -159,6 +183,7 @@ Model compileModel(const Scene& scene) {
       throw SceneError(cs.where, n1 < 0 ? "both joints are on the ground: the constraint constrains nothing"
                                         : fmt::format("both joints are on body '{}': a constraint connects two different bodies",
                                                       model.nodes[n1].name));
+    if (cs.keep_drawn_pose) keepDrawnPose(model, c, cs);
     c.axis = cs.axis;
     c.drive = cs.drive;
     c.where = cs.where;

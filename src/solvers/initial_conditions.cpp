@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <numbers>
+#include <numeric>
 
 #include "cranesim/math/rotation.hpp"
 #include "cranesim/solvers/drive_posing.hpp"
@@ -24,6 +26,24 @@ const Constraint& constraintOfRow(const Model& model, int row) {
   for (const Constraint& c : model.constraints)
     if (row >= c.row && row < c.row + c.rows) return c;
   throw std::logic_error("constraint row out of range");
+}
+
+/// Whether constraint `which` closes a loop: its two joints' nodes are connected already
+/// through elements and the other constraints (the ground counts as one node).
+bool closesLoop(const Model& model, const Constraint& which) {
+  const int ground = static_cast<int>(model.nodes.size());
+  std::vector<int> parent(model.nodes.size() + 1);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int n) {
+    while (parent[n] != n) n = parent[n] = parent[parent[n]];
+    return n;
+  };
+  const auto nodeOf = [&](int joint) { return model.joints[joint].node < 0 ? ground : model.joints[joint].node; };
+  for (const auto& e : model.elements)
+    for (int n : e->nodes()) parent[root(n)] = root(e->nodes().front());
+  for (const Constraint& c : model.constraints)
+    if (&c != &which) parent[root(nodeOf(c.joint1))] = root(nodeOf(c.joint2));
+  return root(nodeOf(which.joint1)) == root(nodeOf(which.joint2));
 }
 
 /// Minimum-norm correction x = Aᵀ (A Aᵀ)⁻¹ b.
@@ -65,10 +85,22 @@ void requireIndependentConstraints(const Assembler& assembler, const VecX& q, do
   std::string redundant;
   for (int k = rank; k < model.m; ++k) redundant += (redundant.empty() ? "" : ", ") + rowLabel(model, qr.colsPermutation().indices()(k));
   const Constraint& first = constraintOfRow(model, qr.colsPermutation().indices()(rank));
-  throw SceneError(first.where, fmt::format("the constraints are redundant: {} equations but rank {}; "
-                                            "dependent equations: {}. Replace a revolute or fixed "
-                                            "constraint in the closed loop by a spherical one.",
-                                            model.m, rank, redundant));
+  const std::string what = fmt::format("the constraints are redundant: {} equations but rank {}; dependent equations: {}",
+                                       model.m, rank, redundant);
+  if (closesLoop(model, first))
+    throw SceneError(first.where, what + ". Replace a revolute or fixed constraint in the closed loop by a spherical one.");
+  // No loop: the constraint's own equations are singular in this pose, e.g. a fixed constraint
+  // between joint frames the drawing turns by 90° against each other.
+  const Frame j1 = model.jointFrame(q.data(), first.joint1), j2 = model.jointFrame(q.data(), first.joint2);
+  const double turn = rotationVector(Mat3(j1.R.transpose() * j2.R)).norm() * 180.0 / std::numbers::pi;
+  throw SceneError(first.where,
+                   fmt::format("{}. '{}' closes no loop: its equations are singular where its joint frames stand "
+                               "(turned by {:.3g}° against each other){}",
+                               what, first.name, turn,
+                               first.type == ConstraintType::Fixed
+                                   ? "; a fixed constraint makes them coincide: draw the joints with the same axes, or "
+                                     "give it pose: drawn to keep the drawing's relative rotation"
+                                   : ""));
 }
 
 void solveAccelerations(const Assembler& assembler, DynamicState& s, Limit limit) {
@@ -142,12 +174,19 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
                                    "least-change steps; correct the initial positions or rotations of the parts it "
                                    "connects", violation, rowLabel(model, worst), C.phi.cwiseAbs().maxCoeff(), it));
     const AssemblyMove moved = assemblyMove(model, q_drawn, q);
-    if (moved.displacement > tolerance * moved.scene_size || moved.rotation > tolerance)
+    if (moved.displacement > tolerance * moved.scene_size || moved.rotation > tolerance) {
+      // A fixed constraint whose joints the drawing turns against each other: most likely
+      // members meeting at an angle on purpose.
+      const std::string hint =
+          most_violated.type == ConstraintType::Fixed && worst - most_violated.row >= 3
+              ? fmt::format(" (or, if the parts meet at an angle on purpose, give '{}' pose: drawn)", most_violated.name)
+              : "";
       throw SceneError(most_violated.where,
                        fmt::format("the drawing is off: |Φ| = {:.3g} in '{}', and closing it moves {}, more than "
                                    "solver.assembly_tolerance = {:g} (of the scene's size, or rad) allows; correct "
-                                   "the initial positions or rotations of the parts it connects",
-                                   violation, rowLabel(model, worst), moved.describe(), tolerance));
+                                   "the initial positions or rotations of the parts it connects{}",
+                                   violation, rowLabel(model, worst), moved.describe(), tolerance, hint));
+    }
     if (move) *move = moved;
     v -= minimumNormSolution(C.G, C.phi_dot);
   }

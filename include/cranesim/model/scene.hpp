@@ -77,7 +77,10 @@ struct ConstraintSpec {
   std::string joint1, joint2;  // "<body>.<joint>", "ground.<joint>"
   int axis = 2;                // revolute/prismatic axis of the joint frames: 0=x, 1=y, 2=z
   std::optional<Profile> drive;  // prescribed angle (revolute), displacement (prismatic), length (distance)
-  SourceLocation where, where_joint1, where_joint2;
+  /// Fixed only: keep the joints' relative pose of the drawing (members meeting at an angle)
+  /// instead of making the two joint frames coincide.
+  bool keep_drawn_pose = false;
+  SourceLocation where, where_joint1, where_joint2, where_pose;
 };
 
 enum class LoadFrame { Inertial, Joint };
