@@ -25,7 +25,8 @@ double driveValueAt(const Model& model, const Constraint& c, const VecX& q) {
 bool differs(double a, double b) { return std::abs(a - b) > 1e-12 * std::max({1.0, std::abs(a), std::abs(b)}); }
 
 /// The scene with every control following its path in τ (the model's time): c(τ) = c_drawn +
-/// τ (c(t) − c_drawn). Everything else is frozen at t.
+/// τ (c(t) − c_drawn), an applied load's scale from 0 (the drawing carries none) to its value
+/// at t. Everything else is frozen at t.
 Scene pathScene(const Scene& scene, const Model& model, const VecX& q_drawn, double t) {
   Scene path = scene;
   path.solver.t_start = 0.0;
@@ -38,7 +39,7 @@ Scene pathScene(const Scene& scene, const Model& model, const VecX& q_drawn, dou
                                  [&](const Constraint& k) { return k.name == c.name; });
     c.drive = line(driveValueAt(model, *it, q_drawn), (*c.drive)(t));
   }
-  for (LoadSpec& l : path.loads) l.scale = Profile(ConstantProfile{l.scale(t)});
+  for (LoadSpec& l : path.loads) l.scale = line(0.0, l.scale(t));
   return path;
 }
 
@@ -101,6 +102,8 @@ std::vector<PathControl> pathControls(const Scene& scene, const Model& model, co
     const double target = (*c.drive)(t);
     if (differs(drawn, target)) controls.push_back({fmt::format("{} drive", c.name), drawn, target, c.type == ConstraintType::Revolute});
   }
+  for (const LoadSpec& l : scene.loads)
+    if (l.scale(t) != 0.0) controls.push_back({fmt::format("{} load scale", l.name), 0.0, l.scale(t), false});
   return controls;
 }
 

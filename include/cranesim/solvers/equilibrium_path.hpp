@@ -14,9 +14,13 @@
 // drawn state is nearly in equilibrium under full gravity, and move along a straight line in a
 // path parameter τ ∈ [0, 1] to their values at t:
 //   c(τ) = c_drawn + τ (c(t) − c_drawn).
-// Each path step is predicted along the tangent dx/dτ = −J⁻¹ ∂R/∂τ and corrected by damped
-// Newton; a step whose Newton fails is halved, a quick one lets the next one double. Gravity and
-// loads act in full all along (load stepping remains the fallback at τ = 0 only).
+// Applied loads (`loads:`) are controls too: the drawing carries none, so their scale moves from 0
+// to its value at t (a slender beam bent far by a tip force or an end moment follows its
+// deflection instead of being solved for it in one Newton: the roll-up by an end moment took
+// 409–446 iterations, now 89–93). Each path step is predicted along the tangent
+// dx/dτ = −J⁻¹ ∂R/∂τ and corrected by damped Newton; a step whose Newton fails is halved, a quick
+// one lets the next one double. Gravity acts in full all along (load stepping remains the
+// fallback at τ = 0 only).
 
 #include <string>
 #include <vector>
@@ -28,7 +32,7 @@ namespace cranesim {
 
 /// A control moved along the path, for reports and messages.
 struct PathControl {
-  std::string name;   // "member <rope> length" or "constraint <name> drive"
+  std::string name;   // "<rope> length", "<constraint> drive" or "<load> load scale"
   double drawn = 0.0;   // value in the drawn geometry (m or rad)
   double target = 0.0;  // value at t
   bool angle = false;   // a revolute's angle (reported in degrees)
@@ -51,7 +55,8 @@ struct PathOptions {
 double drawnRopeLength(const MemberSpec& rope);
 
 /// The path's controls: ropes whose unstretched length differs from their drawn one, drives
-/// whose value at t differs from the one in the drawn state q_drawn (to 1e-12 relative).
+/// whose value at t differs from the one in the drawn state q_drawn (to 1e-12 relative), loads
+/// whose scale at t is not 0.
 /// `model` is compileModel(scene).
 std::vector<PathControl> pathControls(const Scene& scene, const Model& model, const VecX& q_drawn, double t);
 
