@@ -148,7 +148,8 @@ TEST_CASE("Timoshenko beam: consistent shape functions give the exact Timoshenko
   bar(0, 6, E * k.section.area / L);
   bar(3, 9, G * k.section.J / L);
   const auto bending = [&](const int idx[4], double I, double sign) {
-    const double Phi = k.shearParameter(I), c = E * I / ((1.0 + Phi) * L * L * L);
+    const double Phi = 12.0 * E * I / (k.section.shear_factor * G * k.section.area * L * L);
+    const double c = E * I / ((1.0 + Phi) * L * L * L);
     // dofs (v¹, θ¹, v², θ²); for x–z, θ = −ψ_y (sign = −1)
     const double s[4] = {1.0, sign, 1.0, sign};
     const double m[4][4] = {{12, 6 * L, -12, 6 * L},

@@ -292,6 +292,36 @@ Profile readDrive(const YamlField& f) {
   return p;
 }
 
+/// `section: {EA, EI_y, EI_z, GJ, rhoA, rhoI_y, rhoI_z, [GA_y, GA_z], [rhoI_p]}`: a beam's section
+/// by its properties per unit length (section.hpp); without GA_y and GA_z the beam is
+/// shear-rigid; ρI_p defaults to ρI_y + ρI_z (a section's polar moment).
+Section readSectionProperties(const YamlField& f) {
+  f.allowKeys({"EA", "GA_y", "GA_z", "EI_y", "EI_z", "GJ", "rhoA", "rhoI_y", "rhoI_z", "rhoI_p"});
+  SectionProperties p;
+  p.EA = f.at("EA").within(1e-3, 1e15, "N");
+  p.EIy = f.at("EI_y").within(1e-9, 1e15, "N·m²");
+  p.EIz = f.at("EI_z").within(1e-9, 1e15, "N·m²");
+  p.GJ = f.at("GJ").within(1e-9, 1e15, "N·m²");
+  if (f.has("GA_y") != f.has("GA_z")) f.at(f.has("GA_y") ? "GA_y" : "GA_z").fail("give GA_y and GA_z together, or neither (shear-rigid)");
+  if (f.has("GA_y")) {
+    p.GAy = f.at("GA_y").within(1e-3, 1e15, "N");
+    p.GAz = f.at("GA_z").within(1e-3, 1e15, "N");
+  }
+  p.rhoA = f.at("rhoA").within(1e-9, 1e9, "kg/m");
+  p.rhoIy = f.at("rhoI_y").within(1e-15, 1e9, "kg·m");
+  p.rhoIz = f.at("rhoI_z").within(1e-15, 1e9, "kg·m");
+  p.rhoIp = f.has("rhoI_p") ? f.at("rhoI_p").within(1e-15, 1e9, "kg·m") : p.rhoIy + p.rhoIz;
+  // The rotary inertias about three perpendicular axes of any body satisfy the triangle
+  // inequalities (a plane section: ρI_p = ρI_y + ρI_z exactly).
+  const double slack = 1e-12 * (p.rhoIp + p.rhoIy + p.rhoIz);
+  if (p.rhoIp > p.rhoIy + p.rhoIz + slack || p.rhoIy > p.rhoIp + p.rhoIz + slack || p.rhoIz > p.rhoIp + p.rhoIy + slack)
+    f.fail(fmt::format("rotary inertias ρI_p = {}, ρI_y = {}, ρI_z = {} kg·m violate the triangle inequality (each at "
+                       "most the sum of the other two)", p.rhoIp, p.rhoIy, p.rhoIz));
+  Section s;
+  s.given = p;
+  return s;
+}
+
 MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& trusses) {
   MemberSpec m;
   m.where = f.where();
@@ -326,9 +356,18 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
     readTrussMember(f, m, trusses);
     return m;
   }
-  double poisson = 0.3;
-  m.material = readMaterial(f.at("material"), poisson);
-  m.section = readSection(f.at("section"), poisson);
+  const YamlField section = f.at("section");
+  if (section.isMap() && section.has("EA")) {
+    if (m.type != MemberType::Timoshenko && m.type != MemberType::SplineBeam)
+      section.fail(fmt::format("a section given by its properties (EA, EI, ρA …) is for timoshenko and spline_beam "
+                               "members; give this {}'s section by its shape and material", type));
+    if (f.has("material")) f.at("material").fail("a section given by its properties (EA, EI, ρA …) takes no material");
+    m.section = readSectionProperties(section);
+  } else {
+    double poisson = 0.3;
+    m.material = readMaterial(f.at("material"), poisson);
+    m.section = readSection(section, poisson);
+  }
   if (const auto l = f.find("length")) m.length = readDrive(*l);
   if (const auto cv = f.find("constant_volume")) m.constant_volume = cv->boolean();
   if (const auto h = f.find("smoothing")) m.smoothing = h->nonNegative();

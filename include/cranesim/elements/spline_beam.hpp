@@ -412,14 +412,15 @@ struct SplineBeamKernel {
   template <class S> Eigen::Matrix<S, kNv, kNv> massMatrix(const Q<S>& q, double = 0.0) const {
     const Ends<S> e = ends(q);
     const Relative<S> rel = relative(e);
-    const double rho = material.density, rhoA = rho * section.area;
+    const SectionProperties p = section.properties(material);
+    const double rhoA = p.rhoA;
     spline_beam_detail::GramAccumulator<S, kNv> M;
     for (int g = 0; g < rule.points; ++g) {
       const double wL = rule.weight[g] * length;
       const HermiteBasis b = hermiteBasis(rule.xi[g], length);
       const SectionDerivatives<S> sd = sectionDerivatives(rel, rule.xi[g], false);
       M.add(translationJacobian(e, b), Eigen::Vector3d::Constant(wL * rhoA));
-      M.add(rotationJacobian<S>(sd.alpha, sd.dalpha, e, rel), wL * rho * Eigen::Vector3d(section.Iy + section.Iz, section.Iy, section.Iz));
+      M.add(rotationJacobian<S>(sd.alpha, sd.dalpha, e, rel), wL * Eigen::Vector3d(p.rhoIp, p.rhoIy, p.rhoIz));
     }
     return M.result();
   }
@@ -460,13 +461,13 @@ struct SplineBeamKernel {
     Vec3 first = Vec3::Zero();
     for (int g = 0; g < rule.points; ++g)
       first += rule.weight[g] * length * centreLine<double>(e, hermiteBasis(rule.xi[g], length));
-    return strainEnergy(q) - material.density * section.area * gravity.dot(first);
+    return strainEnergy(q) - section.properties(material).rhoA * gravity.dot(first);
   }
 
   /// Diagonal of K_ε (3-77): [EA, GJ, EI_y, EI_z].
   Eigen::Vector4d stiffness() const {
-    const double E = material.youngs_modulus;
-    return {E * section.area, material.shear_modulus * section.J, E * section.Iy, E * section.Iz};
+    const SectionProperties p = section.properties(material);
+    return {p.EA, p.GJ, p.EIy, p.EIz};
   }
 
  private:
@@ -514,12 +515,13 @@ struct SplineBeamKernel {
     return G;
   }
 
-  /// J_c x with J_c = diag(I_y + I_z, I_y, I_z), column-wise.
+  /// ρJ_c x with ρJ_c = diag(ρI_p, ρI_y, ρI_z), column-wise.
   template <class S, int C> Eigen::Matrix<S, 3, C> sectionInertia(const Eigen::Matrix<S, 3, C>& x) const {
+    const SectionProperties p = section.properties(material);
     Eigen::Matrix<S, 3, C> y;
-    y.row(0) = (section.Iy + section.Iz) * x.row(0);
-    y.row(1) = section.Iy * x.row(1);
-    y.row(2) = section.Iz * x.row(2);
+    y.row(0) = p.rhoIp * x.row(0);
+    y.row(1) = p.rhoIy * x.row(1);
+    y.row(2) = p.rhoIz * x.row(2);
     return y;
   }
 
@@ -530,7 +532,7 @@ struct SplineBeamKernel {
     const Relative<S> rel = relative(e);
     const Eigen::Matrix<S, kLocal, 1> vl = localRates(e, rel, v);  // Λ dq
     const Eigen::Vector4d K = stiffness();
-    const double rhoA = material.density * section.area;
+    const double rhoA = section.properties(material).rhoA;
 
     // The relative deformation along the path q(τ) = (r + τṙ, R exp(τω̃), s + τṡ) to second
     // order: with W = ω̃, R¹ᵀ(τ) = exp(−τW¹)R¹ᵀ, d(τ) = exp(−τW¹)(d + τu), u = R¹ᵀ(ṙ² − ṙ¹),
@@ -605,7 +607,7 @@ struct SplineBeamKernel {
         const Vec3T<S> w = w1c + wr;
         const Vec3T<S> wDot = wrDot - wr.cross(w1c);
         // G_ωᵀ h = [C h on ω¹] + Λᵀ (∂α/∂δ_local)ᵀ T_Cᵀ h,  h = J_c ω̇ + ω × J_c ω
-        const Vec3T<S> h = (wL * material.density) * (sectionInertia<S, 1>(wDot) + w.cross(sectionInertia<S, 1>(w)));
+        const Vec3T<S> h = wL * (sectionInertia<S, 1>(wDot) + w.cross(sectionInertia<S, 1>(w)));
         const Vec3T<S> y(h(0), cf.v * h(1) + t21.v * h(2), t02.v * h(0) + t12.v * h(1) + t22.v * h(2));  // T_Cᵀ h
         m1 += C * h;
         gl.noalias() += sd.dalpha.transpose() * y;

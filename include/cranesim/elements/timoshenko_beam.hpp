@@ -96,9 +96,8 @@ struct TimoshenkoBeamKernel {
 
   /// Φ = 12 EI/(κ G A L²) of the bending plane with second moment I; 0 (Euler–Bernoulli) when
   /// the section has no shear factor.
-  double shearParameter(double I) const {
-    const double kGA = section.shear_factor * material.shear_modulus * section.area;
-    return kGA > 0.0 ? 12.0 * material.youngs_modulus * I / (kGA * length * length) : 0.0;
+  static double shearParameter(double EI, double kGA, double length) {
+    return kGA > 0.0 ? 12.0 * EI / (kGA * length * length) : 0.0;
   }
 
   /// Interpolation of the local deformation q_d,c = [u, v, w, ψ_x, ψ_y, ψ_z] at ξ = s/L from the
@@ -108,6 +107,7 @@ struct TimoshenkoBeamKernel {
   };
 
   ShapeFunctions shapeFunctions(double xi) const {
+    const SectionProperties p = section.properties(material);
     const double L = length, x = xi, x2 = x * x, x3 = x2 * x;
     ShapeFunctions f;
     // Axial and torsion: linear (C-21, C-22).
@@ -136,14 +136,14 @@ struct TimoshenkoBeamKernel {
     };
     double Nv[4], dNv[4], Nt[4], dNt[4];
     // x–y plane: v and ψ_z (bending about z, EI_z): v' = ψ_z.
-    plane(shearParameter(section.Iz), Nv, dNv, Nt, dNt);
+    plane(shearParameter(p.EIz, p.GAy, length), Nv, dNv, Nt, dNt);
     const int vz[4] = {1, 5, 7, 11};
     for (int k = 0; k < 4; ++k) {
       f.N(1, vz[k]) = Nv[k], f.dN(1, vz[k]) = dNv[k] / L;
       f.N(5, vz[k]) = Nt[k], f.dN(5, vz[k]) = dNt[k] / L;
     }
     // x–z plane: w and ψ_y (bending about y, EI_y): w' = −ψ_y, i.e. (w, −ψ_y) plays (v, ψ_z) (C-24).
-    plane(shearParameter(section.Iy), Nv, dNv, Nt, dNt);
+    plane(shearParameter(p.EIy, p.GAz, length), Nv, dNv, Nt, dNt);
     const int wy[4] = {2, 4, 8, 10};
     const double sign[4] = {1.0, -1.0, 1.0, -1.0};
     for (int k = 0; k < 4; ++k) {
@@ -168,10 +168,9 @@ struct TimoshenkoBeamKernel {
 
   /// Local stiffness K = ∫ Bᵀ D B ds of the end deformations d (the thesis' K_d,end, C-33).
   Mat12 localStiffness() const {
-    const double E = material.youngs_modulus, G = material.shear_modulus, A = section.area;
+    const SectionProperties p = section.properties(material);
     Eigen::Matrix<double, 6, 1> D;
-    D << E * A, G * section.J, E * section.Iy, E * section.Iz, section.shear_factor * G * A,
-        section.shear_factor * G * A;
+    D << p.EA, p.GJ, p.EIy, p.EIz, p.GAy, p.GAz;
     const GaussRule& rule = gaussLegendre(stiffness_points);
     Mat12 K = Mat12::Zero();
     for (int g = 0; g < rule.points; ++g) {
@@ -420,8 +419,8 @@ struct TimoshenkoBeamKernel {
   }
 
   Vec3 rotaryInertia() const {
-    const double rho = material.density;
-    return {rho * (section.Iy + section.Iz), rho * section.Iy, rho * section.Iz};
+    const SectionProperties p = section.properties(material);
+    return {p.rhoIp, p.rhoIy, p.rhoIz};
   }
 
   /// M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds, accumulated block by block (H_x has identity blocks,
@@ -431,7 +430,7 @@ struct TimoshenkoBeamKernel {
   }
 
   template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const EndFrames<S>& e) const {
-    const double rhoA = material.density * section.area;
+    const double rhoA = section.properties(material).rhoA;
     const Vec3T<S> J = rotaryInertia().template cast<S>();
     const GaussRule& rule = gaussLegendre(mass_points);
     Eigen::Matrix<S, 12, 12> M = Eigen::Matrix<S, 12, 12>::Zero();
@@ -470,7 +469,7 @@ struct TimoshenkoBeamKernel {
                                const V<S>& v, const Vec3& gravity, const V<S>* a = nullptr) const {
     const EndFrames<Dual<S, 1>> e = endFramesAlongMotion<S>(r1s, R1, r2s, R2, v);
     const Eigen::Matrix<Dual<S, 1>, 12, 1> vp = v.template cast<Dual<S, 1>>();
-    const double rhoA = material.density * section.area;
+    const double rhoA = section.properties(material).rhoA;
     const Vec3T<S> J = rotaryInertia().template cast<S>();
     const Vec3T<S> g = gravity.cast<S>();
     const GaussRule& rule = gaussLegendre(mass_points);
@@ -544,7 +543,7 @@ struct TimoshenkoBeamKernel {
 
   /// −∫ H_xᵀ ρA g ds: inertialAndGravityForce at rest (dq = 0, d(dq)/dt = 0).
   template <class S> V<S> gravityForce(const EndFrames<S>& e, const Vec3& gravity) const {
-    const double rhoA = material.density * section.area;
+    const double rhoA = section.properties(material).rhoA;
     const GaussRule& rule = gaussLegendre(mass_points);
     V<S> F = V<S>::Zero();
     for (int gp = 0; gp < rule.points; ++gp) {
@@ -572,7 +571,7 @@ struct TimoshenkoBeamKernel {
     const GaussRule& rule = gaussLegendre(mass_points);
     double V = 0.0;
     for (int g = 0; g < rule.points; ++g)
-      V -= rule.weight[g] * length * material.density * section.area * gravity.dot(sectionMap<double>(e, rule.xi[g]).x);
+      V -= rule.weight[g] * length * section.properties(material).rhoA * gravity.dot(sectionMap<double>(e, rule.xi[g]).x);
     return V;
   }
 
