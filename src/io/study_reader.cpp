@@ -117,6 +117,17 @@ std::string constraintAtRopeEnd(const YamlField& f, const Scene& scene, const Mo
   return held_by.front();
 }
 
+/// A constraint of the scene named by `f`.
+const Constraint& readConstraintName(const YamlField& f, const Model& model) {
+  const std::string name = f.text();
+  std::string known;
+  for (const Constraint& k : model.constraints) {
+    if (k.name == name) return k;
+    known += (known.empty() ? "" : ", ") + k.name;
+  }
+  f.fail(fmt::format("the scene has no constraint '{}' (constraints: {})", name, known));
+}
+
 FigureStatistic readStatistic(const YamlField& f) {
   if (!f.has("statistic")) return FigureStatistic::Final;
   const std::string s = f.at("statistic").choice({"final", "max", "min"});
@@ -130,23 +141,38 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
   if (kReservedFigureNames.count(fig.name)) f.at("name").fail(fmt::format("'{}' is a column of every case table already", fig.name));
   const std::string quantity =
       f.at("quantity").choice({"rope_tension", "constraint_force", "constraint_moment", "position", "horizontal_distance",
-                               "horizontal_sway", "frequency"});
+                               "horizontal_sway", "frequency", "tipping_moment", "dynamic_factor"});
   if (quantity == "rope_tension") {
     f.allowKeys({"name", "quantity", "rope", "end", "statistic", "after"});
     fig.quantity = FigureQuantity::ConstraintForce;
     fig.constraint = constraintAtRopeEnd(f, scene, model);
-  } else if (quantity == "constraint_force" || quantity == "constraint_moment") {
-    f.allowKeys({"name", "quantity", "constraint", "statistic", "after"});
-    fig.quantity = quantity == "constraint_force" ? FigureQuantity::ConstraintForce : FigureQuantity::ConstraintMoment;
-    const YamlField c = f.at("constraint");
-    fig.constraint = c.text();
-    std::string known;
-    bool found = false;
-    for (const Constraint& k : model.constraints) {
-      known += (known.empty() ? "" : ", ") + k.name;
-      found = found || k.name == fig.constraint;
+  } else if (quantity == "constraint_force" || quantity == "constraint_moment" || quantity == "dynamic_factor") {
+    if (quantity == "dynamic_factor") {
+      f.allowKeys({"name", "quantity", "constraint", "after"});
+      fig.quantity = FigureQuantity::DynamicFactor;
+      fig.statistic = FigureStatistic::Max;
+    } else {
+      f.allowKeys({"name", "quantity", "constraint", "statistic", "after"});
+      fig.quantity = quantity == "constraint_force" ? FigureQuantity::ConstraintForce : FigureQuantity::ConstraintMoment;
     }
-    if (!found) c.fail(fmt::format("the scene has no constraint '{}' (constraints: {})", fig.constraint, known));
+    fig.constraint = readConstraintName(f.at("constraint"), model).name;
+  } else if (quantity == "tipping_moment") {
+    f.allowKeys({"name", "quantity", "supports", "line", "statistic", "after"});
+    fig.quantity = FigureQuantity::TippingMoment;
+    const YamlField supports = f.at("supports");
+    for (const YamlField& item : supports.items()) {
+      const Constraint& c = readConstraintName(item, model);
+      if ((model.joints[c.joint1].node < 0) == (model.joints[c.joint2].node < 0))
+        item.fail(fmt::format("constraint '{}' does not join the structure to the ground", c.name));
+      fig.supports.push_back(c.name);
+    }
+    if (fig.supports.empty()) supports.fail("name at least one constraint that holds the structure on the ground");
+    const YamlField line = f.at("line");
+    const auto points = line.items();
+    if (points.size() != 2) line.fail(fmt::format("a tipping line is two points [[x, y, z], [x, y, z]], found {}", points.size()));
+    fig.line_from = points[0].vec3();
+    fig.line_to = points[1].vec3();
+    if (!((fig.line_to - fig.line_from).norm() > 1e-9)) line.fail("the tipping line's two points coincide");
   } else if (quantity == "position") {
     f.allowKeys({"name", "quantity", "body", "joint", "component", "statistic", "after"});
     fig.quantity = FigureQuantity::Position;
@@ -175,7 +201,8 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
                             study.mode_count, study.mode_count));
     return fig;
   }
-  if (fig.quantity != FigureQuantity::HorizontalSway) fig.statistic = readStatistic(f);
+  if (fig.quantity != FigureQuantity::HorizontalSway && fig.quantity != FigureQuantity::DynamicFactor)
+    fig.statistic = readStatistic(f);
   if (const auto after = f.find("after")) fig.after = after->number();
   return fig;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "cranesim/assembly/assembler.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
 namespace cranesim {
@@ -54,6 +55,43 @@ std::vector<double> horizontalDistances(const FigureSpec& fig, const Model& mode
   return distances;
 }
 
+/// At every sample, the moment about the directed line `fig.line_from` → `fig.line_to` (right
+/// hand) of the forces and moments the ground exerts on the structure through the constraints
+/// `fig.supports`: −Gᵀλ on each node they hold, a force on its origin and a torque in its body
+/// axes (virtual power: ṙᵀf + ωᵀτ). Minus the moment of everything else (gravity, loads,
+/// inertia) about the same line.
+std::vector<double> tippingMoments(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder) {
+  const Assembler assembler(model);
+  const Vec3 axis = (fig.line_to - fig.line_from).normalized();
+  std::vector<std::vector<double>> columns(model.nq + model.nv + model.m);
+  for (int k = 0; k < static_cast<int>(columns.size()); ++k) columns[k] = recorder.stateColumn(k);
+  std::vector<double> moments(recorder.samples());
+  VecX q(model.nq), v(model.nv), lambda(model.m);
+  for (std::size_t s = 0; s < moments.size(); ++s) {
+    for (int k = 0; k < model.nq; ++k) q(k) = columns[k][s];
+    for (int k = 0; k < model.nv; ++k) v(k) = columns[model.nq + k][s];
+    for (int k = 0; k < model.m; ++k) lambda(k) = columns[model.nq + model.nv + k][s];
+    const MatX G = MatX(assembler.constraints(recorder.time()[s], q.data(), v.data()).G);
+    double moment = 0.0;
+    for (const std::string& name : fig.supports) {
+      const Constraint& c = *std::find_if(model.constraints.begin(), model.constraints.end(),
+                                          [&](const Constraint& k) { return k.name == name; });
+      const VecX generalized = -G.middleRows(c.row, c.rows).transpose() * lambda.segment(c.row, c.rows);
+      for (const int joint : {c.joint1, c.joint2}) {
+        const int n = model.joints[joint].node;
+        if (n < 0) continue;
+        const Frame frame = model.nodeFrame(q.data(), n);
+        const Vec3 force = generalized.segment<3>(model.nodes[n].v);
+        Vec3 torque = (frame.r - fig.line_from).cross(force);
+        if (model.nodes[n].hasRotation()) torque += frame.R * Vec3(generalized.segment<3>(model.nodes[n].v + 3));
+        moment += axis.dot(torque);
+      }
+    }
+    moments[s] = moment;
+  }
+  return moments;
+}
+
 double reduce(const std::vector<double>& series, const std::vector<std::size_t>& window, FigureStatistic statistic) {
   double out = series[window.front()];
   for (const std::size_t s : window)
@@ -93,6 +131,16 @@ std::vector<double> caseFigures(const Study& study, const Model& model, const Re
       case FigureQuantity::HorizontalSway:
         figures.push_back(reduce(horizontalDistances(fig, model, recorder, window), window, fig.statistic));
         break;
+      case FigureQuantity::TippingMoment:
+        figures.push_back(reduce(tippingMoments(fig, model, recorder), window, fig.statistic));
+        break;
+      case FigureQuantity::DynamicFactor: {
+        // φ2 (EN 13001-2): the peak over the static force, the first sample's (a run that starts
+        // from its equilibrium, initial_state: equilibrium).
+        const std::vector<double> forces = constraintLoads(model, recorder, fig.constraint, false);
+        figures.push_back(forces.front() > 0.0 ? reduce(forces, window, FigureStatistic::Max) / forces.front() : kNaN);
+        break;
+      }
       case FigureQuantity::Frequency:
         break;
     }

@@ -220,6 +220,42 @@ figures:
         assert math.isnan(f["figures/sway_too_late"][0])  # no sample after 100 s
 
 
+def test_tipping_moment_and_dynamic_factor(tmp_path: Path):
+    """The ground's reaction on the hanging pendulum at rest is its whole weight W, up, at the
+    suspension (0, 0, 0): about the line through (2, ·, −3) along +y its moment is 2 W, and the
+    other way round −2 W. Released at rest 30° out, the rope's pull at the hook grows from
+    m g cos 30° to m g (3 − 2 cos 30°) at the lowest point: φ2 = 1.464 for a rigid massless rope
+    (the rope's mass and stretch change it by a few per mille)."""
+    study = tmp_path / "figures.yaml"
+
+    def write(analysis: str) -> None:
+        study.write_text(f"""\
+scene: {ROPE_PENDULUM}
+analysis: {analysis}
+parameters:
+  - {{path: solver.t_end, values: [3.5]}}
+figures:
+  - {{name: tipping, quantity: tipping_moment, supports: [top], line: [[2, -1, -3], [2, 1, -3]]}}
+  - {{name: tipping_back, quantity: tipping_moment, supports: [top], line: [[2, 1, -3], [2, -1, -3]]}}
+  - {{name: phi2, quantity: dynamic_factor, constraint: hook}}
+""")
+
+    write("static")
+    result = crane_sim("study", study, "-o", tmp_path / "static.h5", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    weight = (1000 + ROPE_MASS) * GRAVITY
+    with h5py.File(tmp_path / "static.h5", "r") as f:
+        assert f["figures/tipping"][0] == pytest.approx(2 * weight, rel=1e-9)
+        assert f["figures/tipping_back"][0] == pytest.approx(-2 * weight, rel=1e-9)
+        assert f["figures/phi2"][0] == 1.0  # one sample: the static force itself
+    write("run")
+    result = crane_sim("study", study, "-o", tmp_path / "run.h5", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    cos30 = math.cos(math.radians(30))
+    with h5py.File(tmp_path / "run.h5", "r") as f:
+        assert f["figures/phi2"][0] == pytest.approx((3 - 2 * cos30) / cos30, rel=0.01)
+
+
 def test_failed_case_is_a_row_and_the_study_goes_on(tmp_path: Path):
     study = tmp_path / "failing.yaml"
     study.write_text(f"""\

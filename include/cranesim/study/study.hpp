@@ -41,6 +41,8 @@ enum class FigureQuantity {
   HorizontalDistance,  // horizontal distance of a joint from another joint, m (a radius)
   HorizontalSway,      // max horizontal distance of a joint from a reference joint or its mean, m
   Frequency,           // a mode's frequency, Hz (analysis: modes)
+  TippingMoment,       // moment of ground supports' reactions about a directed line, N·m
+  DynamicFactor,       // a constraint's peak force over its force at the first sample (φ2)
 };
 enum class FigureStatistic { Final, Max, Min };
 
@@ -54,6 +56,8 @@ struct FigureSpec {
   int component = 0;        // Position: 0, 1, 2 for x, y, z
   double after = -std::numeric_limits<double>::infinity();  // s
   int mode = 0;             // Frequency: 1-based, as `crane-sim modes` numbers them
+  std::vector<std::string> supports;  // TippingMoment: constraints joining the structure to the ground
+  Vec3 line_from = Vec3::Zero(), line_to = Vec3::Zero();  // TippingMoment: the tipping line, directed
 };
 
 /// A bound on a figure: a case is admissible when every criterion holds (a load chart's limits).
