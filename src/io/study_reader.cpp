@@ -141,7 +141,7 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
   if (kReservedFigureNames.count(fig.name)) f.at("name").fail(fmt::format("'{}' is a column of every case table already", fig.name));
   const std::string quantity =
       f.at("quantity").choice({"rope_tension", "constraint_force", "constraint_moment", "position", "horizontal_distance",
-                               "horizontal_sway", "frequency", "tipping_moment", "dynamic_factor"});
+                               "horizontal_sway", "frequency", "tipping_moment", "dynamic_factor", "rope_slack"});
   if (quantity == "rope_tension") {
     f.allowKeys({"name", "quantity", "rope", "end", "statistic", "after"});
     fig.quantity = FigureQuantity::ConstraintForce;
@@ -156,6 +156,17 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
       fig.quantity = quantity == "constraint_force" ? FigureQuantity::ConstraintForce : FigureQuantity::ConstraintMoment;
     }
     fig.constraint = readConstraintName(f.at("constraint"), model).name;
+  } else if (quantity == "rope_slack") {
+    f.allowKeys({"name", "quantity", "rope", "after"});
+    fig.quantity = FigureQuantity::RopeSlack;
+    const YamlField rope = f.at("rope");
+    fig.rope = rope.text();
+    std::string ropes;
+    for (const MemberSpec& m : scene.members)
+      if (m.type == MemberType::Rope) ropes += (ropes.empty() ? "" : ", ") + m.name;
+    if (std::none_of(scene.members.begin(), scene.members.end(),
+                     [&](const MemberSpec& m) { return m.type == MemberType::Rope && m.name == fig.rope; }))
+      rope.fail(fmt::format("the scene has no rope '{}' (ropes: {})", fig.rope, ropes.empty() ? "none" : ropes));
   } else if (quantity == "tipping_moment") {
     f.allowKeys({"name", "quantity", "supports", "line", "statistic", "after"});
     fig.quantity = FigureQuantity::TippingMoment;
@@ -201,7 +212,8 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
                             study.mode_count, study.mode_count));
     return fig;
   }
-  if (fig.quantity != FigureQuantity::HorizontalSway && fig.quantity != FigureQuantity::DynamicFactor)
+  if (fig.quantity != FigureQuantity::HorizontalSway && fig.quantity != FigureQuantity::DynamicFactor &&
+      fig.quantity != FigureQuantity::RopeSlack)
     fig.statistic = readStatistic(f);
   if (const auto after = f.find("after")) fig.after = after->number();
   return fig;

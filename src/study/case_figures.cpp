@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "cranesim/assembly/assembler.hpp"
+#include "cranesim/elements/spline_rope.hpp"
+#include "cranesim/model/element.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
 namespace cranesim {
@@ -92,6 +94,33 @@ std::vector<double> tippingMoments(const FigureSpec& fig, const Model& model, co
   return moments;
 }
 
+/// The time within the window during which some point of the rope carries no tension: its
+/// elements' axial force at 9 points each (ends included), every sample standing for the interval
+/// to the next (the window's last sample for none).
+double slackTime(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder,
+                 const std::vector<std::size_t>& window) {
+  std::vector<const KernelElement<SplineRopeKernel>*> elements;
+  for (const auto& e : model.elements)
+    if (const auto* rope = dynamic_cast<const KernelElement<SplineRopeKernel>*>(e.get()))
+      if (model.nodes[rope->nodes().front()].member == fig.rope) elements.push_back(rope);
+  std::vector<std::vector<double>> columns(model.nq);
+  for (int k = 0; k < model.nq; ++k) columns[k] = recorder.stateColumn(k);
+  double slack = 0.0;
+  for (std::size_t w = 0; w + 1 < window.size(); ++w) {
+    const std::size_t s = window[w];
+    const double t = recorder.time()[s];
+    bool somewhere = false;
+    for (const auto* e : elements) {
+      Eigen::Matrix<double, SplineRopeKernel::kNq, 1> q;
+      for (int k = 0; k < SplineRopeKernel::kNq; ++k) q(k) = columns[e->coordinateIndices()[k]][s];
+      for (int i = 0; i <= 8 && !somewhere; ++i) somewhere = e->kernel().tension(q, t, i / 8.0) <= 0.0;
+      if (somewhere) break;
+    }
+    if (somewhere) slack += recorder.time()[window[w + 1]] - t;
+  }
+  return slack;
+}
+
 double reduce(const std::vector<double>& series, const std::vector<std::size_t>& window, FigureStatistic statistic) {
   double out = series[window.front()];
   for (const std::size_t s : window)
@@ -141,6 +170,9 @@ std::vector<double> caseFigures(const Study& study, const Model& model, const Re
         figures.push_back(forces.front() > 0.0 ? reduce(forces, window, FigureStatistic::Max) / forces.front() : kNaN);
         break;
       }
+      case FigureQuantity::RopeSlack:
+        figures.push_back(slackTime(fig, model, recorder, window));
+        break;
       case FigureQuantity::Frequency:
         break;
     }

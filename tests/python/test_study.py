@@ -256,6 +256,28 @@ figures:
         assert f["figures/phi2"][0] == pytest.approx((3 - 2 * cos30) / cos30, rel=0.01)
 
 
+def test_rope_slack_time(tmp_path: Path):
+    """Taut at its drawn length, the rope is never slack; 0.5 m too long, it is slack until the
+    ball has fallen freely onto it: √(2 Δz/g) = 0.3408 s (the output samples are 0.01 s apart)."""
+    study = tmp_path / "slack.yaml"
+    study.write_text(f"""\
+scene: {ROPE_PENDULUM}
+analysis: run
+parameters:
+  - {{path: members.rope.length, values: [10.0, 10.5]}}
+  - {{path: solver.t_end, values: [0.36]}}
+figures:
+  - {{name: slack, quantity: rope_slack, rope: rope}}
+""")
+    result = crane_sim("study", study, "-o", tmp_path / "slack.h5", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    drop = math.sqrt(10.5**2 - BALL_DRAWN_X**2) - 8.662624697081984
+    with h5py.File(tmp_path / "slack.h5", "r") as f:
+        taut, long = f["figures/slack"][...]
+        assert taut == 0.0
+        assert long == pytest.approx(math.sqrt(2 * drop / GRAVITY), abs=0.011)
+
+
 def test_failed_case_is_a_row_and_the_study_goes_on(tmp_path: Path):
     study = tmp_path / "failing.yaml"
     study.write_text(f"""\
