@@ -336,7 +336,7 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
   std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "damping"};
   if (m.type == MemberType::Truss) keys.insert(keys.end(), {"truss", "fidelity", "element"});
   else keys.insert(keys.end(), {"section", "material"});
-  if (m.type == MemberType::Rope) keys.push_back("length");
+  if (m.type == MemberType::Rope) keys.insert(keys.end(), {"length", "transverse_damping"});
   if (m.type == MemberType::StrutTie) keys.insert(keys.end(), {"constant_volume", "smoothing"});
   f.allowKeys(keys);
   readMemberEnd(f.at("start"), m.start, m.start_joint, m.where_start);
@@ -352,6 +352,16 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
       f.at("quadrature").fail(fmt::format("Gauss points must be 1…{}, found {}", kMaxGaussPoints, m.quadrature));
   }
   if (const auto d = f.find("damping")) m.damping = d->nonNegative();
+  if (const auto c = f.find("transverse_damping")) {
+    m.transverse_damping = c->nonNegative();
+    // It damps the turning of the centre line against each element's chord: on one element,
+    // the rope's sideways vibration; on several, only what bends within each element, a
+    // damping that would depend on the segments.
+    if (m.transverse_damping > 0.0 && m.segments != 1)
+      c->fail(fmt::format("transverse damping acts on a rope of one segment (this one has {}): it damps the turning "
+                          "of the centre line against the element's chord, which on several segments would depend on "
+                          "their number", m.segments));
+  }
   if (m.type == MemberType::Truss) {
     readTrussMember(f, m, trusses);
     return m;

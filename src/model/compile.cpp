@@ -68,6 +68,7 @@ void compileMember(Model& model, const MemberSpec& m) {
         SplineRopeKernel k;
         k.total_length = m.length ? *m.length : Profile(ConstantProfile{chord});
         k.segments = m.segments;
+        k.transverse_damping = m.transverse_damping;
         k.section = m.section;
         k.material = m.material;
         if (m.quadrature > 0) k.rule = gaussLegendre(m.quadrature);

@@ -11,6 +11,16 @@
 // ε = 0, which no step size resolves (a crane released from its drawing, ropes at ε = 0, stalled
 // IDAS at steps of 1e-12 s). It dissipates in every branch: N ε̇ ≥ d/dt ½ EA max(ε, 0)².
 //
+// Optional transverse damping c (N·s): a taut string's sideways vibration, which the axial law
+// does not damp (the luffing rope's 14–27 Hz string modes on the crane). It acts on the turning
+// of the centre line relative to the element's chord, the rate
+//   w = ṫ − Ω × t,   t = r'/‖r'‖,  ṫ = P_t ṙ'/‖r'‖,   Ω = u × u̇,  u = d/‖d‖,  u̇ = P_u ḋ/‖d‖,
+// d = r² − r¹ and P_a = I − a aᵀ, with the power c ∫ ‖w‖² ds and the force c ∫ (∂w/∂dq)ᵀ w ds,
+// linear in dq. A rope turning as a whole about an axis across its chord (a pendulum's swing)
+// has w = 0 also where it sags; only a sagging rope's spin about its own chord is damped. On a
+// rope of one element (the scene reader allows no other) the chord is the rope's, and the first
+// string mode's damping ratio is ζ₁ = c (π/ℓ) / (2 √(T ρA)), growing with the mode number.
+//
 // The unstretched length may follow a drive, L(t) = length(t)/segments per element; the mass
 // ρA L(t) changes with it, as when a winch reels the rope in or out (6). The equations use
 // M(t) d(dq)/dt: the rope material enters and leaves with the velocity of the element.
@@ -37,6 +47,7 @@ struct SplineRopeKernel {
   Material material;
   GaussRule rule = gaussLegendre(4);
   double damping = 0.0;  // Kelvin–Voigt retardation time η, s
+  double transverse_damping = 0.0;  // c, N·s (see the file comment)
 
   double segmentLength(double t) const { return total_length(t) / segments; }
 
@@ -54,7 +65,8 @@ struct SplineRopeKernel {
   template <class S>
   Q<S> force(const Q<S>& q, const Q<S>& v, double t, const Vec3& gravity, ParameterRates rates = ParameterRates::Left) const {
     using std::sqrt;
-    const double L = segmentLength(t), rate = damping > 0.0 ? segmentRate(t, rates) : 0.0;
+    const double L = segmentLength(t);
+    const double rate = damping > 0.0 || transverse_damping > 0.0 ? segmentRate(t, rates) : 0.0;
     const double rhoA = material.density * section.area;
     const double EA = material.youngs_modulus * section.area;
     Q<S> F = Q<S>::Zero();
@@ -67,6 +79,10 @@ struct SplineRopeKernel {
       if (damping > 0.0) stress += damping * rs.dot(slopeRate<S>(q, v, rate, dN, rule.xi[g], L)) / stretch;
       if (stress > 0.0) F += (rule.weight[g] * L * EA) * (stress / stretch) * (dN.transpose().template cast<S>() * rs);
       F -= (rule.weight[g] * L * rhoA) * (shape(b.N).transpose() * gravity).template cast<S>();
+      if (transverse_damping > 0.0) {
+        const TransverseTurning<S> turning = transverseTurning<S>(q, v, rate, dN, rule.xi[g], L);
+        F += (rule.weight[g] * L * transverse_damping) * turning.force();
+      }
     }
     return F;
   }
@@ -119,13 +135,35 @@ struct SplineRopeKernel {
       power += rule.weight[g] * rate * (e + L * e_L);
       if (damping > 0.0)
         power += rule.weight[g] * L * EA * dampingStress(q, v, rate, rule.xi[g], L) * rate * rs.dot(rs_L) / stretch;
+      // The transverse damper's force does dqᵀ c A w = c ‖w‖² − c wᵀ w_L, w_L the part of w that
+      // reeling causes: the first is dissipated, the second the winch's.
+      if (transverse_damping > 0.0) {
+        const TransverseTurning<double> turning = transverseTurning<double>(q, v, rate, shape(b.dN), rule.xi[g], L);
+        power += rule.weight[g] * L * transverse_damping * turning.w.dot(turning.w_reeling);
+      }
     }
     return power;
   }
 
   /// Kelvin–Voigt power ∫ EA (max(ε + η ε̇, 0) − max(ε, 0)) ε̇ ds ≥ 0 (max is monotone), ε̇ the
   /// material's stretch rate.
-  double dissipatedPower(const Q<double>& q, const Q<double>& v, double t, const Vec3&) const {
+  double dissipatedPower(const Q<double>& q, const Q<double>& v, double t, const Vec3& gravity) const {
+    return axialDissipatedPower(q, v, t) + transverseDissipatedPower(q, v, t, gravity);
+  }
+
+  /// c ∫ ‖w‖² ds of the transverse damping.
+  double transverseDissipatedPower(const Q<double>& q, const Q<double>& v, double t, const Vec3&) const {
+    if (transverse_damping == 0.0) return 0.0;
+    const double L = segmentLength(t), rate = segmentRate(t);
+    double power = 0.0;
+    for (int g = 0; g < rule.points; ++g) {
+      const auto dN = shape(hermiteBasis(rule.xi[g], L).dN);
+      power += rule.weight[g] * L * transverse_damping * transverseTurning<double>(q, v, rate, dN, rule.xi[g], L).w.squaredNorm();
+    }
+    return power;
+  }
+
+  double axialDissipatedPower(const Q<double>& q, const Q<double>& v, double t) const {
     if (damping == 0.0) return 0.0;
     const double L = segmentLength(t), rate = segmentRate(t), EA = material.youngs_modulus * section.area;
     double power = 0.0;
@@ -145,6 +183,35 @@ struct SplineRopeKernel {
   }
 
  private:
+  /// The turning rate w of the centre line against the chord at one point (file comment), the
+  /// part w_L that reeling alone causes, and what force() needs of ∂w/∂dq.
+  template <class S> struct TransverseTurning {
+    Vec3T<S> w, w_reeling;
+    Eigen::Matrix<S, 3, 12> dw_dv;  // ∂w/∂dq
+    Q<S> force() const { return dw_dv.transpose() * w; }
+  };
+
+  template <class S>
+  TransverseTurning<S> transverseTurning(const Q<S>& q, const Q<S>& v, double rate, const Eigen::Matrix<double, 3, 12>& dN,
+                                         double xi, double L) const {
+    using std::sqrt;
+    const Vec3T<S> rs = dN.template cast<S>() * q, d = q.template segment<3>(6) - q.template segment<3>(0);
+    const S stretch = sqrt(rs.squaredNorm()), chord = sqrt(d.squaredNorm());
+    const Vec3T<S> t = rs / stretch, u = d / chord;
+    const Mat3T<S> Pt = Mat3T<S>::Identity() - t * t.transpose(), Pu = Mat3T<S>::Identity() - u * u.transpose();
+    // Ω × t = u̇ (u·t) − u (u̇·t) = B u̇ with B = (u·t) I − u tᵀ.
+    const Mat3T<S> B = u.dot(t) * Mat3T<S>::Identity() - u * t.transpose();
+    Eigen::Matrix<S, 3, 12> relative = Eigen::Matrix<S, 3, 12>::Zero();  // ḋ = relative dq
+    relative.template block<3, 3>(0, 6).setIdentity();
+    relative.template block<3, 3>(0, 0) = -Mat3T<S>::Identity();
+    TransverseTurning<S> out;
+    out.dw_dv = (Pt / stretch) * dN.template cast<S>() - (B * Pu / chord) * relative;
+    out.w_reeling = Vec3T<S>::Zero();
+    if (rate != 0.0) out.w_reeling = (Pt / stretch) * (rate * shape(hermiteBasisLengthDerivative(xi, L).dN)).template cast<S>() * q;
+    out.w = out.dw_dv * v + out.w_reeling;
+    return out;
+  }
+
   /// d/dt of the slope r' = dN(L(t)) q at fixed ξ: dN dq + L̇ ∂(dN)/∂L q.
   template <class S>
   Vec3T<S> slopeRate(const Q<S>& q, const Q<S>& v, double rate, const Eigen::Matrix<double, 3, 12>& dN, double xi,

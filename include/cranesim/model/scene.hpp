@@ -63,6 +63,7 @@ struct MemberSpec {
   bool constant_volume = true;    // strut tie: section shrinks with stretch (3-27)
   double smoothing = 0.0;         // strut tie: smoothing factor h (3-16)
   double damping = 0.0;           // Kelvin–Voigt retardation time η of the material, s (0: undamped)
+  double transverse_damping = 0.0;  // rope: damping of its sideways turning against its chords, N·s
   std::string truss;              // truss: the truss type's name
   TrussFidelity fidelity = TrussFidelity::Members;
   MemberType tube_element = MemberType::Timoshenko;  // truss with fidelity Members: the tubes' beam element
