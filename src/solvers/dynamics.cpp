@@ -237,6 +237,7 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
   SolverStatistics counts;  // what the stepper does not count itself
   std::vector<double> sample(assembler.size());
   std::array<double, WorkTerms::kCount> work{};
+  double drive_impulses = 0.0;  // the drives' work in velocity jumps (jumpVelocities), J
 
   double t = initial.t;
   long stalled_steps = 0;
@@ -271,7 +272,9 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
       if (ts > t_end - eps) ts = t_end;
       if (ts > t_ret + eps) break;
       stepper->interpolate(std::min(ts, t_ret), sample.data(), work.data());
-      sink.sample(ts, sample.data(), WorkTerms::fromArray(work.data()));
+      WorkTerms works = WorkTerms::fromArray(work.data());
+      works.drive += drive_impulses;
+      sink.sample(ts, sample.data(), works);
       ++next_sample;
       sampled_end = ts == t_end;
     }
@@ -298,12 +301,11 @@ SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initi
       ++counts.restarts;
       DynamicState s = stateOf(assembler, t, y);
       try {
-        // A velocity drive may jump at a breakpoint: project dq onto the coming segment's
-        // velocity constraints, then solve its accelerations and multipliers.
+        // A drive's velocity may jump at a breakpoint: the masses' response to the impulse,
+        // whose work is the drives', then the coming segment's accelerations and multipliers.
         if (step.reached_stop && model.m > 0) {
           const ConstraintState C = assembler.constraints(t, s.q.data(), s.v.data(), Limit::Right);
-          const MatX G = MatX(C.G);
-          s.v -= G.transpose() * (G * G.transpose()).ldlt().solve(C.phi_dot);
+          if (C.phi_dot.cwiseAbs().maxCoeff() > 0.0) drive_impulses += jumpVelocities(assembler, s, C);
         }
         solveAccelerations(assembler, s, Limit::Right);
       } catch (const std::exception& e) {

@@ -1,5 +1,7 @@
 #include "cranesim/solvers/initial_conditions.hpp"
 
+#include <Eigen/SparseLU>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -101,6 +103,32 @@ void requireIndependentConstraints(const Assembler& assembler, const VecX& q, do
                                    ? "; a fixed constraint makes them coincide: draw the joints with the same axes, or "
                                      "give it pose: drawn to keep the drawing's relative rotation"
                                    : ""));
+}
+
+double jumpVelocities(const Assembler& assembler, DynamicState& s, const ConstraintState& C) {
+  const Model& model = assembler.model();
+  const int nv = model.nv, m = model.m;
+  const Eigen::SparseMatrix<double> M = assembler.massMatrix(s.t, s.q.data());
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int k = 0; k < M.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) triplets.emplace_back(it.row(), it.col(), it.value());
+  for (int k = 0; k < C.G.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(C.G, k); it; ++it) {
+      triplets.emplace_back(nv + it.row(), it.col(), it.value());
+      triplets.emplace_back(it.col(), nv + it.row(), it.value());
+    }
+  Eigen::SparseMatrix<double> saddle(nv + m, nv + m);
+  saddle.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(saddle);
+  if (lu.info() != Eigen::Success)
+    throw std::runtime_error(fmt::format("t = {} s: the saddle-point matrix [M Gᵀ; G 0] is singular at a drive's velocity "
+                                         "jump (a body without mass or inertia in a free direction?)", s.t));
+  VecX rhs = VecX::Zero(nv + m);
+  rhs.tail(m) = -C.phi_dot;
+  const VecX dv = lu.solve(rhs).head(nv);
+  const double before = 0.5 * s.v.dot(M * s.v);
+  s.v += dv;
+  return 0.5 * s.v.dot(M * s.v) - before;
 }
 
 void solveAccelerations(const Assembler& assembler, DynamicState& s, Limit limit) {

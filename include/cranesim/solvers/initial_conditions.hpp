@@ -60,6 +60,13 @@ class AccelerationSolver {
   SparseLU lu_;
 };
 
+/// The velocities just after a drive's velocity jumps (a breakpoint where a ramp starts, a
+/// linear table's knot): the response of the masses to the impulse through the constraints,
+/// [M Gᵀ; G 0] [Δv; p] = [0; −(G v + Φ_t)] at (state.t, state.q), C evaluated on the coming
+/// side. A least-norm change of v would move directions no impulse reaches (a pendulum's bob when
+/// its cart jumps). Returns the kinetic energy the jump adds: the drives' impulsive work.
+double jumpVelocities(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints);
+
 /// Recomputes a, λ and q̇ for a state whose q and v are already consistent. `limit`: Right
 /// when restarting from a breakpoint, so the accelerations are those of the coming segment.
 void solveAccelerations(const Assembler& assembler, DynamicState& state, Limit limit = Limit::Left);
