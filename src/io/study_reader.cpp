@@ -94,10 +94,9 @@ std::string readReferenceJoint(const YamlField& f, const Model& model) {
   return joint;
 }
 
-/// The constraint holding a rope's end: its force is the rope's tension there.
-std::string constraintAtRopeEnd(const YamlField& f, const Scene& scene, const Model& model) {
-  const YamlField rope_field = f.at("rope");
-  const std::string rope = rope_field.text();
+/// A rope of the scene named by `f`.
+std::string readRopeName(const YamlField& f, const Scene& scene) {
+  const std::string rope = f.text();
   std::string ropes;
   bool found = false;
   for (const MemberSpec& m : scene.members)
@@ -105,7 +104,14 @@ std::string constraintAtRopeEnd(const YamlField& f, const Scene& scene, const Mo
       ropes += (ropes.empty() ? "" : ", ") + m.name;
       found = found || m.name == rope;
     }
-  if (!found) rope_field.fail(fmt::format("the scene has no rope '{}' (ropes: {})", rope, ropes.empty() ? "none" : ropes));
+  if (!found) f.fail(fmt::format("the scene has no rope '{}' (ropes: {})", rope, ropes.empty() ? "none" : ropes));
+  return rope;
+}
+
+/// The constraint holding a rope's end: its force is the rope's tension there.
+std::string constraintAtRopeEnd(const YamlField& f, const Scene& scene, const Model& model) {
+  const YamlField rope_field = f.at("rope");
+  const std::string rope = readRopeName(rope_field, scene);
   const std::string end = f.has("end") ? f.at("end").choice({"start", "end"}) : "end";
   const int node = model.joints[model.findJoint(rope + "." + end)].node;
   std::vector<std::string> held_by;
@@ -159,14 +165,7 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
   } else if (quantity == "rope_slack") {
     f.allowKeys({"name", "quantity", "rope", "after"});
     fig.quantity = FigureQuantity::RopeSlack;
-    const YamlField rope = f.at("rope");
-    fig.rope = rope.text();
-    std::string ropes;
-    for (const MemberSpec& m : scene.members)
-      if (m.type == MemberType::Rope) ropes += (ropes.empty() ? "" : ", ") + m.name;
-    if (std::none_of(scene.members.begin(), scene.members.end(),
-                     [&](const MemberSpec& m) { return m.type == MemberType::Rope && m.name == fig.rope; }))
-      rope.fail(fmt::format("the scene has no rope '{}' (ropes: {})", fig.rope, ropes.empty() ? "none" : ropes));
+    fig.rope = readRopeName(f.at("rope"), scene);
   } else if (quantity == "tipping_moment") {
     f.allowKeys({"name", "quantity", "supports", "line", "statistic", "after"});
     fig.quantity = FigureQuantity::TippingMoment;

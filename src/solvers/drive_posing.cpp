@@ -2,44 +2,12 @@
 
 #include <cmath>
 #include <numbers>
-#include <numeric>
 
 #include "cranesim/math/rotation.hpp"
+#include "cranesim/model/node_graph.hpp"
 
 namespace cranesim {
 namespace {
-
-/// Nodes joined by elements and by constraints other than `cut`; the ground is node −1 and is
-/// joined to nothing (it does not move).
-class NodeGraph {
- public:
-  NodeGraph(const Model& model, int cut) : parent_(model.nodes.size()) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-    for (const auto& e : model.elements)
-      for (int n : e->nodes()) join(e->nodes().front(), n);
-    for (std::size_t c = 0; c < model.constraints.size(); ++c) {
-      if (static_cast<int>(c) == cut) continue;
-      const int a = model.joints[model.constraints[c].joint1].node, b = model.joints[model.constraints[c].joint2].node;
-      if (a < 0 || b < 0) grounded_.push_back(a < 0 ? b : a);
-      else join(a, b);
-    }
-  }
-  int root(int n) {
-    while (parent_[n] != n) n = parent_[n] = parent_[parent_[n]];
-    return n;
-  }
-  /// Whether node n's part touches the ground through a constraint other than the cut one.
-  bool grounded(int n) {
-    for (int g : grounded_)
-      if (g >= 0 && root(g) == root(n)) return true;
-    return false;
-  }
-
- private:
-  void join(int a, int b) { parent_[root(a)] = root(b); }
-  std::vector<int> parent_;
-  std::vector<int> grounded_;
-};
 
 /// Moves node n rigidly: x ↦ c + R (x − c) + shift.
 void moveNode(const Node& n, const Vec3& c, const Mat3& R, const Vec3& shift, VecX& q, VecX* v) {
@@ -63,8 +31,8 @@ int poseAtDrives(const Model& model, double t, VecX& q, VecX* v) {
     // The side that moves: the second joint's, or else the first's (turned the other way).
     int moving = -1;
     double sign = 1.0;
-    if (n2 >= 0 && !graph.grounded(n2) && (n1 < 0 || graph.root(n1) != graph.root(n2))) moving = n2;
-    else if (n1 >= 0 && !graph.grounded(n1) && (n2 < 0 || graph.root(n1) != graph.root(n2))) moving = n1, sign = -1.0;
+    if (n2 >= 0 && !graph.grounded(n2) && (n1 < 0 || !graph.connected(n1, n2))) moving = n2;
+    else if (n1 >= 0 && !graph.grounded(n1) && (n2 < 0 || !graph.connected(n1, n2))) moving = n1, sign = -1.0;
     if (moving < 0) continue;
     const Frame j1 = model.jointFrame(q.data(), c.joint1), j2 = model.jointFrame(q.data(), c.joint2);
     double change = (*c.drive)(t) - drivenCoordinate(c.law(), j1, j2);

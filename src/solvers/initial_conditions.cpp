@@ -1,15 +1,13 @@
 #include "cranesim/solvers/initial_conditions.hpp"
 
-#include <Eigen/SparseLU>
-
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <limits>
 #include <numbers>
-#include <numeric>
 
 #include "cranesim/math/rotation.hpp"
+#include "cranesim/model/node_graph.hpp"
 #include "cranesim/solvers/drive_posing.hpp"
 
 namespace cranesim {
@@ -28,24 +26,6 @@ const Constraint& constraintOfRow(const Model& model, int row) {
   for (const Constraint& c : model.constraints)
     if (row >= c.row && row < c.row + c.rows) return c;
   throw std::logic_error("constraint row out of range");
-}
-
-/// Whether constraint `which` closes a loop: its two joints' nodes are connected already
-/// through elements and the other constraints (the ground counts as one node).
-bool closesLoop(const Model& model, const Constraint& which) {
-  const int ground = static_cast<int>(model.nodes.size());
-  std::vector<int> parent(model.nodes.size() + 1);
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](int n) {
-    while (parent[n] != n) n = parent[n] = parent[parent[n]];
-    return n;
-  };
-  const auto nodeOf = [&](int joint) { return model.joints[joint].node < 0 ? ground : model.joints[joint].node; };
-  for (const auto& e : model.elements)
-    for (int n : e->nodes()) parent[root(n)] = root(e->nodes().front());
-  for (const Constraint& c : model.constraints)
-    if (&c != &which) parent[root(nodeOf(c.joint1))] = root(nodeOf(c.joint2));
-  return root(nodeOf(which.joint1)) == root(nodeOf(which.joint2));
 }
 
 /// Minimum-norm correction x = Aᵀ (A Aᵀ)⁻¹ b.
@@ -89,7 +69,9 @@ void requireIndependentConstraints(const Assembler& assembler, const VecX& q, do
   const Constraint& first = constraintOfRow(model, qr.colsPermutation().indices()(rank));
   const std::string what = fmt::format("the constraints are redundant: {} equations but rank {}; dependent equations: {}",
                                        model.m, rank, redundant);
-  if (closesLoop(model, first))
+  // A loop: the constraint's two sides are joined already, through elements and the others.
+  NodeGraph others(model, static_cast<int>(&first - model.constraints.data()));
+  if (others.connected(others.nodeOf(model, first.joint1), others.nodeOf(model, first.joint2)))
     throw SceneError(first.where, what + ". Replace a revolute or fixed constraint in the closed loop by a spherical one.");
   // No loop: the constraint's own equations are singular in this pose, e.g. a fixed constraint
   // between joint frames the drawing turns by 90° against each other.
@@ -106,29 +88,7 @@ void requireIndependentConstraints(const Assembler& assembler, const VecX& q, do
 }
 
 double jumpVelocities(const Assembler& assembler, DynamicState& s, const ConstraintState& C) {
-  const Model& model = assembler.model();
-  const int nv = model.nv, m = model.m;
-  const Eigen::SparseMatrix<double> M = assembler.massMatrix(s.t, s.q.data());
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (int k = 0; k < M.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) triplets.emplace_back(it.row(), it.col(), it.value());
-  for (int k = 0; k < C.G.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(C.G, k); it; ++it) {
-      triplets.emplace_back(nv + it.row(), it.col(), it.value());
-      triplets.emplace_back(it.col(), nv + it.row(), it.value());
-    }
-  Eigen::SparseMatrix<double> saddle(nv + m, nv + m);
-  saddle.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(saddle);
-  if (lu.info() != Eigen::Success)
-    throw std::runtime_error(fmt::format("t = {} s: the saddle-point matrix [M Gᵀ; G 0] is singular at a drive's velocity "
-                                         "jump (a body without mass or inertia in a free direction?)", s.t));
-  VecX rhs = VecX::Zero(nv + m);
-  rhs.tail(m) = -C.phi_dot;
-  const VecX dv = lu.solve(rhs).head(nv);
-  const double before = 0.5 * s.v.dot(M * s.v);
-  s.v += dv;
-  return 0.5 * s.v.dot(M * s.v) - before;
+  return AccelerationSolver().jump(assembler, s, C);
 }
 
 void solveAccelerations(const Assembler& assembler, DynamicState& s, Limit limit) {
@@ -145,28 +105,45 @@ void AccelerationSolver::solve(const Assembler& assembler, DynamicState& s, cons
 
 void AccelerationSolver::solve(const Assembler& assembler, DynamicState& s, const ConstraintState& C,
                                const Eigen::SparseMatrix<double>& M, Limit limit) {
-  const Model& model = assembler.model();
-  const int nv = model.nv, m = model.m;
+  const int nv = assembler.model().nv, m = assembler.model().m;
   const VecX F = assembler.appliedForces(s.t, s.q.data(), s.v.data(), limit);
-  triplets_.clear();
-  for (int k = 0; k < M.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) triplets_.emplace_back(it.row(), it.col(), it.value());
-  for (int k = 0; k < C.G.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(C.G, k); it; ++it) {
-      triplets_.emplace_back(nv + it.row(), it.col(), it.value());
-      triplets_.emplace_back(it.col(), nv + it.row(), it.value());
-    }
-  matrix_.resize(nv + m, nv + m);
-  matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
-  if (!lu_.factorise(nv + m, matrix_.outerIndexPtr(), matrix_.innerIndexPtr(), matrix_.valuePtr()))
-    throw std::runtime_error(fmt::format("t = {} s: the saddle-point matrix [M Gᵀ; G 0] is singular "
-                                         "(a body without mass or inertia in a free direction?)", s.t));
+  factorise(M, C.G, s.t, "");
   VecX x(nv + m);
   x << -F, -C.gamma;
   lu_.solve(x.data());
   s.a = x.head(nv);
   s.lambda = x.tail(m);
   s.qdot = assembler.coordinateRates(s.q.data(), s.v.data());
+}
+
+double AccelerationSolver::jump(const Assembler& assembler, DynamicState& s, const ConstraintState& C) {
+  const int nv = assembler.model().nv, m = assembler.model().m;
+  const Eigen::SparseMatrix<double> M = assembler.massMatrix(s.t, s.q.data());
+  factorise(M, C.G, s.t, " at a drive's velocity jump");
+  VecX x = VecX::Zero(nv + m);
+  x.tail(m) = -C.phi_dot;
+  lu_.solve(x.data());
+  const double before = 0.5 * s.v.dot(M * s.v);
+  s.v += x.head(nv);
+  return 0.5 * s.v.dot(M * s.v) - before;
+}
+
+void AccelerationSolver::factorise(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& G, double t,
+                                   const char* where) {
+  const int nv = static_cast<int>(M.rows()), m = static_cast<int>(G.rows());
+  triplets_.clear();
+  for (int k = 0; k < M.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) triplets_.emplace_back(it.row(), it.col(), it.value());
+  for (int k = 0; k < G.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(G, k); it; ++it) {
+      triplets_.emplace_back(nv + it.row(), it.col(), it.value());
+      triplets_.emplace_back(it.col(), nv + it.row(), it.value());
+    }
+  matrix_.resize(nv + m, nv + m);
+  matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
+  if (!lu_.factorise(nv + m, matrix_.outerIndexPtr(), matrix_.innerIndexPtr(), matrix_.valuePtr()))
+    throw std::runtime_error(fmt::format("t = {} s: the saddle-point matrix [M Gᵀ; G 0] is singular{} "
+                                         "(a body without mass or inertia in a free direction?)", t, where));
 }
 
 std::string AssemblyMove::describe() const {

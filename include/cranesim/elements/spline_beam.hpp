@@ -447,10 +447,11 @@ struct SplineBeamKernel {
   /// U = ½ ∫ eᵀ K e ds (3-77).
   double strainEnergy(const Q<double>& q) const {
     const Relative<double> rel = relative<double>(ends<double>(q));
+    const Eigen::Vector4d K = stiffness();
     double U = 0.0;
     for (int g = 0; g < rule.points; ++g) {
       const Strain<double> e = strainOf<double>(sectionState<double>(rel, rule.xi[g]));
-      U += 0.5 * rule.weight[g] * length * e.dot(stiffness().cwiseProduct(e));
+      U += 0.5 * rule.weight[g] * length * e.dot(K.cwiseProduct(e));
     }
     return U;
   }
@@ -515,13 +516,11 @@ struct SplineBeamKernel {
     return G;
   }
 
-  /// ρJ_c x with ρJ_c = diag(ρI_p, ρI_y, ρI_z), column-wise.
-  template <class S, int C> Eigen::Matrix<S, 3, C> sectionInertia(const Eigen::Matrix<S, 3, C>& x) const {
-    const SectionProperties p = section.properties(material);
+  /// ρJ_c x with ρJ_c = diag(ρI_p, ρI_y, ρI_z) = diag(rhoJ), column-wise.
+  template <class S, int C>
+  static Eigen::Matrix<S, 3, C> sectionInertia(const Vec3& rhoJ, const Eigen::Matrix<S, 3, C>& x) {
     Eigen::Matrix<S, 3, C> y;
-    y.row(0) = p.rhoIp * x.row(0);
-    y.row(1) = p.rhoIy * x.row(1);
-    y.row(2) = p.rhoIz * x.row(2);
+    for (int k = 0; k < 3; ++k) y.row(k) = rhoJ(k) * x.row(k);
     return y;
   }
 
@@ -532,7 +531,9 @@ struct SplineBeamKernel {
     const Relative<S> rel = relative(e);
     const Eigen::Matrix<S, kLocal, 1> vl = localRates(e, rel, v);  // Λ dq
     const Eigen::Vector4d K = stiffness();
-    const double rhoA = section.properties(material).rhoA;
+    const SectionProperties p = section.properties(material);
+    const double rhoA = p.rhoA;
+    const Vec3 rhoJ(p.rhoIp, p.rhoIy, p.rhoIz);
 
     // The relative deformation along the path q(τ) = (r + τṙ, R exp(τω̃), s + τṡ) to second
     // order: with W = ω̃, R¹ᵀ(τ) = exp(−τW¹)R¹ᵀ, d(τ) = exp(−τW¹)(d + τu), u = R¹ᵀ(ṙ² − ṙ¹),
@@ -607,7 +608,7 @@ struct SplineBeamKernel {
         const Vec3T<S> w = w1c + wr;
         const Vec3T<S> wDot = wrDot - wr.cross(w1c);
         // G_ωᵀ h = [C h on ω¹] + Λᵀ (∂α/∂δ_local)ᵀ T_Cᵀ h,  h = J_c ω̇ + ω × J_c ω
-        const Vec3T<S> h = wL * (sectionInertia<S, 1>(wDot) + w.cross(sectionInertia<S, 1>(w)));
+        const Vec3T<S> h = wL * (sectionInertia<S, 1>(rhoJ, wDot) + w.cross(sectionInertia<S, 1>(rhoJ, w)));
         const Vec3T<S> y(h(0), cf.v * h(1) + t21.v * h(2), t02.v * h(0) + t12.v * h(1) + t22.v * h(2));  // T_Cᵀ h
         m1 += C * h;
         gl.noalias() += sd.dalpha.transpose() * y;

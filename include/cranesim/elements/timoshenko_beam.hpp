@@ -418,11 +418,6 @@ struct TimoshenkoBeamKernel {
     return FrameT<S>{m.x, m.Rc};
   }
 
-  Vec3 rotaryInertia() const {
-    const SectionProperties p = section.properties(material);
-    return {p.rhoIp, p.rhoIy, p.rhoIz};
-  }
-
   /// M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds, accumulated block by block (H_x has identity blocks,
   /// H_Ω zero blocks).
   template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const Q<S>& q, double = 0.0) const {
@@ -430,8 +425,9 @@ struct TimoshenkoBeamKernel {
   }
 
   template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const EndFrames<S>& e) const {
-    const double rhoA = section.properties(material).rhoA;
-    const Vec3T<S> J = rotaryInertia().template cast<S>();
+    const SectionProperties p = section.properties(material);
+    const double rhoA = p.rhoA;
+    const Vec3T<S> J = Vec3(p.rhoIp, p.rhoIy, p.rhoIz).template cast<S>();
     const GaussRule& rule = gaussLegendre(mass_points);
     Eigen::Matrix<S, 12, 12> M = Eigen::Matrix<S, 12, 12>::Zero();
     for (int g = 0; g < rule.points; ++g) {
@@ -469,8 +465,9 @@ struct TimoshenkoBeamKernel {
                                const V<S>& v, const Vec3& gravity, const V<S>* a = nullptr) const {
     const EndFrames<Dual<S, 1>> e = endFramesAlongMotion<S>(r1s, R1, r2s, R2, v);
     const Eigen::Matrix<Dual<S, 1>, 12, 1> vp = v.template cast<Dual<S, 1>>();
-    const double rhoA = section.properties(material).rhoA;
-    const Vec3T<S> J = rotaryInertia().template cast<S>();
+    const SectionProperties p = section.properties(material);
+    const double rhoA = p.rhoA;
+    const Vec3T<S> J = Vec3(p.rhoIp, p.rhoIy, p.rhoIz).template cast<S>();
     const Vec3T<S> g = gravity.cast<S>();
     const GaussRule& rule = gaussLegendre(mass_points);
     V<S> F = V<S>::Zero();
@@ -569,9 +566,10 @@ struct TimoshenkoBeamKernel {
 
   double gravityPotential(const EndFrames<double>& e, const Vec3& gravity) const {
     const GaussRule& rule = gaussLegendre(mass_points);
+    const double rhoA = section.properties(material).rhoA;
     double V = 0.0;
     for (int g = 0; g < rule.points; ++g)
-      V -= rule.weight[g] * length * section.properties(material).rhoA * gravity.dot(sectionMap<double>(e, rule.xi[g]).x);
+      V -= rule.weight[g] * length * rhoA * gravity.dot(sectionMap<double>(e, rule.xi[g]).x);
     return V;
   }
 

@@ -44,7 +44,7 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
 DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance,
                                    AssemblyMove* move = nullptr);
 
-/// Solves the saddle-point system (4-3) for a and λ by KLU. Keeps the ordering and symbolic
+/// Solves the saddle-point system (4-3) for a and λ, or for a drive's velocity jump, by KLU. Keeps the ordering and symbolic
 /// analysis while the matrix pattern stays the same, as it does from one output sample to the
 /// next, and refactors with the previous pivot sequence while that stays well conditioned.
 class AccelerationSolver {
@@ -53,8 +53,14 @@ class AccelerationSolver {
   /// The same with the mass matrix M(state.q) at hand.
   void solve(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints,
              const Eigen::SparseMatrix<double>& mass, Limit limit);
+  /// jumpVelocities (below) with this solver's factorisation.
+  double jump(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints);
 
  private:
+  /// Factorises [M Gᵀ; G 0]; `where` completes the message when it is singular.
+  void factorise(const Eigen::SparseMatrix<double>& mass, const Eigen::SparseMatrix<double>& G, double t,
+                 const char* where);
+
   std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SparseMatrix<double> matrix_;
   SparseLU lu_;
