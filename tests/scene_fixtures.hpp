@@ -1,11 +1,13 @@
 #pragma once
 // Helpers shared by the tests: load scenes from configs/ or inline YAML, and run them in-process.
 
+#include <stdexcept>
 #include <string>
 
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/model/compile.hpp"
+#include "cranesim/solvers/equilibrium_path.hpp"
 
 namespace cranesim::test {
 
@@ -14,6 +16,16 @@ inline std::string configPath(const std::string& name) { return std::string(CRAN
 inline Scene loadScene(const std::string& name) { return readScene(configPath(name)); }
 
 inline Model loadYaml(const std::string& yaml) { return compileModel(parseScene(yaml, "<test>")); }
+
+/// Where `joint` stands in the static equilibrium of the scene `yaml` at t = 0 (solveEquilibrium);
+/// throws with the solver's message when none is found.
+inline Vec3 equilibriumJointPosition(const std::string& yaml, const std::string& joint) {
+  const Scene scene = parseScene(yaml, "<test>");
+  const Model model = compileModel(scene);
+  const StaticResult eq = solveEquilibrium(scene, model, 0.0);
+  if (!eq.converged) throw std::runtime_error("no equilibrium: " + eq.message);
+  return model.jointFrame(eq.q.data(), model.findJoint(joint)).r;
+}
 
 /// The scene without gravity, with a force and a torque (inertial axes) on the joint boom.end.
 inline Scene withEndLoad(Scene scene, const Vec3& force, const Vec3& torque = Vec3::Zero()) {

@@ -11,7 +11,6 @@
 #include <numbers>
 #include <string>
 
-#include "cranesim/solvers/equilibrium_path.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -56,20 +55,13 @@ std::string frame(double angle_deg, bool corner_body) {
   return yaml;
 }
 
-Vec3 tipUnderLoad(const std::string& yaml) {
-  const Scene scene = parseScene(yaml, "<test>");
-  const Model model = compileModel(scene);
-  const StaticResult eq = solveEquilibrium(scene, model, 0.0);
-  INFO(eq.message);
-  REQUIRE(eq.converged);
-  return model.jointFrame(eq.q.data(), model.findJoint("arm.end")).r;
-}
 
 }  // namespace
 
 TEST_CASE("Members meeting at 90° and at 45°: pose: drawn equals a corner body", "[assembly][statics]") {
   for (double angle : {90.0, 45.0, 5.6}) {
-    const Vec3 drawn = tipUnderLoad(frame(angle, false)), body = tipUnderLoad(frame(angle, true));
+    const Vec3 drawn = test::equilibriumJointPosition(frame(angle, false), "arm.end");
+    const Vec3 body = test::equilibriumJointPosition(frame(angle, true), "arm.end");
     INFO("angle " << angle << "°: pose: drawn " << drawn.transpose() << ", corner body " << body.transpose());
     CHECK((drawn - body).norm() < 1e-9);
     // The load bends the frame visibly (centimetres), so agreement is not that of two rigid frames.
@@ -82,9 +74,7 @@ TEST_CASE("A plain fixed constraint between members at 90° names the pose, not 
   std::string yaml = frame(90.0, false);
   yaml.replace(yaml.find(", pose: drawn"), 13, "");
   try {
-    compileModel(parseScene(yaml, "<test>"));
-    const Scene scene = parseScene(yaml, "<test>");
-    solveEquilibrium(scene, compileModel(scene), 0.0);
+    test::equilibriumJointPosition(yaml, "arm.end");
     FAIL("a fixed constraint between frames turned by 90° was accepted");
   } catch (const SceneError& e) {
     const std::string message = e.what();

@@ -12,7 +12,6 @@
 
 #include "cantilever_theory.hpp"
 #include "cranesim/elements/section.hpp"
-#include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/modes.hpp"
 #include "scene_fixtures.hpp"
 
@@ -49,14 +48,6 @@ std::string propertiesSection(const SectionProperties& p, bool shear = true) {
   return s + "}";
 }
 
-Vec3 staticTip(const std::string& yaml) {
-  const Scene scene = parseScene(yaml, "<test>");
-  const Model model = compileModel(scene);
-  const StaticResult eq = solveEquilibrium(scene, model, 0.0);
-  INFO(eq.message);
-  REQUIRE(eq.converged);
-  return model.jointFrame(eq.q.data(), model.findJoint("beam.end")).r;
-}
 
 VecX frequencies(const std::string& yaml, int count) {
   const Model model = test::loadYaml(yaml);
@@ -79,8 +70,8 @@ TEST_CASE("A section given by its properties equals the shape section it describ
     const bool shear = std::string(type) == "timoshenko";
     const std::string given = propertiesSection(p, shear);
     INFO(type);
-    const Vec3 by_shape = staticTip(cantilever(type, kLength, 8, shape, load));
-    const Vec3 by_properties = staticTip(cantilever(type, kLength, 8, given, load));
+    const Vec3 by_shape = test::equilibriumJointPosition(cantilever(type, kLength, 8, shape, load), "beam.end");
+    const Vec3 by_properties = test::equilibriumJointPosition(cantilever(type, kLength, 8, given, load), "beam.end");
     CHECK((by_shape - Vec3(kLength, 0, 0)).norm() > 0.05);
     CHECK((by_shape - by_properties).norm() < 1e-12 * kLength);
     const VecX f_shape = frequencies(cantilever(type, kLength, 8, shape, Vec3::Zero()), 8);
@@ -98,8 +89,8 @@ TEST_CASE("GA_y and GA_z act in their own bending planes", "[section][statics]")
   p.rhoA = 50.0, p.rhoIy = 0.1, p.rhoIz = 0.2, p.rhoIp = 0.3;
   const double L = 1.0, P = 1.0;
   const std::string section = propertiesSection(p);
-  const double along_y = staticTip(cantilever("timoshenko", L, 4, section, Vec3(0, P, 0))).y();
-  const double along_z = staticTip(cantilever("timoshenko", L, 4, section, Vec3(0, 0, P))).z();
+  const double along_y = test::equilibriumJointPosition(cantilever("timoshenko", L, 4, section, Vec3(0, P, 0)), "beam.end").y();
+  const double along_z = test::equilibriumJointPosition(cantilever("timoshenko", L, 4, section, Vec3(0, 0, P)), "beam.end").z();
   const double bending_y = P * L * L * L / (3.0 * p.EIz), bending_z = P * L * L * L / (3.0 * p.EIy);
   CHECK(along_y == Approx(bending_y + P * L / p.GAy).epsilon(1e-6));
   CHECK(along_z == Approx(bending_z + P * L / p.GAz).epsilon(1e-6));

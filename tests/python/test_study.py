@@ -60,6 +60,17 @@ def crane_sim(*arguments, cwd: Path, timeout: float = 120) -> subprocess.Complet
                           timeout=timeout)
 
 
+def computed_study(directory: Path, name: str, text: str) -> Path:
+    """The study `text` written to <name>.yaml in `directory` and computed there (exit 0 asserted):
+    its case table <name>.h5."""
+    study = directory / f"{name}.yaml"
+    study.write_text(text)
+    table = directory / f"{name}.h5"
+    result = crane_sim("study", study, "-o", table, cwd=directory)
+    assert result.returncode == 0, result.stderr
+    return table
+
+
 def mpirun(ranks: int, *arguments, cwd: Path) -> subprocess.CompletedProcess:
     launcher = ["mpirun", "--oversubscribe", "-n", str(ranks)]
     if os.geteuid() == 0:
@@ -107,12 +118,7 @@ def test_bad_study_is_rejected(study: Path, tmp_path: Path):
 
 @pytest.fixture(scope="module")
 def static_study(tmp_path_factory) -> Path:
-    directory = tmp_path_factory.mktemp("static_study")
-    study = directory / "masses.yaml"
-    study.write_text(STATIC_STUDY)
-    result = crane_sim("study", study, "-o", directory / "masses.h5", cwd=directory)
-    assert result.returncode == 0, result.stderr
-    return directory / "masses.h5"
+    return computed_study(tmp_path_factory.mktemp("static_study"), "masses", STATIC_STUDY)
 
 
 def test_static_study_figures_match_the_hanging_rope(static_study: Path):
@@ -201,8 +207,7 @@ def test_every_worker_takes_part(run_study: dict):
 def test_sway_of_a_released_pendulum(tmp_path: Path):
     """The sway relative to the suspension, over a run that starts at rest at the drawn 30°, is
     the drawn horizontal distance; after 1 s it is less."""
-    study = tmp_path / "sway.yaml"
-    study.write_text(f"""\
+    table = computed_study(tmp_path, "sway", f"""\
 scene: {ROPE_PENDULUM}
 analysis: run
 parameters:
@@ -212,9 +217,7 @@ figures:
   - {{name: sway_late, quantity: horizontal_sway, body: ball, relative_to: ground.suspension, after: 1.0}}
   - {{name: sway_too_late, quantity: horizontal_sway, body: ball, after: 100}}
 """)
-    result = crane_sim("study", study, "-o", tmp_path / "sway.h5", cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
-    with h5py.File(tmp_path / "sway.h5", "r") as f:
+    with h5py.File(table, "r") as f:
         assert abs(f["figures/sway"][0] - BALL_DRAWN_X) < 1e-6
         assert f["figures/sway_late"][0] < BALL_DRAWN_X - 0.1
         assert math.isnan(f["figures/sway_too_late"][0])  # no sample after 100 s
@@ -226,10 +229,8 @@ def test_tipping_moment_and_dynamic_factor(tmp_path: Path):
     other way round −2 W. Released at rest 30° out, the rope's pull at the hook grows from
     m g cos 30° to m g (3 − 2 cos 30°) at the lowest point: φ2 = 1.464 for a rigid massless rope
     (the rope's mass and stretch change it by a few per mille)."""
-    study = tmp_path / "figures.yaml"
-
-    def write(analysis: str) -> None:
-        study.write_text(f"""\
+    def study(analysis: str) -> str:
+        return f"""\
 scene: {ROPE_PENDULUM}
 analysis: {analysis}
 parameters:
@@ -238,29 +239,22 @@ figures:
   - {{name: tipping, quantity: tipping_moment, supports: [top], line: [[2, -1, -3], [2, 1, -3]]}}
   - {{name: tipping_back, quantity: tipping_moment, supports: [top], line: [[2, 1, -3], [2, -1, -3]]}}
   - {{name: phi2, quantity: dynamic_factor, constraint: hook}}
-""")
+"""
 
-    write("static")
-    result = crane_sim("study", study, "-o", tmp_path / "static.h5", cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
     weight = (1000 + ROPE_MASS) * GRAVITY
-    with h5py.File(tmp_path / "static.h5", "r") as f:
+    with h5py.File(computed_study(tmp_path, "static", study("static")), "r") as f:
         assert f["figures/tipping"][0] == pytest.approx(2 * weight, rel=1e-9)
         assert f["figures/tipping_back"][0] == pytest.approx(-2 * weight, rel=1e-9)
         assert f["figures/phi2"][0] == 1.0  # one sample: the static force itself
-    write("run")
-    result = crane_sim("study", study, "-o", tmp_path / "run.h5", cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
     cos30 = math.cos(math.radians(30))
-    with h5py.File(tmp_path / "run.h5", "r") as f:
+    with h5py.File(computed_study(tmp_path, "run", study("run")), "r") as f:
         assert f["figures/phi2"][0] == pytest.approx((3 - 2 * cos30) / cos30, rel=0.01)
 
 
 def test_rope_slack_time(tmp_path: Path):
     """Taut at its drawn length, the rope is never slack; 0.5 m too long, it is slack until the
     ball has fallen freely onto it: √(2 Δz/g) = 0.3408 s (the output samples are 0.01 s apart)."""
-    study = tmp_path / "slack.yaml"
-    study.write_text(f"""\
+    table = computed_study(tmp_path, "slack", f"""\
 scene: {ROPE_PENDULUM}
 analysis: run
 parameters:
@@ -269,10 +263,8 @@ parameters:
 figures:
   - {{name: slack, quantity: rope_slack, rope: rope}}
 """)
-    result = crane_sim("study", study, "-o", tmp_path / "slack.h5", cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
     drop = math.sqrt(10.5**2 - BALL_DRAWN_X**2) - 8.662624697081984
-    with h5py.File(tmp_path / "slack.h5", "r") as f:
+    with h5py.File(table, "r") as f:
         taut, long = f["figures/slack"][...]
         assert taut == 0.0
         assert long == pytest.approx(math.sqrt(2 * drop / GRAVITY), abs=0.011)
@@ -341,8 +333,7 @@ def test_interrupted_study_resumes_without_recomputing(tmp_path: Path):
 
 def test_modes_study_gives_the_frequencies_of_crane_sim_modes(tmp_path: Path):
     """A modes case is `crane-sim modes` of the case's scene: the same frequencies, bit for bit."""
-    study = tmp_path / "modes.yaml"
-    study.write_text(f"""\
+    table = computed_study(tmp_path, "modes_study", f"""\
 scene: {ROPE_PENDULUM}
 analysis: modes
 modes: 6
@@ -353,11 +344,9 @@ figures:
   - {{name: f6, quantity: frequency, mode: 6}}
   - {{name: hook_tension, quantity: rope_tension, rope: rope}}
 """)
-    result = crane_sim("study", study, "-o", tmp_path / "modes_study.h5", cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
     modes = crane_sim("modes", ROPE_PENDULUM, "-n", 6, "-o", tmp_path / "modes.h5", cwd=tmp_path)
     assert modes.returncode == 0, modes.stderr
-    with h5py.File(tmp_path / "modes_study.h5", "r") as s, h5py.File(tmp_path / "modes.h5", "r") as m:
+    with h5py.File(table, "r") as s, h5py.File(tmp_path / "modes.h5", "r") as m:
         frequency = m["modes/frequency"][...]
         assert s["figures/f4"][0] == frequency[3] and s["figures/f6"][0] == frequency[5]
         assert frequency[3] > 0.1  # the swing, ≈ √(g/ℓ)/2π = 0.158 Hz, not a rigid mode
@@ -368,8 +357,7 @@ def test_criteria_and_load_chart(tmp_path: Path):
     """A case is admissible when its figures are within the study's criteria; the load chart of
     scripts/plot_load_chart.py is, per configuration, the largest load whose lighter loads are all
     admissible: a hook tension limit of 15 kN admits m g ≤ 15 kN, m ≤ 1529 kg, so 1500 kg."""
-    study = tmp_path / "chart.yaml"
-    study.write_text(f"""\
+    table = computed_study(tmp_path, "chart", f"""\
 scene: {ROPE_PENDULUM}
 analysis: static
 parameters:
@@ -382,9 +370,6 @@ criteria:
   - {{figure: hook_tension, max: 15000, source: a test limit}}
   - {{figure: radius, max: 1.0, source: hangs straight down}}
 """)
-    table = tmp_path / "chart.h5"
-    result = crane_sim("study", study, "-o", table, cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
     with h5py.File(table, "r") as f:
         mass = f["parameters/bodies.ball.mass"][...]
         assert np.array_equal(f["criteria/0"][...], (mass * GRAVITY <= 15000).astype(float))
