@@ -4,8 +4,10 @@ Panels (after Figures 8-14 to 8-18 of the thesis):
   (a) static map: end points of the grid coloured by luffing rope length, with the planned path
   (b) luffing rope length over boom angle and hoist change: map data and fitted surface
   (c) optimal trajectory: x, z and vx, vz over time; below it the controls ax, az with bounds
-  (d) rope-length controls: discrete points and the cubic Hermite control splines
-  (e) planned against simulated end-point path in the x-z plane
+  (d) rope-length controls: discrete points and the cubic Hermite control splines (and the
+      slewing angle of a slewing plan)
+  (e) planned against simulated end-point path in the x-z plane (seen from above, x-y, for a
+      slewing plan)
   (f) tracking error over time, with the verification numbers and the stage times
 
 A map-only file (root attribute contents = "map") gets panels (a) and (b) without the fit.
@@ -13,7 +15,8 @@ A map-only file (root attribute contents = "map") gets panels (a) and (b) withou
 Several plan files (e.g. the same target planned with method quasi_static, zv and zvd) give one
 comparison figure instead: each plan's planned path (the one its controls follow) and verified
 path in the x-z plane, and the load's horizontal offset from the target after the planned
-arrival, labelled with the motion time and the residual sway.
+arrival (along x; its horizontal distance for a slewing plan), labelled with the motion time and
+the residual sway.
 
 Example:
 
@@ -68,14 +71,29 @@ def method(plan: h5py.File) -> str:
     return str(plan["path"].attrs.get("method", "quasi_static")) if "path" in plan else "quasi_static"
 
 
+def slewing(plan: h5py.File) -> bool:
+    return "path" in plan and "slewing_turn_deg" in plan["path"].attrs
+
+
+def planned_points(verification: h5py.Group) -> np.ndarray:
+    """The planned end point (x, y, z) per verification sample; files before slewing plans hold (x, z)."""
+    planned = verification["planned"][()]
+    if planned.shape[1] == 2:
+        planned = np.column_stack([planned[:, 0], np.full(len(planned), np.nan), planned[:, 1]])
+    return planned
+
+
 def sway_after_arrival(plan: h5py.File):
-    """(time since the planned arrival, simulated x − target x) of the verification from the arrival on."""
+    """(time since the planned arrival, offset from the target) of the verification from the arrival
+    on: simulated x − target x, or for a slewing plan the horizontal distance from the target."""
     verification = plan["verification"]
     t, simulated = verification["t"][()], verification["simulated"][()]
     arrival = float(plan["controls"].attrs.get("lead_time", 0.0)) + planned_path(plan)[0][-1]
-    target_x = plan["trajectory/origin"][0] + plan["trajectory/target"][0, 0]
+    target = planned_points(verification)[-1]
     after = t >= arrival
-    return t[after] - arrival, simulated[after, 0] - target_x
+    if slewing(plan):
+        return t[after] - arrival, np.linalg.norm(simulated[after, :2] - target[:2], axis=1)
+    return t[after] - arrival, simulated[after, 0] - target[0]
 
 
 def plot_comparison(plans: list, names: list) -> plt.Figure:
@@ -83,11 +101,10 @@ def plot_comparison(plans: list, names: list) -> plt.Figure:
     fig, (ax_path, ax_sway) = plt.subplots(1, 2, figsize=(15, 6), layout="constrained")
     for k, (plan, name) in enumerate(zip(plans, names)):
         colour = f"C{k}"
-        origin = plan["trajectory/origin"][()]
-        t, state = planned_path(plan)
-        simulated = plan["verification/simulated"][()]
+        t, _ = planned_path(plan)
+        planned, simulated = planned_points(plan["verification"]), plan["verification/simulated"][()]
         label = method(plan) if name == method(plan) else f"{method(plan)} ({name})"
-        ax_path.plot(*(origin + state[:, :2]).T, "--", color=colour, label=f"{label}: planned")
+        ax_path.plot(planned[:, 0], planned[:, 2], "--", color=colour, label=f"{label}: planned")
         ax_path.plot(simulated[:, 0], simulated[:, 2], "-", color=colour, lw=1, label=f"{label}: verified")
         since, offset = sway_after_arrival(plan)
         sway = plan["verification"].attrs.get("residual_sway", np.nan)
@@ -100,7 +117,8 @@ def plot_comparison(plans: list, names: list) -> plt.Figure:
     ax_path.set_aspect("equal", adjustable="datalim")
     ax_path.legend(loc="best", fontsize="small")
     ax_sway.axhline(0.0, color="0.5", lw=0.8)
-    ax_sway.set(xlabel="time since the planned arrival [s]", ylabel="simulated x − target x [m]",
+    ax_sway.set(xlabel="time since the planned arrival [s]",
+                ylabel="horizontal distance from the target [m]" if slewing(first) else "simulated x − target x [m]",
                 title="sway after arrival")
     ax_sway.legend(loc="upper center", bbox_to_anchor=(0.5, -0.12), fontsize="small")
     fig.suptitle("crane-opt plans: " + ", ".join(names))
@@ -191,22 +209,36 @@ def panel_controls(ax, plan: h5py.File) -> None:
     ax.axvline(lead, color="0.5", ls=":", label=f"motion start ({lead:.2f} s)")
     ax.plot([], [], "ko", ms=3, mfc="none", label="spline knots")
     ax.set(xlabel="simulation time [s]", ylabel="rope length [m]", title="(d) rope-length controls")
-    ax.legend(loc="best", fontsize="small")
+    handles, labels = ax.get_legend_handles_labels()
+    if "spline/slewing_angle" in controls:
+        spline = controls["spline/slewing_angle"]
+        knots = spline["t"][()]
+        dense = np.linspace(knots[0], knots[-1], 400)
+        twin = ax.twinx()
+        twin.plot(dense, np.degrees(hermite(dense, knots, spline["y"][()], spline["slopes"][()])), color="C4",
+                  label="slewing angle: spline")
+        twin.set_ylabel("slewing angle [°]")
+        extra_handles, extra_labels = twin.get_legend_handles_labels()
+        handles, labels = handles + extra_handles, labels + extra_labels
+    ax.legend(handles, labels, loc="best", fontsize="small")
 
 
 def panel_paths(ax, plan: h5py.File) -> None:
-    """(e) Planned against simulated end-point path in the x-z plane."""
+    """(e) Planned against simulated end-point path in the x-z plane, or seen from above (x-y) for a
+    slewing plan."""
     verification = plan["verification"]
-    planned, simulated = verification["planned"][()], verification["simulated"][()]
-    ax.plot(planned[:, 0], planned[:, 1], "k--", label="planned")
-    ax.plot(simulated[:, 0], simulated[:, 2], "C2-", lw=1, label="simulated")
-    if "inversion" in plan:
+    planned, simulated = planned_points(verification), verification["simulated"][()]
+    second = 1 if slewing(plan) else 2
+    ax.plot(planned[:, 0], planned[:, second], "k--", label="planned")
+    ax.plot(simulated[:, 0], simulated[:, second], "C2-", lw=1, label="simulated")
+    if "inversion" in plan and not slewing(plan):
         reached = plan["inversion/reached"][()]
         ax.plot(reached[:, 0], reached[:, 1], "C1x", label="inversion checks")
-    origin = plan["trajectory/origin"][()]
-    ax.plot(*(plan["trajectory/start"][0, :2] + origin), "go", label="start")
-    ax.plot(*(plan["trajectory/target"][0, :2] + origin), "ks", label="target")
-    ax.set(xlabel="x [m]", ylabel="z [m]", title=f"(e) planned vs simulated ({verification.attrs.get('status', '?')})")
+    ax.plot(planned[0, 0], planned[0, second], "go", label="start")
+    ax.plot(planned[-1, 0], planned[-1, second], "ks", label="target")
+    view = "seen from above, " if slewing(plan) else ""
+    ax.set(xlabel="x [m]", ylabel="y [m]" if slewing(plan) else "z [m]",
+           title=f"(e) planned vs simulated ({view}{verification.attrs.get('status', '?')})")
     ax.set_aspect("equal", adjustable="datalim")
     ax.legend(loc="best", fontsize="small")
 
@@ -215,12 +247,13 @@ def panel_error(ax, plan: h5py.File) -> None:
     """(f) Tracking error over simulation time, with the verification numbers and stage times."""
     verification = plan["verification"]
     t = verification["t"][()]
-    planned, simulated = verification["planned"][()], verification["simulated"][()]
-    ax.plot(t, np.linalg.norm(simulated[:, [0, 2]] - planned, axis=1), "C2-")
+    planned, simulated = planned_points(verification), verification["simulated"][()]
+    columns = [0, 1, 2] if np.isfinite(planned[:, 1]).all() else [0, 2]
+    ax.plot(t, np.linalg.norm(simulated[:, columns] - planned[:, columns], axis=1), "C2-")
     lead = float(plan["controls"].attrs.get("lead_time", 0.0))
     end = lead + planned_path(plan)[0][-1]
     ax.axvspan(lead, end, color="0.9", label="planned motion")
-    ax.set(xlabel="simulation time [s]", ylabel="‖simulated − planned‖ (x, z) [m]", title="(f) tracking error")
+    ax.set(xlabel="simulation time [s]", ylabel="‖simulated − planned‖ [m]", title="(f) tracking error")
     a = verification.attrs
     lines = [f"max error      {a.get('max_error', np.nan):.3g} m",
              f"RMS error      {a.get('rms_error', np.nan):.3g} m",

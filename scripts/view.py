@@ -477,8 +477,7 @@ def plan_page_data(plan: Results, frames: int, load_name: str | None) -> dict:
     if not simulation_path.is_file():
         raise ResultsError(f"{plan.path} is a plan file, but its verification run "
                            f"{simulation_path.name} is not beside it")
-    for path in ("verification/t", "verification/planned", "verification/simulated",
-                 "trajectory/origin", "trajectory/start", "trajectory/target"):
+    for path in ("verification/t", "verification/planned", "verification/simulated"):
         if not plan.has(path):
             raise ResultsError(f"{plan.path} is a plan file without /{path}")
     with Results(simulation_path) as simulation:
@@ -486,30 +485,31 @@ def plan_page_data(plan: Results, frames: int, load_name: str | None) -> dict:
     if data["kind"] != "results":
         raise ResultsError(f"{simulation_path} is not a results file")
     t = plan.get("verification/t")
-    planned_xz = plan.get("verification/planned").reshape(-1, 2)
     simulated = plan.get("verification/simulated").reshape(-1, 3)
-    # The plan lives in the crane's x-z plane (y = 0), as plot_plan.py draws it.
-    planned = np.column_stack([planned_xz[:, 0], np.zeros(len(planned_xz)), planned_xz[:, 1]])
+    planned = plan.get("verification/planned")
+    if planned.size == 2 * len(t):  # files before slewing plans: (x, z) in the crane's plane y = 0
+        planned_xz = planned.reshape(-1, 2)
+        planned = np.column_stack([planned_xz[:, 0], np.zeros(len(planned_xz)), planned_xz[:, 1]])
+    planned = planned.reshape(-1, 3)  # world x, y, z (a slewing plan turns the crane's plane)
     frame_time = np.frombuffer(base64.b64decode(data["time"]), dtype="<f4").astype(float)
     at_frames = np.column_stack([np.interp(frame_time, t, planned[:, i]) for i in range(3)])
     simulated_at_frames = np.column_stack([np.interp(frame_time, t, simulated[:, i])
                                            for i in range(3)])
-    origin = plan.get("trajectory/origin").reshape(-1)
-    start, target = (plan.get(f"trajectory/{name}").reshape(-1)[:2] + origin
-                     for name in ("start", "target"))
+    start, target = planned[0], planned[-1]
     attributes = {name: plan.attribute(name, "verification")
                   for name in ("max_error", "rms_error", "residual_sway", "final_error",
                                "status", "message")}
-    error = np.linalg.norm(simulated_at_frames[:, [0, 2]] - at_frames[:, [0, 2]], axis=1)
+    error = np.linalg.norm(simulated_at_frames - at_frames, axis=1)
+    axes = (0, 1, 2) if np.ptp(planned[:, 1]) > 1e-6 else (0, 2)  # y only when the plan slews
+    curves = []
+    for axis in axes:
+        name = "xyz"[axis]
+        curves += [{"label": f"{name} planned (dashed)", "values": encode(at_frames[:, axis]), "colour": axis,
+                    "dashed": True},
+                   {"label": f"{name} simulated", "values": encode(simulated_at_frames[:, axis]), "colour": axis}]
     data["series"][:0] = [
-        {"title": "end point: planned against simulated", "unit": "m", "curves": [
-            {"label": "x planned (dashed)", "values": encode(at_frames[:, 0]), "colour": 0,
-             "dashed": True},
-            {"label": "x simulated", "values": encode(simulated_at_frames[:, 0]), "colour": 0},
-            {"label": "z planned (dashed)", "values": encode(at_frames[:, 2]), "colour": 2,
-             "dashed": True},
-            {"label": "z simulated", "values": encode(simulated_at_frames[:, 2]), "colour": 2}]},
-        {"title": "tracking error ‖simulated − planned‖ in x, z", "unit": "m",
+        {"title": "end point: planned against simulated", "unit": "m", "curves": curves},
+        {"title": "tracking error ‖simulated − planned‖", "unit": "m",
          "curves": [{"label": "error", "values": encode(error)}]},
     ]
     target_name = ""
@@ -524,8 +524,8 @@ def plan_page_data(plan: Results, frames: int, load_name: str | None) -> dict:
         "planned": encode(at_frames),            # the planned end point at each frame
         "planned_path": encode(planned),
         "simulated_path": encode(simulated),
-        "start": [float(start[0]), 0.0, float(start[1])],
-        "target": [float(target[0]), 0.0, float(target[1])],
+        "start": [float(v) for v in start],
+        "target": [float(v) for v in target],
         "verification": attributes,
     }
     return data

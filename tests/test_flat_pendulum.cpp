@@ -106,7 +106,11 @@ TEST_CASE("Flat map through the static map: the resting point's static controls 
   const auto throughRestingPoint = [&](double t) {
     const Eigen::Vector2d p = loadPath(t, 0), a = loadPath(t, 2);
     PendulumControls c = staticControls(p);
-    for (int iteration = 0; iteration < 30; ++iteration) c = staticControls(restingPoint(p, a, c.rope_length, kJib.gravity));
+    for (int iteration = 0; iteration < 30; ++iteration) {
+      const Vec3 resting = restingPoint(Vec3(p.x(), 0.0, p.y()), Vec3(a.x(), 0.0, a.y()), c.rope_length, c.rope_length,
+                                        Vec3::UnitX(), kJib.gravity);
+      c = staticControls(Eigen::Vector2d(resting.x(), resting.z()));
+    }
     return c;
   };
   for (double t : {1.0, 2.5, 4.0, 6.3}) {

@@ -1,5 +1,6 @@
 #include "cranesim/io/plan_writer.hpp"
 
+#include <numbers>
 
 #include "cranesim/version.hpp"
 #include "hdf5_file.hpp"
@@ -97,6 +98,14 @@ void writeControls(Hdf5File& file, const QuasiStaticPlan& plan) {
     writeVector(file, g + "/y", spline->y);
     writeVector(file, g + "/slopes", spline->slopes);
   }
+  if (!plan.slewing_angles.empty()) {
+    std::vector<double> degrees;
+    for (double phi : plan.slewing_angles) degrees.push_back(phi * 180.0 / std::numbers::pi);
+    writeVector(file, "/controls/slewing_angle", degrees);
+    writeVector(file, "/controls/spline/slewing_angle/t", plan.slewing_spline.t);
+    writeVector(file, "/controls/spline/slewing_angle/y", plan.slewing_spline.y);
+    writeVector(file, "/controls/spline/slewing_angle/slopes", plan.slewing_spline.slopes);
+  }
   file.attribute("/controls", "lead_time", plan.lead_time);
 }
 
@@ -114,12 +123,21 @@ void writePath(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& 
   if (target.method != PlanMethod::QuasiStatic) {
     file.attribute("/path", "sway_period_start", plan.sway_period_start);
     file.attribute("/path", "sway_period_end", plan.sway_period_end);
+    if (target.slewing) {
+      file.attribute("/path", "sway_period_across_start", plan.sway_period_across_start);
+      file.attribute("/path", "sway_period_across_end", plan.sway_period_across_end);
+    }
     file.attribute("/path", "sway_period", plan.sway_period);
   }
   if (target.method == PlanMethod::Flatness) {
     file.attribute("/path", "ramp_time", plan.load_path.ramp());
     file.attribute("/path", "pendulum_length_start", plan.pendulum_length_start);
     file.attribute("/path", "pendulum_length_end", plan.pendulum_length_end);
+  }
+  if (target.slewing) {
+    file.attribute("/path", "slewing_constraint", target.slewing->constraint);
+    file.attribute("/path", "slewing_turn_deg", target.slewing->turn * 180.0 / std::numbers::pi);
+    file.attribute("/path", "slewing_start_deg", plan.slewing_start * 180.0 / std::numbers::pi);
   }
   if (!plan.shaper.times.empty()) {
     writeVector(file, "/path/impulse_times", plan.shaper.times);
@@ -145,7 +163,7 @@ void writeVerification(Hdf5File& file, const QuasiStaticPlan& plan) {
 
   const Verification& v = plan.verification;
   writeVector(file, "/verification/t", v.t);
-  writePoints<2>(file, "/verification/planned", v.planned);
+  writePoints<3>(file, "/verification/planned", v.planned);
   writePoints<3>(file, "/verification/simulated", v.simulated);
   file.attribute("/verification", "max_error", v.max_error);
   file.attribute("/verification", "rms_error", v.rms_error);

@@ -2,12 +2,16 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <filesystem>
 
 #include "bounded_yaml.hpp"
 #include "cranesim/io/scene_reader.hpp"
+#include "cranesim/model/compile.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
+#include "solver_reader.hpp"
 #include "yaml_field.hpp"
 
 namespace cranesim {
@@ -57,6 +61,34 @@ CraneControls readControls(const YamlField& f) {
   c.boom_head = joints[1].text();
   c.end_point = f.at("end_point").text();
   return c;
+}
+
+/// `slewing: {constraint, turn}`: a driven revolute constraint of the scene about the vertical
+/// (at the drawn state), and the turn in degrees.
+SlewingSpec readSlewing(const YamlField& f, const Scene& scene) {
+  f.allowKeys({"constraint", "turn"});
+  SlewingSpec s;
+  s.where = f.where();
+  const YamlField turn = f.at("turn");
+  const double degrees = turn.number();
+  if (!(std::abs(degrees) <= 360.0)) turn.fail(fmt::format("a turn of {}°: at most one revolution (±360°)", degrees));
+  s.turn = degrees * std::numbers::pi / 180.0;
+  const YamlField name = f.at("constraint");
+  s.constraint = name.text();
+  const auto c = std::find_if(scene.constraints.begin(), scene.constraints.end(),
+                              [&](const ConstraintSpec& spec) { return spec.name == s.constraint; });
+  if (c == scene.constraints.end()) name.fail(fmt::format("the scene has no constraint '{}'", s.constraint));
+  if (c->type != ConstraintType::Revolute || !c->drive)
+    name.fail(fmt::format("'{}' is no driven revolute constraint: the slewing needs one (type: revolute, with a drive)", s.constraint));
+  const Model model = compileModel(scene);
+  const Constraint& compiled = *std::find_if(model.constraints.begin(), model.constraints.end(),
+                                             [&](const Constraint& k) { return k.name == s.constraint; });
+  const Vec3 axis = model.jointFrame(model.q0.data(), compiled.joint1).R.col(compiled.axis);
+  if (axis.cross(scene.gravity.normalized()).norm() > 1e-6)
+    name.fail(fmt::format("'{}' turns about ({:.3g}, {:.3g}, {:.3g}) in the drawing, which is not vertical: the slewing "
+                          "turns the crane about the vertical",
+                          s.constraint, axis.x(), axis.y(), axis.z()));
+  return s;
 }
 
 StaticMapSpec readMap(const YamlField& f) {
@@ -128,7 +160,7 @@ TargetSpec readTarget(const std::string& path) {
   const YamlField f(root, "");
   // An empty document has no mark of its own: the defect is the file from its first line on.
   if (!f.isMap()) throw SceneError({"<document>", 1, 1}, "a target file is a mapping (scene, crane, map, fit, trajectory, …)");
-  f.allowKeys({"name", "scene", "method", "crane", "map", "fit", "trajectory", "control_spline", "verification"});
+  f.allowKeys({"name", "scene", "method", "crane", "slewing", "map", "fit", "trajectory", "control_spline", "verification"});
 
   TargetSpec t;
   t.path = path;
@@ -151,6 +183,7 @@ TargetSpec readTarget(const std::string& path) {
   t.controls = readControls(crane);
   t.where_controls = crane.where();
   checkControls(t.scene, t.controls, t.where_controls);
+  if (const auto s = f.find("slewing")) t.slewing = readSlewing(*s, t.scene);
   t.map = readMap(f.at("map"));
   if (const auto fit = f.find("fit")) t.fit = readFit(*fit);
   const YamlField trajectory = f.at("trajectory");
@@ -175,7 +208,9 @@ TargetSpec readTarget(const std::string& path) {
       c->at("steady_points").fail(fmt::format("{} points: at most {}", t.steady_points, kMaxSplinePoints));
   }
   if (const auto v = f.find("verification")) {
-    v->allowKeys({"settle_time"});
+    v->allowKeys({"settle_time", "rtol", "atol"});
+    if (const auto r = v->find("rtol")) t.verification_rtol = readRelativeTolerance(*r);
+    if (const auto a = v->find("atol")) t.verification_atol = readAbsoluteTolerance(*a);
     if (const auto s = v->find("settle_time")) {
       t.settle_time = s->nonNegative();
       if (t.settle_time > kMaxSettleTime)

@@ -46,6 +46,23 @@ Eigen::Vector2d trajectoryAt(const QrTrajectory& trajectory, double t) {
   return (1.0 - w) * trajectory.states[k - 1].head<2>() + w * trajectory.states[k].head<2>();
 }
 
+/// Half the largest extent of the points over the horizontal directions (every 0.5°; within
+/// 1e-5 of half their diameter): the amplitude of a sway in whichever direction it swings.
+double halfHorizontalExtent(const std::vector<Eigen::Vector2d>& points) {
+  double extent = 0.0;
+  for (int k = 0; k < 360; ++k) {
+    const double angle = k * std::numbers::pi / 360.0;
+    const Eigen::Vector2d direction(std::cos(angle), std::sin(angle));
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (const Eigen::Vector2d& p : points) {
+      const double s = direction.dot(p);
+      low = std::min(low, s), high = std::max(high, s);
+    }
+    extent = std::max(extent, high - low);
+  }
+  return 0.5 * extent;
+}
+
 /// The pendulum the load hangs on: from the hoist rope's end farther from the end point (where
 /// the rope leaves the boom head) to the end point, at the configuration q.
 double hangingLength(const Model& model, const VecX& q, const CraneControls& controls) {
@@ -56,19 +73,52 @@ double hangingLength(const Model& model, const VecX& q, const CraneControls& con
   return length;
 }
 
-/// The period of the load's sway in the crane's plane about the equilibrium q: the crane's
-/// lowest elastic mode in which the end point's node moves mostly along x (the plane's
-/// horizontal). It includes what the simple pendulum misses: the load's own inertia below the
-/// hook, the rope's mass and stretch and the boom's compliance.
-double swayPeriod(const Model& model, const VecX& q, double t, const CraneControls& controls) {
+/// The map's plane at the start equilibrium q: at the end point's y, turning about the slewing
+/// constraint's axis (which must be vertical) for a slewing target, whose map must keep the end
+/// point in that plane.
+SlewingPlane mapPlane(const TargetSpec& target, const StaticMap& map, const Model& model, const VecX& q) {
+  const Vec3 end = model.jointFrame(q.data(), model.findJoint(target.controls.end_point)).r;
+  if (!target.slewing) return SlewingPlane(end.y());
+  const SlewingSpec& slewing = *target.slewing;
+  double leaves = 0.0;
+  for (Eigen::Index k = 0; k < map.end_y.size(); ++k)
+    if (std::isfinite(map.end_y(k))) leaves = std::max(leaves, std::abs(map.end_y(k) - end.y()));
+  if (leaves > 1e-3)
+    throw SceneError(slewing.where, fmt::format("the map's end points leave the vertical plane y = {:.4g} m by {:.3g} m: a slewing "
+                                                "plan turns that plane, so the crane's plane must be the x–z plane at the "
+                                                "scene's slewing angle",
+                                                end.y(), leaves));
+  const auto c = std::find_if(model.constraints.begin(), model.constraints.end(),
+                              [&](const Constraint& k) { return k.name == slewing.constraint; });
+  const Vec3 axis_point = model.jointFrame(q.data(), c->joint1).r;  // its axis is vertical (target_reader.cpp)
+  return SlewingPlane(axis_point, end.y(), end.x() < axis_point.x() ? -1.0 : 1.0);
+}
+
+/// The periods of the load's sway about the equilibrium q: the crane's lowest elastic mode in
+/// which the end point's node moves mostly along x (in the crane's plane) and, for a slewing
+/// target, mostly along y (across it). They include what the simple pendulum misses: the load's
+/// own inertia below the hook, the rope's mass and stretch and the boom's compliance (across the
+/// plane the boom head gives sideways: at Table 8-2's start the thesis crane sways 16.8 s across
+/// against 15.5 s along).
+struct SwayPeriods {
+  double along = 0.0, across = 0.0;
+};
+
+SwayPeriods swayPeriods(const Model& model, const VecX& q, double t, const CraneControls& controls, bool across) {
   const ModalResult modes = computeModes(model, q, t, 0);
   const Node& node = model.nodes[model.joints[model.findJoint(controls.end_point)].node];
+  SwayPeriods periods;
   for (Eigen::Index k = 0; k < modes.frequencies.size(); ++k) {
     if (modes.rigid[k] || modes.omega_squared(k) <= 0.0) continue;
     const Eigen::Vector3d v = modes.shapes.col(k).segment<3>(node.v).cwiseAbs();
-    if (v.x() > v.y() && v.x() > v.z()) return 1.0 / modes.frequencies(k);
+    if (v.x() > v.y() && v.x() > v.z() && periods.along == 0.0) periods.along = 1.0 / modes.frequencies(k);
+    if (v.y() > v.x() && v.y() > v.z() && periods.across == 0.0) periods.across = 1.0 / modes.frequencies(k);
   }
-  throw std::runtime_error(fmt::format("input shaping: no mode of the crane sways '{}' in its plane", controls.end_point));
+  if (periods.along == 0.0)
+    throw std::runtime_error(fmt::format("no mode of the crane sways '{}' in its plane", controls.end_point));
+  if (across && periods.across == 0.0)
+    throw std::runtime_error(fmt::format("no mode of the crane sways '{}' across its plane", controls.end_point));
+  return periods;
 }
 
 }  // namespace
@@ -93,43 +143,87 @@ ControlPoint controlsAt(const MapFit& fit, const StaticMap& map, double x, doubl
 
 namespace {
 
-/// The controls of a path state (relative to the origin); leaving the map is bad input.
-ControlPoint pathControls(const TargetSpec& target, const QuasiStaticPlan& plan, const EndState& s) {
+/// The controls of a map point (absolute x, z); leaving the map is bad input.
+ControlPoint mapControls(const TargetSpec& target, const QuasiStaticPlan& plan, double x, double z) {
   try {
-    return controlsAt(plan.fit, plan.map, target.origin(0) + s(0), target.origin(1) + s(1));
+    return controlsAt(plan.fit, plan.map, x, z);
   } catch (const std::domain_error& e) {
     throw SceneError(target.where_trajectory, fmt::format("the planned trajectory leaves the static map: {}", e.what()));
   }
 }
 
+/// The controls of a path state (relative to the origin).
+ControlPoint pathControls(const TargetSpec& target, const QuasiStaticPlan& plan, const EndState& s) {
+  return mapControls(target, plan, target.origin(0) + s(0), target.origin(1) + s(1));
+}
+
+/// The slewing angle φ relative to the scene's and its rates (φ, φ̇, φ̈) at path time t: along the
+/// rest-to-rest path's progress (flatness), or a rest-to-rest turn over the QR horizon convolved
+/// with the shaper's impulses (quasi_static: one impulse); 0 without a slewing target.
+Eigen::Vector3d slewingAt(const TargetSpec& target, const QuasiStaticPlan& plan, double t) {
+  Eigen::Vector3d phi = Eigen::Vector3d::Zero();
+  if (!target.slewing) return phi;
+  const double turn = target.slewing->turn;
+  if (target.method == PlanMethod::Flatness) {
+    for (int k = 0; k < 3; ++k) phi(k) = turn * plan.load_path.progress(t, k);
+    return phi;
+  }
+  const double horizon = target.trajectory.steps * target.trajectory.sample_time;
+  const bool shaped = !plan.shaper.times.empty();
+  const std::vector<double> times = shaped ? plan.shaper.times : std::vector<double>{0.0};
+  const std::vector<double> amplitudes = shaped ? plan.shaper.amplitudes : std::vector<double>{1.0};
+  for (std::size_t i = 0; i < times.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      phi(k) += amplitudes[i] * turn * restToRest((t - times[i]) / horizon, k) / std::pow(horizon, k);
+  return phi;
+}
+
 /// The load's pendulum for the flat map: the simple pendulum of the crane's sway period, its
 /// length affine in the hoist rope's length between the path's start and end equilibria (as
 /// the hanging length is, for a rope of fixed reeving).
+/// Across the crane's plane the pendulum of the sway period across it.
 struct EffectivePendulum {
-  double hoist_start = 0.0, hoist_end = 0.0, length_start = 0.0, length_end = 0.0;
+  double hoist_start = 0.0, hoist_end = 0.0, length_start = 0.0, length_end = 0.0, across_start = 0.0, across_end = 0.0;
 
-  double length(double hoist) const {
-    if (std::abs(hoist_end - hoist_start) < 1e-9) return 0.5 * (length_start + length_end);
-    return length_start + (length_end - length_start) * (hoist - hoist_start) / (hoist_end - hoist_start);
+  double length(double hoist) const { return between(hoist, length_start, length_end); }
+  double acrossLength(double hoist) const { return between(hoist, across_start, across_end); }
+
+ private:
+  double between(double hoist, double start, double end) const {
+    if (std::abs(hoist_end - hoist_start) < 1e-9) return 0.5 * (start + end);
+    return start + (end - start) * (hoist - hoist_start) / (hoist_end - hoist_start);
   }
 };
 
-/// The controls that carry the load along the flat path at time t: the map's controls at the
-/// point where the load would hang at rest from the suspension that carries it
-/// (planning/flat_pendulum.hpp: restingPoint), whose pendulum length depends on the hoist rope
-/// those controls set: a fixed point, contracting by about ℓ'·‖e − ẑ‖ ≈ 1e-2 per iteration.
-ControlPoint flatControls(const TargetSpec& target, const QuasiStaticPlan& plan, const EffectivePendulum& pendulum, double t) {
-  const Eigen::Vector2d p = plan.load_path.derivative(t, 0), a = plan.load_path.derivative(t, 2);
+/// The controls that carry the load along the flat path at time t, and the slewing angle they
+/// need: the map's controls at the point where the load would hang at rest from the suspension
+/// that carries it (planning/flat_pendulum.hpp: restingPoint; the load's acceleration includes
+/// the slewing plane's, planning/slewing_plane.hpp), that point's slewing angle, and the
+/// pendulum's length from the hoist rope those controls set: a fixed point, contracting by about
+/// ℓ'·‖e − ẑ‖ ≈ 1e-2 per iteration.
+std::pair<ControlPoint, double> flatControls(const TargetSpec& target, const QuasiStaticPlan& plan,
+                                             const EffectivePendulum& pendulum, double t) {
+  const Eigen::Vector2d p = target.origin + plan.load_path.derivative(t, 0), v = plan.load_path.derivative(t, 1),
+                        a = plan.load_path.derivative(t, 2);
+  const Eigen::Vector3d phi = slewingAt(target, plan, t);
+  const Vec3 load = plan.plane.place(p.x(), p.y(), phi(0));
+  const Vec3 acceleration = plan.plane.acceleration(p.x(), v.x(), a.x(), a.y(), phi(0), phi(1), phi(2));
   const double gravity = -target.scene.gravity.z();
-  EndState resting = EndState::Zero();
-  resting.head<2>() = p;
-  ControlPoint c = pathControls(target, plan, resting);
+  PlanePoint resting{p.x(), p.y(), phi(0)};
+  Vec3 resting_point = load;
+  ControlPoint c = mapControls(target, plan, resting.x, resting.z);
   for (int iteration = 0; iteration < 50; ++iteration) {
-    const Eigen::Vector2d next = restingPoint(p, a, pendulum.length(c.hoist_length), gravity);
-    const double change = (next - resting.head<2>()).norm();
-    resting.head<2>() = next;
-    c = pathControls(target, plan, resting);
-    if (change < 1e-10) return c;
+    const Vec3 next = restingPoint(load, acceleration, pendulum.length(c.hoist_length), pendulum.acrossLength(c.hoist_length),
+                                   plan.plane.along(phi(0)), gravity);
+    const double change = (next - resting_point).norm();
+    resting_point = next;
+    try {
+      resting = plan.plane.locate(resting_point, phi(0));
+    } catch (const std::domain_error& e) {
+      throw SceneError(target.where_trajectory, fmt::format("the planned path at t = {:.4g} s: {}", t, e.what()));
+    }
+    c = mapControls(target, plan, resting.x, resting.z);
+    if (change < 1e-10) return {c, resting.phi};
   }
   throw std::runtime_error(fmt::format("flatness: the resting point at t = {:.4g} s does not converge", t));
 }
@@ -195,11 +289,15 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
     check.reached = Eigen::Vector2d(reached.x(), reached.z());
     check.error = (check.reached - check.planned).norm();
     plan.inversion_checks.push_back(check);
+    if (k == 0) plan.plane = mapPlane(target, plan.map, model, eq.q);
     if (k != 0 && k != n - 1) continue;
     (k == 0 ? plan.hanging_length_start : plan.hanging_length_end) = hangingLength(model, eq.q, target.controls);
     (k == 0 ? pendulum.hoist_start : pendulum.hoist_end) = c.hoist_length;
-    if (target.method != PlanMethod::QuasiStatic)
-      (k == 0 ? plan.sway_period_start : plan.sway_period_end) = swayPeriod(model, eq.q, eq.t, target.controls);
+    if (target.method != PlanMethod::QuasiStatic) {
+      const SwayPeriods periods = swayPeriods(model, eq.q, eq.t, target.controls, target.slewing.has_value());
+      (k == 0 ? plan.sway_period_start : plan.sway_period_end) = periods.along;
+      (k == 0 ? plan.sway_period_across_start : plan.sway_period_across_end) = target.slewing ? periods.across : periods.along;
+    }
   }
   // Between the path's ends the sway period changes with the rope (Table 8-2: 15.5 → 12.0 s); the
   // mean puts the shaper's period error at either end near half that range.
@@ -215,7 +313,9 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   if (target.method == PlanMethod::Flatness) {
     const double gravity = -target.scene.gravity.z();
     for (auto [period, length] : {std::pair{plan.sway_period_start, &pendulum.length_start},
-                                  std::pair{plan.sway_period_end, &pendulum.length_end}})
+                                  std::pair{plan.sway_period_end, &pendulum.length_end},
+                                  std::pair{plan.sway_period_across_start, &pendulum.across_start},
+                                  std::pair{plan.sway_period_across_end, &pendulum.across_end}})
       *length = gravity * std::pow(period / (2.0 * std::numbers::pi), 2);
     plan.pendulum_length_start = pendulum.length_start;
     plan.pendulum_length_end = pendulum.length_end;
@@ -237,16 +337,30 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
 
   // 6. Control trajectory (6.4).
   t0 = Clock::now();
-  std::vector<double> luffing, hoist;
+  std::vector<double> luffing, hoist, slewing;
   for (std::size_t k = 0; k < plan.path.states.size(); ++k) {
-    const ControlPoint c = target.method == PlanMethod::Flatness ? flatControls(target, plan, pendulum, plan.path.t[k])
-                                                                 : pathControls(target, plan, plan.path.states[k]);
+    const double t = plan.path.t[k];
+    const auto [c, phi] = target.method == PlanMethod::Flatness
+                              ? flatControls(target, plan, pendulum, t)
+                              : std::pair{pathControls(target, plan, plan.path.states[k]), slewingAt(target, plan, t)(0)};
     plan.controls.push_back(c);
     luffing.push_back(c.luffing_length);
     hoist.push_back(c.hoist_length);
+    if (target.slewing) plan.slewing_angles.push_back(phi);
   }
   plan.luffing_spline = smoothControlTrajectory(plan.path.t, luffing, target.resample_points, target.steady_points);
   plan.hoist_spline = smoothControlTrajectory(plan.path.t, hoist, target.resample_points, target.steady_points);
+  if (target.slewing) {
+    const auto& spec = *std::find_if(target.scene.constraints.begin(), target.scene.constraints.end(),
+                                     [&](const ConstraintSpec& c) { return c.name == target.slewing->constraint; });
+    plan.slewing_start = (*spec.drive)(target.scene.solver.t_start);
+    for (double phi : plan.slewing_angles) slewing.push_back(plan.slewing_start + phi);
+    plan.slewing_spline = smoothControlTrajectory(plan.path.t, slewing, target.resample_points, target.steady_points);
+    double peak_rate = 0.0;
+    for (double t : plan.path.t) peak_rate = std::max(peak_rate, std::abs(slewingAt(target, plan, t)(1)));
+    say(fmt::format("slewing: '{}' turns by {:.4g}° (peak rate {:.3g}°/s)", target.slewing->constraint,
+                    target.slewing->turn * 180.0 / std::numbers::pi, peak_rate * 180.0 / std::numbers::pi));
+  }
   plan.lead_time = plan.luffing_spline.t[target.steady_points] - plan.path.t.front();
   plan.controls_s = secondsSince(t0);
   return plan;
@@ -257,6 +371,11 @@ Scene verificationScene(const TargetSpec& target, const QuasiStaticPlan& plan) {
   scene.solver.t_start = 0.0;
   scene.solver.t_end = plan.luffing_spline.t.back() + target.settle_time;
   scene.solver.start_from_equilibrium = true;
+  if (target.slewing)
+    for (ConstraintSpec& c : scene.constraints)
+      if (c.name == target.slewing->constraint) c.drive = Profile(plan.slewing_spline);
+  if (target.verification_rtol) scene.solver.rtol = *target.verification_rtol;
+  if (target.verification_atol) scene.solver.atol = *target.verification_atol;
   scene.name += " — quasi-static plan verification";
   return scene;
 }
@@ -279,33 +398,36 @@ void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::stri
   const std::vector<double>& end = recorder.jointPositions(model.findJoint(target.controls.end_point));
   const double motion_end = plan.lead_time + plan.path.t.back();
   const double settled = plan.luffing_spline.t.back();
-  double sum = 0.0, x_min = std::numeric_limits<double>::infinity(), x_max = -x_min;
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  int during = 0, after = 0;
+  double sum = 0.0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector2d> settling;  // horizontal positions after the motion
+  int during = 0;
   for (std::size_t k = 0; k < recorder.samples(); ++k) {
     const double t = recorder.time()[k];
     const Eigen::Vector3d p(end[3 * k], end[3 * k + 1], end[3 * k + 2]);
-    const Eigen::Vector2d planned = origin + trajectoryAt(plan.path, t - plan.lead_time);
+    const Eigen::Vector2d point = origin + trajectoryAt(plan.path, t - plan.lead_time);
+    const Eigen::Vector3d planned = plan.plane.place(point.x(), point.y(), slewingAt(target, plan, t - plan.lead_time)(0));
     v.t.push_back(t);
     v.planned.push_back(planned);
     v.simulated.push_back(p);
-    const double error = (Eigen::Vector2d(p.x(), p.z()) - planned).norm();
+    const double error = (p - planned).norm();
     if (t >= plan.lead_time && t <= motion_end) {
       v.max_error = std::max(v.max_error, error);
       sum += error * error;
       ++during;
     }
     if (t >= settled) {
-      x_min = std::min(x_min, p.x());
-      x_max = std::max(x_max, p.x());
-      mean += Eigen::Vector2d(p.x(), p.z());
-      ++after;
+      settling.push_back(p.head<2>());
+      mean += p;
     }
   }
   v.rms_error = during > 0 ? std::sqrt(sum / during) : 0.0;
-  if (after > 0) {
-    v.residual_sway = 0.5 * (x_max - x_min);
-    v.final_error = (mean / after - (origin + target.trajectory.target.head<2>())).norm();
+  if (!settling.empty()) {
+    v.residual_sway = halfHorizontalExtent(settling);
+    const Eigen::Vector2d goal = origin + target.trajectory.target.head<2>();
+    v.final_error = (mean / static_cast<double>(settling.size()) -
+                     plan.plane.place(goal.x(), goal.y(), target.slewing ? target.slewing->turn : 0.0))
+                        .norm();
   }
   plan.verification_s = secondsSince(t0);
   if (log)

@@ -100,12 +100,14 @@ RestToRestPath RestToRestPath::fitting(const Eigen::Vector2d& start, const Eigen
                                           high, duration, why));
 }
 
-Eigen::Vector2d RestToRestPath::derivative(double t, int k) const {
+double RestToRestPath::progress(double t, int k) const {
   if (k < 0 || k > 4) throw std::invalid_argument("rest-to-rest path: derivatives 0 … 4");
   const double speed = 1.0 / (duration_ - ramp_);
-  const double sigma = speed * std::pow(ramp_, 1 - k) *
-                       (rampIntegral(t / ramp_, k) - rampIntegral((t - duration_ + ramp_) / ramp_, k));
-  return (k == 0 ? start_ : Eigen::Vector2d::Zero()) + sigma * (end_ - start_);
+  return speed * std::pow(ramp_, 1 - k) * (rampIntegral(t / ramp_, k) - rampIntegral((t - duration_ + ramp_) / ramp_, k));
+}
+
+Eigen::Vector2d RestToRestPath::derivative(double t, int k) const {
+  return (k == 0 ? start_ : Eigen::Vector2d::Zero()) + progress(t, k) * (end_ - start_);
 }
 
 RestToRestPath restToRestPath(const QrProblem& problem) {

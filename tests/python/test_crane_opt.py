@@ -79,7 +79,8 @@ def test_plan_verification_tracks_the_plan(jib_plan: Path):
         v = f["verification"]
         assert v.attrs["status"] == "complete"
         planned, simulated = v["planned"][...], v["simulated"][...]
-        error = np.hypot(simulated[:, 0] - planned[:, 0], simulated[:, 2] - planned[:, 1])
+        error = np.linalg.norm(simulated - planned, axis=1)  # (x, y, z); the plan lies in y = 0
+        assert np.max(np.abs(planned[:, 1])) < 1e-9
         # The 1 t load sways on its 10 m rope (period 6.3 s) under 0.2 m/s² of planned
         # acceleration: a quasi-static plan tracks it to decimetres, not millimetres.
         assert v.attrs["max_error"] == pytest.approx(np.max(error[(v["t"][...] >= f["controls"].attrs["lead_time"])
@@ -201,17 +202,20 @@ def test_map_only(tmp_path: Path):
 
 
 CRANE_TARGET = SOURCE_DIR / "configs" / "target.yaml"
+SLEWING_TARGET = SOURCE_DIR / "configs" / "target_slewing.yaml"
 
 
-def plan_condensed_crane(tmp_path: Path, target: tuple, method: str = "quasi_static") -> Path:
-    """Table 8-2's problem (configs/target.yaml) on the condensed crane with another target and
-    method, planned and verified by crane-opt (exit 0 asserted); returns the plan file."""
-    text = CRANE_TARGET.read_text(encoding="utf-8")
+def plan_condensed_crane(tmp_path: Path, target: tuple, method: str = "quasi_static", base: Path = CRANE_TARGET) -> Path:
+    """Table 8-2's problem (configs/target.yaml, or another target file of the thesis crane) on the
+    condensed crane with another target and method, planned and verified by crane-opt (exit 0
+    asserted); returns the plan file."""
+    text = base.read_text(encoding="utf-8")
     text = text.replace("scene: crane.yaml", f"scene: {SOURCE_DIR / 'configs' / 'crane_condensed.yaml'}", 1)
     text = text.replace("target: [-35, 10, 0, 0]", f"target: [{target[0]}, {target[1]}, 0, 0]", 1)
-    assert str(target[0]) in text and "crane_condensed" in text
+    text = text.replace("method: flatness\n", f"method: {method}\n", 1)
+    assert str(target[0]) in text and "crane_condensed" in text and f"method: {method}" in text
     path = tmp_path / "target.yaml"
-    path.write_text(f"method: {method}\n" + text, encoding="utf-8")
+    path.write_text(text, encoding="utf-8")
     out = tmp_path / "plan.h5"
     result = crane_opt("plan", path, "-o", out, "--quiet", cwd=tmp_path, timeout=600)
     assert result.returncode == 0, result.stderr
@@ -244,3 +248,47 @@ def test_zvd_leaves_table_8_2_within_five_centimetres(tmp_path: Path):
         assert f["path"].attrs["motion_time"] == pytest.approx(40 + f["path"].attrs["sway_period"], abs=0.1)
         assert f["verification"].attrs["residual_sway"] < 0.05
         assert f["verification"].attrs["final_error"] < 0.05
+
+
+def test_flatness_leaves_table_8_2_within_five_centimetres_in_the_same_time(tmp_path: Path):
+    """configs/target.yaml's method: the load's rest-to-rest path carried by the flat map arrives
+    within the industry's ±5 cm (measured ±0.019 m on the condensed crane, ±0.019 m on the thesis'
+    super truss crane) in the quasi-static plan's 40 s; the verification runs at the target's own
+    tolerances (rtol 1e-6, atol 1e-7), not the scene's 1e-5, at which IDAS failed its error test
+    on 79 % of these steps (measured: 3929 failures in 5000 steps, 15 s; now 52 in 3806, 1.0 s)."""
+    with h5py.File(plan_condensed_crane(tmp_path, (-35, 10), "flatness"), "r") as f:
+        assert f["path"].attrs["motion_time"] == pytest.approx(40.0)
+        v = f["verification"].attrs
+        assert v["residual_sway"] < 0.05 and v["final_error"] < 0.01 and v["max_error"] < 0.1
+    with h5py.File(tmp_path / "plan_simulation.h5", "r") as run:
+        solver = run["solver"].attrs
+        assert solver["rtol"] == 1e-6 and solver["atol"] == 1e-7
+        assert solver["error_test_failures"] < 0.1 * solver["steps"]
+
+
+def test_slewing_plan_turns_the_crane_and_leaves_the_load_still(tmp_path: Path):
+    """configs/target_slewing.yaml on the condensed crane: Table 8-2's luffing and hoisting with 45°
+    of slewing, by flatness. The slewing drive follows a third control spline from 0 to 45°; the
+    load arrives at Table 8-2's target turned by 45° about the slewing axis (x = y = −35 m·cos 45°
+    + …) and sways ±0.022 m there (measured; ±0.021 m on the super truss crane). Without the
+    across-plane pendulum (the boom head's sideways give: 17.0 s against 15.5 s along) it swayed
+    ±0.41 m. Quasi-static: ±1.44 m."""
+    with h5py.File(plan_condensed_crane(tmp_path, (-35, 10), "flatness", SLEWING_TARGET), "r") as f:
+        path = f["path"].attrs
+        assert path["slewing_constraint"] == "slewing" and path["slewing_turn_deg"] == 45.0
+        assert path["sway_period_across_start"] > 1.05 * path["sway_period_start"]
+        angles = f["controls/slewing_angle"][...]
+        assert angles[0] == pytest.approx(0.0, abs=1e-12) and angles[-1] == pytest.approx(45.0, abs=1e-9)
+        spline = f["controls/spline/slewing_angle/y"][...]
+        assert spline[0] == pytest.approx(0.0, abs=1e-12) and spline[-1] == pytest.approx(np.pi / 4, abs=1e-12)
+        v = f["verification"]
+        assert v.attrs["status"] == "complete"
+        assert v.attrs["residual_sway"] < 0.05 and v.attrs["final_error"] < 0.01
+        planned, simulated = v["planned"][...], v["simulated"][...]
+        # The planned target: Table 8-2's end point in the crane's plane (x = −35 m, y = the hook's
+        # y at the start, a millimetre off 0), turned by 45° about the slewing axis (the origin).
+        x_target, y_plane = f["trajectory/origin"][0] + f["trajectory/target"][0, 0], planned[0, 1]
+        assert abs(y_plane) < 0.01
+        turn = np.array([[np.cos(np.pi / 4), -np.sin(np.pi / 4)], [np.sin(np.pi / 4), np.cos(np.pi / 4)]])
+        assert planned[-1, :2] == pytest.approx(turn @ [x_target, y_plane], abs=1e-9)
+        assert np.linalg.norm(simulated[-1] - planned[-1]) < 0.05

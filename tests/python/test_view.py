@@ -292,8 +292,7 @@ def test_modes_and_plan_files_become_pages(tmp_path):
         simulated = plan["verification/simulated"][()]
     k = int(np.argmin(np.abs(t - 12)))
     assert t[k] == pytest.approx(12)
-    np.testing.assert_allclose(numbers(plan_dom.status["data-planned-world"]),
-                               [planned[k, 0], 0, planned[k, 1]], atol=1e-4)
+    np.testing.assert_allclose(numbers(plan_dom.status["data-planned-world"]), planned[k], atol=1e-4)
     # The load's origin is the hook here, whose path the plan calls the simulated end point.
     np.testing.assert_allclose(numbers(plan_dom.status["data-load-world"]), simulated[k], atol=1e-4)
     # Its ropes are coloured by their end forces, over the range the page data holds.

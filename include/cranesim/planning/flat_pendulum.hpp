@@ -13,6 +13,8 @@
 
 #include <Eigen/Dense>
 
+#include "cranesim/math/types.hpp"
+
 namespace cranesim {
 
 struct LuffingPendulum {
@@ -33,9 +35,13 @@ struct PendulumControls {
 PendulumControls flatPendulumControls(const LuffingPendulum& crane, const Eigen::Vector2d& p, const Eigen::Vector2d& a);
 
 /// Where a load on a rope of length ℓ would hang at rest from the suspension point s = p + ℓ e
-/// that carries it at p with acceleration a: s − ℓ ẑ = p + ℓ (e − ẑ). A crane whose static map
-/// gives the controls that hang the load at rest at a point gives, at this point, the controls
-/// that carry it along p (for a suspension that moves with the controls as in the statics).
-Eigen::Vector2d restingPoint(const Eigen::Vector2d& p, const Eigen::Vector2d& a, double length, double gravity);
+/// that carries it at p with acceleration a (world x, y, z; z up): s − ℓ ẑ = p + ℓ (e − ẑ). A
+/// crane whose static map gives the controls that hang the load at rest at a point gives, at this
+/// point, the controls that carry it along p (for a suspension that moves with the controls as in
+/// the statics). In three dimensions e includes the centripetal and Coriolis accelerations of a
+/// slewing crane's load (planning/slewing_plane.hpp), and the pendulum may differ by direction (a
+/// crane's load sways across the boom on a longer effective pendulum than along it): ℓ =
+/// `length_along` along the horizontal unit vector `along` and vertically, `length_across` across it.
+Vec3 restingPoint(const Vec3& p, const Vec3& a, double length_along, double length_across, const Vec3& along, double gravity);
 
 }  // namespace cranesim

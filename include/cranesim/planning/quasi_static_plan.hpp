@@ -9,6 +9,7 @@
 #include "cranesim/math/profile.hpp"
 #include "cranesim/planning/input_shaping.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
+#include "cranesim/planning/slewing_plane.hpp"
 #include "cranesim/planning/target.hpp"
 #include "cranesim/solvers/dynamics.hpp"
 
@@ -41,10 +42,12 @@ struct InversionCheck {
 
 struct Verification {
   std::vector<double> t;                        // simulation time (the motion starts at lead_time)
-  std::vector<Eigen::Vector2d> planned;         // planned end point (absolute x, z) at t
-  std::vector<Eigen::Vector3d> simulated;       // simulated end point (absolute x, y, z)
+  std::vector<Eigen::Vector3d> planned;         // planned end point (world x, y, z) at t
+  std::vector<Eigen::Vector3d> simulated;       // simulated end point (world x, y, z)
   double max_error = 0.0, rms_error = 0.0;      // tracking error during the motion, m
-  double residual_sway = 0.0;                   // half the peak-to-peak horizontal motion after the motion, m
+  /// Half the peak-to-peak horizontal motion after the motion (half the largest horizontal
+  /// distance between two samples: the sway's amplitude in whichever direction it swings), m.
+  double residual_sway = 0.0;
   double final_error = 0.0;                     // mean end point after the motion − target, m
   SimulationOutcome outcome;
 };
@@ -66,11 +69,21 @@ struct QuasiStaticPlan {
   /// equilibria (its lowest mode in which the end point moves mostly along x), s; the shaper's
   /// period is their mean.
   double sway_period_start = 0.0, sway_period_end = 0.0, sway_period = 0.0;
+  /// The same across the plane (its lowest mode swaying along y) for a slewing target, along it
+  /// otherwise, s.
+  double sway_period_across_start = 0.0, sway_period_across_end = 0.0;
   /// Flatness only: the simple pendulums of those periods, g (T / 2π)², m; between them the
   /// pendulum's length is interpolated linearly in the hoist rope's length.
   double pendulum_length_start = 0.0, pendulum_length_end = 0.0;
   std::vector<ControlPoint> controls;      // per path point
   TableProfile luffing_spline, hoist_spline;
+  /// The map's plane and how it turns (a plane that does not turn without a slewing target).
+  SlewingPlane plane;
+  /// Slewing targets: the slewing angle per path point relative to the scene's (rad), the
+  /// drive's value at the start (rad) and its control spline (absolute, rad).
+  std::vector<double> slewing_angles;
+  double slewing_start = 0.0;
+  TableProfile slewing_spline;
   double lead_time = 0.0;                  // steady time before the motion in the splines and the simulation
   std::vector<InversionCheck> inversion_checks;
   Verification verification;

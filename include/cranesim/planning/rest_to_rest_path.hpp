@@ -33,6 +33,8 @@ class RestToRestPath {
                                 const Eigen::Vector2d& v_min, const Eigen::Vector2d& v_max,
                                 const Eigen::Vector2d& a_min, const Eigen::Vector2d& a_max);
 
+  /// d^k σ / dt^k at t, k = 0 … 4: the fraction σ of the way covered (0 before, 1 after).
+  double progress(double t, int k) const;
   /// d^k p / dt^k at t, k = 0 … 4; held at start and end outside [0, duration].
   Eigen::Vector2d derivative(double t, int k) const;
   double duration() const { return duration_; }

@@ -3,6 +3,7 @@
 // its parts are the crane's controls, the static map's grid, the surface fit, the QR end-point
 // problem, the smoothing of the control trajectory and the verification run.
 
+#include <optional>
 #include <string>
 
 #include "cranesim/model/scene.hpp"
@@ -17,6 +18,14 @@ namespace cranesim {
 /// rest-to-rest path of the load carried by the flat map of its pendulum (DESIGN §16).
 enum class PlanMethod { QuasiStatic, ZV, ZVD, Flatness };
 
+/// A slewing motion planned with the path (issue 20): the revolute constraint about the vertical
+/// that turns the crane, and the angle it turns by from its value at the scene's start.
+struct SlewingSpec {
+  std::string constraint;
+  double turn = 0.0;  // rad
+  SourceLocation where;
+};
+
 struct TargetSpec {
   std::string path, text;
   Scene scene;
@@ -30,9 +39,13 @@ struct TargetSpec {
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   SourceLocation where_start, where_target, where_trajectory;
   PlanMethod method = PlanMethod::QuasiStatic;
+  std::optional<SlewingSpec> slewing;
   int resample_points = 20;  // 6.4: knots taken at equal times from the discrete controls
   int steady_points = 5;     // 6.4: steady-state knots added before and after
   double settle_time = 20.0;  // verification: simulated time after the motion, s
+  /// The verification run's tolerances, when the target sets them (the scene's otherwise).
+  std::optional<double> verification_rtol;
+  std::optional<AbsoluteTolerance> verification_atol;
 };
 
 /// Reads and validates a target file (the scene path in it is relative to the file). Throws
