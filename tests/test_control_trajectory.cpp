@@ -95,3 +95,26 @@ TEST_CASE("Control trajectory validation", "[planning][controls]") {
   CHECK_THROWS_AS(smoothControlTrajectory({0, 1, 1}, y, 10, 3), std::invalid_argument);
   CHECK_THROWS_AS(smoothControlTrajectory({0, 2, 1}, y, 10, 3), std::invalid_argument);
 }
+
+TEST_CASE("A control spline's peak rate, acceleration and jerk, against its samples", "[planning][controls]") {
+  const auto [t, y] = samples(smoothStep);
+  const TableProfile spline = smoothControlTrajectory(t, y, 20, 5);
+  const RatePeaks peaks = ratePeaks(spline);
+  // Dense central differences of the spline itself (the drive the crane follows): h = 1e-4 s
+  // errs by ~h² y⁽⁵⁾ in the rate; the jerk is piecewise constant, sampled inside its pieces.
+  const Profile drive{spline};
+  double speed = 0.0, acceleration = 0.0, jerk = 0.0;
+  constexpr double h = 1e-4;
+  for (double s = spline.t.front() + 2 * h; s < spline.t.back() - 2 * h; s += 1e-3) {
+    const double y0 = drive(s), yp = drive(s + h), ym = drive(s - h), ypp = drive(s + 2 * h), ymm = drive(s - 2 * h);
+    speed = std::max(speed, std::abs(yp - ym) / (2 * h));
+    acceleration = std::max(acceleration, std::abs(yp - 2 * y0 + ym) / (h * h));
+    jerk = std::max(jerk, std::abs(ypp - 2 * yp + 2 * ym - ymm) / (2 * h * h * h));
+  }
+  INFO("peaks " << peaks.speed << ", " << peaks.acceleration << ", " << peaks.jerk << " against " << speed << ", "
+                << acceleration << ", " << jerk);
+  CHECK(peaks.speed == Approx(speed).epsilon(1e-6));
+  CHECK(peaks.acceleration == Approx(acceleration).epsilon(2e-4));  // measured 6e-5
+  CHECK(peaks.jerk == Approx(jerk).epsilon(1e-3));  // measured 1e-4
+  CHECK(ratePeaks(smoothControlTrajectory(t, std::vector<double>(t.size(), 3.0), 20, 5)).speed == 0.0);
+}

@@ -79,7 +79,7 @@ void writeTrajectory(Hdf5File& file, const TargetSpec& target, const QuasiStatic
   writePoints<2>(file, "/trajectory/control_bounds", std::vector{p.control_min, p.control_max});
 }
 
-void writeControls(Hdf5File& file, const QuasiStaticPlan& plan) {
+void writeControls(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& plan) {
   std::vector<double> angle, change, luffing, hoist;
   for (const ControlPoint& c : plan.controls) {
     angle.push_back(c.boom_angle_deg);
@@ -107,16 +107,21 @@ void writeControls(Hdf5File& file, const QuasiStaticPlan& plan) {
     writeVector(file, "/controls/spline/slewing_angle/slopes", plan.slewing_spline.slopes);
   }
   file.attribute("/controls", "lead_time", plan.lead_time);
+  for (const auto& [name, peaks] : {std::pair{"luffing", &plan.luffing_peaks}, std::pair{"hoist", &plan.hoist_peaks},
+                                    std::pair{"slewing", &plan.slewing_peaks}}) {
+    if (std::string(name) == "slewing" && plan.slewing_angles.empty()) continue;
+    const std::string prefix = std::string(name) + "_peak_";
+    file.attribute("/controls", prefix + "speed", peaks->speed);
+    file.attribute("/controls", prefix + "acceleration", peaks->acceleration);
+    file.attribute("/controls", prefix + "jerk", peaks->jerk);
+  }
+  if (target.drive_limits.any()) file.attribute("/controls", "drive_limit_factor", plan.drive_limit_factor);
 }
 
 void writePath(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& plan) {
   writeVector(file, "/path/t", plan.path.t);
   writePoints<4>(file, "/path/state", plan.path.states);
-  const char* method = target.method == PlanMethod::ZV         ? "zv"
-                       : target.method == PlanMethod::ZVD      ? "zvd"
-                       : target.method == PlanMethod::Flatness ? "flatness"
-                                                               : "quasi_static";
-  file.attribute("/path", "method", std::string(method));
+  file.attribute("/path", "method", methodName(target.method));
   file.attribute("/path", "motion_time", plan.path.t.back() - plan.path.t.front());
   file.attribute("/path", "hanging_length_start", plan.hanging_length_start);
   file.attribute("/path", "hanging_length_end", plan.hanging_length_end);
@@ -134,6 +139,7 @@ void writePath(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& 
     file.attribute("/path", "pendulum_length_start", plan.pendulum_length_start);
     file.attribute("/path", "pendulum_length_end", plan.pendulum_length_end);
   }
+  if (plan.stretched_from > 0.0) file.attribute("/path", "stretched_from", plan.stretched_from);
   if (target.slewing) {
     file.attribute("/path", "slewing_constraint", target.slewing->constraint);
     file.attribute("/path", "slewing_turn_deg", target.slewing->turn * 180.0 / std::numbers::pi);
@@ -168,6 +174,7 @@ void writeVerification(Hdf5File& file, const QuasiStaticPlan& plan) {
   file.attribute("/verification", "max_error", v.max_error);
   file.attribute("/verification", "rms_error", v.rms_error);
   file.attribute("/verification", "residual_sway", v.residual_sway);
+  file.attribute("/verification", "arrival_sway", v.arrival_sway);
   file.attribute("/verification", "final_error", v.final_error);
   file.attribute("/verification", "status", std::string(v.outcome.complete ? "complete" : "incomplete"));
   file.attribute("/verification", "message", v.outcome.message);
@@ -189,7 +196,7 @@ void writePlan(const std::string& path, const TargetSpec& target, const QuasiSta
       writeFit(file, plan.fit, target.fit);
       writeTrajectory(file, target, plan);
       writePath(file, target, plan);
-      writeControls(file, plan);
+      writeControls(file, target, plan);
       writeVerification(file, plan);
     }
     file.ensureGroup("/timing");

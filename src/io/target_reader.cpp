@@ -4,8 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <filesystem>
+#include <numbers>
+#include <tuple>
 
 #include "bounded_yaml.hpp"
 #include "cranesim/io/scene_reader.hpp"
@@ -91,6 +92,25 @@ SlewingSpec readSlewing(const YamlField& f, const Scene& scene) {
   return s;
 }
 
+/// `drive_limits: {luffing, hoist, slewing}`, each `{speed, acceleration, jerk}` (any of them;
+/// the slewing's in degrees).
+ControlLimits readDriveLimits(const YamlField& f, bool slewing) {
+  f.allowKeys({"luffing", "hoist", "slewing"});
+  ControlLimits limits;
+  limits.where = f.where();
+  for (const auto& [key, drive, scale] : {std::tuple{"luffing", &limits.luffing, 1.0}, std::tuple{"hoist", &limits.hoist, 1.0},
+                                          std::tuple{"slewing", &limits.slewing, std::numbers::pi / 180.0}}) {
+    const auto d = f.find(key);
+    if (!d) continue;
+    if (std::string(key) == "slewing" && !slewing) d->fail("slewing limits need a slewing target (slewing: {constraint, turn})");
+    d->allowKeys({"speed", "acceleration", "jerk"});
+    for (const auto& [name, value] : {std::pair{"speed", &drive->speed}, std::pair{"acceleration", &drive->acceleration},
+                                      std::pair{"jerk", &drive->jerk}})
+      if (const auto v = d->find(name)) *value = scale * v->positive();
+  }
+  return limits;
+}
+
 StaticMapSpec readMap(const YamlField& f) {
   f.allowKeys({"boom_angle", "hoist_change", "hoist_length", "tolerance", "max_iterations", "threads"});
   StaticMapSpec m;
@@ -160,7 +180,8 @@ TargetSpec readTarget(const std::string& path) {
   const YamlField f(root, "");
   // An empty document has no mark of its own: the defect is the file from its first line on.
   if (!f.isMap()) throw SceneError({"<document>", 1, 1}, "a target file is a mapping (scene, crane, map, fit, trajectory, …)");
-  f.allowKeys({"name", "scene", "method", "crane", "slewing", "map", "fit", "trajectory", "control_spline", "verification"});
+  f.allowKeys({"name", "scene", "method", "crane", "slewing", "drive_limits", "map", "fit", "trajectory", "control_spline",
+               "verification"});
 
   TargetSpec t;
   t.path = path;
@@ -184,6 +205,7 @@ TargetSpec readTarget(const std::string& path) {
   t.where_controls = crane.where();
   checkControls(t.scene, t.controls, t.where_controls);
   if (const auto s = f.find("slewing")) t.slewing = readSlewing(*s, t.scene);
+  if (const auto l = f.find("drive_limits")) t.drive_limits = readDriveLimits(*l, t.slewing.has_value());
   t.map = readMap(f.at("map"));
   if (const auto fit = f.find("fit")) t.fit = readFit(*fit);
   const YamlField trajectory = f.at("trajectory");

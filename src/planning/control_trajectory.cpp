@@ -1,5 +1,6 @@
 #include "cranesim/planning/control_trajectory.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -39,6 +40,23 @@ TableProfile smoothControlTrajectory(const std::vector<double>& t, const std::ve
   }
   profile.slopes = splineSlopes(profile.t, profile.y, true);
   return profile;
+}
+
+RatePeaks ratePeaks(const TableProfile& spline) {
+  RatePeaks peaks;
+  for (std::size_t i = 0; i + 1 < spline.t.size(); ++i) {
+    // On s = (t − t_i)/h the Hermite cubic's rate is (a s² + b s + c)/h, its derivative
+    // (2a s + b)/h² and the jerk 2a/h³.
+    const double h = spline.t[i + 1] - spline.t[i], dy = spline.y[i + 1] - spline.y[i];
+    const double m0 = h * spline.slopes[i], m1 = h * spline.slopes[i + 1];
+    const double a = -6.0 * dy + 3.0 * (m0 + m1), b = 6.0 * dy - 4.0 * m0 - 2.0 * m1, c = m0;
+    const auto rate = [&](double s) { return std::abs((a * s + b) * s + c) / h; };
+    peaks.speed = std::max({peaks.speed, rate(0.0), rate(1.0)});
+    if (a != 0.0 && -b / (2.0 * a) > 0.0 && -b / (2.0 * a) < 1.0) peaks.speed = std::max(peaks.speed, rate(-b / (2.0 * a)));
+    peaks.acceleration = std::max({peaks.acceleration, std::abs(b) / (h * h), std::abs(2.0 * a + b) / (h * h)});
+    peaks.jerk = std::max(peaks.jerk, std::abs(2.0 * a) / (h * h * h));
+  }
+  return peaks;
 }
 
 }  // namespace cranesim

@@ -228,6 +228,51 @@ std::pair<ControlPoint, double> flatControls(const TargetSpec& target, const Qua
   throw std::runtime_error(fmt::format("flatness: the resting point at t = {:.4g} s does not converge", t));
 }
 
+/// The largest of (peak / limit)^(1/k) over the limited drives and their k-th derivatives (k = 1
+/// speed, 2 acceleration, 3 jerk): the factor by which a motion's duration would have to grow for
+/// its drives to keep their limits, were its shape kept (≤ 1: they keep them; 0 without limits).
+double driveLimitFactor(const ControlLimits& limits, const QuasiStaticPlan& plan) {
+  double factor = 0.0;
+  for (const auto& [drive, peaks] : {std::pair{&limits.luffing, &plan.luffing_peaks}, std::pair{&limits.hoist, &plan.hoist_peaks},
+                                     std::pair{&limits.slewing, &plan.slewing_peaks}}) {
+    if (drive->speed) factor = std::max(factor, peaks->speed / *drive->speed);
+    if (drive->acceleration) factor = std::max(factor, std::sqrt(peaks->acceleration / *drive->acceleration));
+    if (drive->jerk) factor = std::max(factor, std::cbrt(peaks->jerk / *drive->jerk));
+  }
+  return factor;
+}
+
+/// The control trajectory of the plan's path (6.4): the controls at every path point, their
+/// smoothed splines, and what the splines ask of the drives.
+void computeControls(const TargetSpec& target, QuasiStaticPlan& plan, const EffectivePendulum& pendulum) {
+  std::vector<double> luffing, hoist, slewing;
+  plan.controls.clear();
+  plan.slewing_angles.clear();
+  for (std::size_t k = 0; k < plan.path.states.size(); ++k) {
+    const double t = plan.path.t[k];
+    const auto [c, phi] = target.method == PlanMethod::Flatness
+                              ? flatControls(target, plan, pendulum, t)
+                              : std::pair{pathControls(target, plan, plan.path.states[k]), slewingAt(target, plan, t)(0)};
+    plan.controls.push_back(c);
+    luffing.push_back(c.luffing_length);
+    hoist.push_back(c.hoist_length);
+    if (target.slewing) {
+      plan.slewing_angles.push_back(phi);
+      slewing.push_back(plan.slewing_start + phi);
+    }
+  }
+  plan.luffing_spline = smoothControlTrajectory(plan.path.t, luffing, target.resample_points, target.steady_points);
+  plan.hoist_spline = smoothControlTrajectory(plan.path.t, hoist, target.resample_points, target.steady_points);
+  plan.luffing_peaks = ratePeaks(plan.luffing_spline);
+  plan.hoist_peaks = ratePeaks(plan.hoist_spline);
+  if (target.slewing) {
+    plan.slewing_spline = smoothControlTrajectory(plan.path.t, slewing, target.resample_points, target.steady_points);
+    plan.slewing_peaks = ratePeaks(plan.slewing_spline);
+  }
+  plan.lead_time = plan.luffing_spline.t[target.steady_points] - plan.path.t.front();
+  plan.drive_limit_factor = driveLimitFactor(target.drive_limits, plan);
+}
+
 }  // namespace
 
 QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
@@ -319,7 +364,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
       *length = gravity * std::pow(period / (2.0 * std::numbers::pi), 2);
     plan.pendulum_length_start = pendulum.length_start;
     plan.pendulum_length_end = pendulum.length_end;
-    plan.load_path = restToRestPath(problem);
+    plan.load_path = restToRestPath(problem, problem.steps * problem.sample_time);
     plan.path = sampleTrajectory(plan.load_path, problem.sample_time);
     say(fmt::format("flatness: rest-to-rest path over {:.4g} s with {:.4g} s ramps; the load's pendulum {:.4g} → {:.4g} m "
                     "(sway periods {:.4g} → {:.4g} s; hanging lengths {:.4g} → {:.4g} m)",
@@ -335,33 +380,48 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
                     plan.path.t.back() - plan.path.t.front()));
   }
 
-  // 6. Control trajectory (6.4).
+  // 6. Control trajectory (6.4), for flatness over a path stretched until its drives keep their
+  // limits: rates scale as 1/T, accelerations 1/T², jerks 1/T³ (were the path's shape kept), so
+  // the duration grows by the limits' factor until they hold, and is bisected back to 0.1 %.
   t0 = Clock::now();
-  std::vector<double> luffing, hoist, slewing;
-  for (std::size_t k = 0; k < plan.path.states.size(); ++k) {
-    const double t = plan.path.t[k];
-    const auto [c, phi] = target.method == PlanMethod::Flatness
-                              ? flatControls(target, plan, pendulum, t)
-                              : std::pair{pathControls(target, plan, plan.path.states[k]), slewingAt(target, plan, t)(0)};
-    plan.controls.push_back(c);
-    luffing.push_back(c.luffing_length);
-    hoist.push_back(c.hoist_length);
-    if (target.slewing) plan.slewing_angles.push_back(phi);
-  }
-  plan.luffing_spline = smoothControlTrajectory(plan.path.t, luffing, target.resample_points, target.steady_points);
-  plan.hoist_spline = smoothControlTrajectory(plan.path.t, hoist, target.resample_points, target.steady_points);
   if (target.slewing) {
     const auto& spec = *std::find_if(target.scene.constraints.begin(), target.scene.constraints.end(),
                                      [&](const ConstraintSpec& c) { return c.name == target.slewing->constraint; });
     plan.slewing_start = (*spec.drive)(target.scene.solver.t_start);
-    for (double phi : plan.slewing_angles) slewing.push_back(plan.slewing_start + phi);
-    plan.slewing_spline = smoothControlTrajectory(plan.path.t, slewing, target.resample_points, target.steady_points);
-    double peak_rate = 0.0;
-    for (double t : plan.path.t) peak_rate = std::max(peak_rate, std::abs(slewingAt(target, plan, t)(1)));
-    say(fmt::format("slewing: '{}' turns by {:.4g}° (peak rate {:.3g}°/s)", target.slewing->constraint,
-                    target.slewing->turn * 180.0 / std::numbers::pi, peak_rate * 180.0 / std::numbers::pi));
   }
-  plan.lead_time = plan.luffing_spline.t[target.steady_points] - plan.path.t.front();
+  computeControls(target, plan, pendulum);
+  if (target.method == PlanMethod::Flatness && plan.drive_limit_factor > 1.0) {
+    const auto flatPath = [&](double duration) {
+      plan.load_path = restToRestPath(problem, duration);
+      plan.path = sampleTrajectory(plan.load_path, problem.sample_time);
+      computeControls(target, plan, pendulum);
+      return plan.drive_limit_factor;
+    };
+    const double horizon = plan.load_path.duration();
+    double low = horizon, high = horizon * std::max(1.01, plan.drive_limit_factor);
+    for (double factor = flatPath(high); factor > 1.0; factor = flatPath(high)) low = high, high *= std::max(1.01, factor);
+    while (high - low > 1e-3 * high) {
+      const double middle = 0.5 * (low + high);
+      (flatPath(middle) > 1.0 ? low : high) = middle;
+    }
+    flatPath(high);
+    plan.stretched_from = horizon;
+    say(fmt::format("flatness: the path stretched from {:.4g} s to {:.4g} s to keep the drive limits", horizon, high));
+  }
+  if (target.drive_limits.any())
+    say(fmt::format("drive limits: {} (largest peak / limit, as duration factor: {:.3g})",
+                    plan.drive_limit_factor <= 1.0 ? "kept" : "EXCEEDED by the " + methodName(target.method) + " path",
+                    plan.drive_limit_factor));
+  say(fmt::format("drive peaks (speed / acceleration / jerk): luffing rope {:.3g} m/s / {:.3g} m/s² / {:.3g} m/s³, hoist rope "
+                  "{:.3g} / {:.3g} / {:.3g}",
+                  plan.luffing_peaks.speed, plan.luffing_peaks.acceleration, plan.luffing_peaks.jerk, plan.hoist_peaks.speed,
+                  plan.hoist_peaks.acceleration, plan.hoist_peaks.jerk));
+  if (target.slewing) {
+    constexpr double deg = 180.0 / std::numbers::pi;
+    say(fmt::format("slewing: '{}' turns by {:.4g}° (peaks {:.3g}°/s, {:.3g}°/s², {:.3g}°/s³)", target.slewing->constraint,
+                    target.slewing->turn * deg, plan.slewing_peaks.speed * deg, plan.slewing_peaks.acceleration * deg,
+                    plan.slewing_peaks.jerk * deg));
+  }
   plan.controls_s = secondsSince(t0);
   return plan;
 }
@@ -422,18 +482,21 @@ void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::stri
     }
   }
   v.rms_error = during > 0 ? std::sqrt(sum / during) : 0.0;
+  const Eigen::Vector2d goal = origin + target.trajectory.target.head<2>();
+  const Vec3 goal_point = plan.plane.place(goal.x(), goal.y(), target.slewing ? target.slewing->turn : 0.0);
+  for (std::size_t k = 0; k < v.t.size(); ++k)
+    if (v.t[k] >= motion_end && v.t[k] <= motion_end + 10.0)
+      v.arrival_sway = std::max(v.arrival_sway, (v.simulated[k] - goal_point).head<2>().norm());
   if (!settling.empty()) {
     v.residual_sway = halfHorizontalExtent(settling);
-    const Eigen::Vector2d goal = origin + target.trajectory.target.head<2>();
-    v.final_error = (mean / static_cast<double>(settling.size()) -
-                     plan.plane.place(goal.x(), goal.y(), target.slewing ? target.slewing->turn : 0.0))
-                        .norm();
+    v.final_error = (mean / static_cast<double>(settling.size()) - goal_point).norm();
   }
   plan.verification_s = secondsSince(t0);
   if (log)
     log(fmt::format("verification: {:.1f} s simulated in {:.1f} s; tracking error max {:.3g} m, RMS {:.3g} m; "
-                    "residual sway ±{:.3g} m, final error {:.3g} m",
-                    v.outcome.t_reached, plan.verification_s, v.max_error, v.rms_error, v.residual_sway, v.final_error));
+                    "within 10 s of the arrival ≤ {:.3g} m from the target; residual sway ±{:.3g} m, final error {:.3g} m",
+                    v.outcome.t_reached, plan.verification_s, v.max_error, v.rms_error, v.arrival_sway, v.residual_sway,
+                    v.final_error));
   if (!v.outcome.complete) throw std::runtime_error("verification run stopped: " + v.outcome.message);
 }
 

@@ -110,10 +110,11 @@ Eigen::Vector2d RestToRestPath::derivative(double t, int k) const {
   return (k == 0 ? start_ : Eigen::Vector2d::Zero()) + progress(t, k) * (end_ - start_);
 }
 
-RestToRestPath restToRestPath(const QrProblem& problem) {
-  return RestToRestPath::fitting(problem.start.head<2>(), problem.target.head<2>(), problem.steps * problem.sample_time,
-                                 problem.state_min.tail<2>(), problem.state_max.tail<2>(), problem.control_min,
-                                 problem.control_max);
+RestToRestPath restToRestPath(const QrProblem& problem) { return restToRestPath(problem, problem.steps * problem.sample_time); }
+
+RestToRestPath restToRestPath(const QrProblem& problem, double duration) {
+  return RestToRestPath::fitting(problem.start.head<2>(), problem.target.head<2>(), duration, problem.state_min.tail<2>(),
+                                 problem.state_max.tail<2>(), problem.control_min, problem.control_max);
 }
 
 QrTrajectory sampleTrajectory(const RestToRestPath& path, double sample_time) {

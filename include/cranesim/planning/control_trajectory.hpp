@@ -21,4 +21,12 @@ namespace cranesim {
 TableProfile smoothControlTrajectory(const std::vector<double>& t, const std::vector<double>& y, int points,
                                      int steady_points);
 
+/// The largest |dy/dt|, |d²y/dt²| and |d³y/dt³| of a cubic table (what a drive following it asks
+/// of its winch or motor): per interval exact, the rate being quadratic, its derivative linear
+/// and the jerk constant in t.
+struct RatePeaks {
+  double speed = 0.0, acceleration = 0.0, jerk = 0.0;
+};
+RatePeaks ratePeaks(const TableProfile& spline);
+
 }  // namespace cranesim

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cranesim/math/profile.hpp"
+#include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/planning/input_shaping.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
 #include "cranesim/planning/slewing_plane.hpp"
@@ -48,6 +49,8 @@ struct Verification {
   /// Half the peak-to-peak horizontal motion after the motion (half the largest horizontal
   /// distance between two samples: the sway's amplitude in whichever direction it swings), m.
   double residual_sway = 0.0;
+  /// The largest horizontal distance from the target within 10 s after the planned arrival, m.
+  double arrival_sway = 0.0;
   double final_error = 0.0;                     // mean end point after the motion − target, m
   SimulationOutcome outcome;
 };
@@ -84,6 +87,13 @@ struct QuasiStaticPlan {
   std::vector<double> slewing_angles;
   double slewing_start = 0.0;
   TableProfile slewing_spline;
+  /// What the control splines ask of the drives (planning/control_trajectory.hpp), and the factor
+  /// by which the motion would have to last longer to keep the target's drive limits (≤ 1: kept;
+  /// 0 without limits). Flatness stretches its path to keep them: its duration before, s (0 when
+  /// not stretched).
+  RatePeaks luffing_peaks, hoist_peaks, slewing_peaks;
+  double drive_limit_factor = 0.0;
+  double stretched_from = 0.0;
   double lead_time = 0.0;                  // steady time before the motion in the splines and the simulation
   std::vector<InversionCheck> inversion_checks;
   Verification verification;

@@ -46,9 +46,10 @@ class RestToRestPath {
 };
 
 /// The QR problem's start and target joined by RestToRestPath::fitting over its horizon
-/// (steps · sample_time) within its speed and acceleration bounds (positions: the straight line
-/// between two points inside the state box stays inside it).
+/// (steps · sample_time), or over `duration`, within its speed and acceleration bounds
+/// (positions: the straight line between two points inside the state box stays inside it).
 RestToRestPath restToRestPath(const QrProblem& problem);
+RestToRestPath restToRestPath(const QrProblem& problem, double duration);
 
 /// The path sampled every sample_time over its duration (the last sample at its end) as an
 /// end-point trajectory: exact states; controls the mean accelerations over each interval.

@@ -18,12 +18,37 @@ namespace cranesim {
 /// rest-to-rest path of the load carried by the flat map of its pendulum (DESIGN §16).
 enum class PlanMethod { QuasiStatic, ZV, ZVD, Flatness };
 
+/// The method's name in a target file.
+inline std::string methodName(PlanMethod method) {
+  switch (method) {
+    case PlanMethod::ZV: return "zv";
+    case PlanMethod::ZVD: return "zvd";
+    case PlanMethod::Flatness: return "flatness";
+    case PlanMethod::QuasiStatic: break;
+  }
+  return "quasi_static";
+}
+
 /// A slewing motion planned with the path (issue 20): the revolute constraint about the vertical
 /// that turns the crane, and the angle it turns by from its value at the scene's start.
 struct SlewingSpec {
   std::string constraint;
   double turn = 0.0;  // rad
   SourceLocation where;
+};
+
+/// Limits on what a control's drive may be asked (winch or slewing motor): the peaks of its
+/// control spline's rate, acceleration and jerk (m/s, m/s², m/s³; rad/s, … for the slewing).
+/// Unset: unbounded.
+struct DriveLimits {
+  std::optional<double> speed, acceleration, jerk;
+  bool any() const { return speed || acceleration || jerk; }
+};
+
+struct ControlLimits {
+  DriveLimits luffing, hoist, slewing;
+  SourceLocation where;
+  bool any() const { return luffing.any() || hoist.any() || slewing.any(); }
 };
 
 struct TargetSpec {
@@ -40,6 +65,9 @@ struct TargetSpec {
   SourceLocation where_start, where_target, where_trajectory;
   PlanMethod method = PlanMethod::QuasiStatic;
   std::optional<SlewingSpec> slewing;
+  /// Flatness stretches its path's duration until every control spline keeps these; the other
+  /// methods report whether theirs do.
+  ControlLimits drive_limits;
   int resample_points = 20;  // 6.4: knots taken at equal times from the discrete controls
   int steady_points = 5;     // 6.4: steady-state knots added before and after
   double settle_time = 20.0;  // verification: simulated time after the motion, s
