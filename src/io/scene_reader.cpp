@@ -339,10 +339,23 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
   else keys.insert(keys.end(), {"section", "material"});
   if (m.type == MemberType::Rope) keys.insert(keys.end(), {"length", "transverse_damping"});
   if (m.type == MemberType::StrutTie) keys.insert(keys.end(), {"constant_volume", "smoothing"});
+  if (m.type == MemberType::Timoshenko) keys.push_back("arc");
   f.allowKeys(keys);
   readMemberEnd(f.at("start"), m.start, m.start_joint, m.where_start);
   readMemberEnd(f.at("end"), m.end, m.end_joint, m.where_end);
   m.z_axis = f.vec3("z_axis", Vec3::UnitZ());
+  if (const auto arc = f.find("arc")) {
+    if (f.has("z_axis")) f.at("z_axis").fail("an arc's sections turn their z axis to the arc's axis; give no z_axis");
+    arc->allowKeys({"centre", "axis"});
+    ArcSpec a;
+    a.where = arc->where();
+    a.centre = arc->at("centre").vec3();
+    if (arc->has("axis")) {
+      a.axis = arc->at("axis").vec3();
+      if (!(a.axis.norm() > 0.0)) arc->at("axis").fail("the arc's axis must not be zero");
+    }
+    m.arc = a;
+  }
   if (f.has("segments")) {
     m.segments = f.at("segments").integer();
     if (m.segments < 1 || m.segments > 10000) f.at("segments").fail(fmt::format("must be 1…10000, found {}", m.segments));

@@ -5,11 +5,13 @@
 #include <algorithm>
 
 #include "cranesim/elements/rigid_body.hpp"
+#include "cranesim/elements/rotated_ends.hpp"
 #include "cranesim/elements/spline_beam.hpp"
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/elements/strut_tie.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/rotation.hpp"
+#include "cranesim/model/arc.hpp"
 #include "compile_truss.hpp"
 #include "model_building.hpp"
 
@@ -27,7 +29,38 @@ NodeKind memberNodeKind(MemberType type) {
   return NodeKind::Frame;
 }
 
+/// A timoshenko member along an arc (model/arc.hpp): nodes on the arc with frames along its
+/// tangent, straight elements on the chords turned against them by constant rotations.
+void compileArcMember(Model& model, const MemberSpec& m) {
+  const ArcNodes arc = arcNodes(m.start, m.end, *m.arc, m.segments);
+  std::vector<int> nodes;
+  for (int i = 0; i <= m.segments; ++i) {
+    const int n = model.addNode(fmt::format("{}.n{}", m.name, i), NodeKind::Frame, m.name);
+    const Node& node = model.nodes[n];
+    model.q0.segment<3>(node.q) = arc.positions[i];
+    model.q0.segment<3>(node.q + 3) = rotationVector(arc.frames[i]);
+    model.joints.push_back({node.name, n, Vec3::Zero(), Mat3::Identity()});
+    if (i > 0) model.drawing_lines.push_back({static_cast<int>(model.joints.size()) - 2, static_cast<int>(model.joints.size()) - 1});
+    nodes.push_back(n);
+  }
+  model.joints.push_back({m.name + ".start", nodes.front(), Vec3::Zero(), Mat3::Identity()});
+  model.joints.push_back({m.name + ".end", nodes.back(), Vec3::Zero(), Mat3::Identity()});
+  for (int i = 0; i < m.segments; ++i) {
+    const Vec3 &a = arc.positions[i], &b = arc.positions[i + 1];
+    const Mat3 chord = memberFrame(a, b, arc.frames[i].col(2));
+    TimoshenkoBeamKernel beam;
+    beam.length = (b - a).norm();
+    beam.section = m.section;
+    beam.material = m.material;
+    if (m.quadrature > 0) beam.mass_points = m.quadrature;
+    beam.damping = m.damping;
+    addElement(model, RotatedEndsBeamKernel(beam, arc.frames[i].transpose() * chord, arc.frames[i + 1].transpose() * chord),
+               {nodes[i], nodes[i + 1]});
+  }
+}
+
 void compileMember(Model& model, const MemberSpec& m) {
+  if (m.arc) return compileArcMember(model, m);
   const Mat3 R = memberFrame(m.start, m.end, m.z_axis);
   const Vec3 axis = m.end - m.start;
   const double chord = axis.norm();

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cranesim/model/arc.hpp"
 #include "cranesim/elements/section.hpp"
 #include "cranesim/math/profile.hpp"
 #include "cranesim/math/types.hpp"
@@ -55,6 +56,8 @@ struct MemberSpec {
   std::string start_joint, end_joint;
   SourceLocation where_start, where_end;
   Vec3 z_axis = Vec3::UnitZ();
+  /// A timoshenko member drawn along a circular arc instead of straight (model/arc.hpp).
+  std::optional<ArcSpec> arc;
   int segments = 1;
   int quadrature = 0;  // Gauss points per element; 0: the element's default
   Section section;
