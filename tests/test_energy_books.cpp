@@ -76,7 +76,7 @@ TEST_CASE("Every element kind keeps the books: dqᵀ(M a + F) = dE/dt − P_time
   struct Case {
     const char* config;
     double t, eta;
-    bool reeled;
+    bool reeled, cables = false;  // cables: every rope as two-node cables (element: cable)
   };
   // The crane while both winches reel and the slewing drive turns: super truss booms, the
   // strut-tie stay (with smoothing), ropes, rigid bodies; the beams and trusses of the
@@ -85,14 +85,16 @@ TEST_CASE("Every element kind keeps the books: dqᵀ(M a + F) = dE/dt − P_time
                        Case{"cantilever_timoshenko.yaml", 0.0, 1e-2, false},
                        Case{"cantilever_spline_beam.yaml", 0.0, 1e-2, false},
                        Case{"truss_type2_condensed.yaml", 0.0, 1e-2, false},
-                       Case{"truss_type2_cantilever.yaml", 0.0, 1e-2, false}}) {
+                       Case{"truss_type2_cantilever.yaml", 0.0, 1e-2, false},
+                       Case{"crane_combined.yaml", 25.0, 1e-2, true, true}, Case{"rope_reeling.yaml", 5.0, 1e-2, true, true}}) {
     Scene scene = test::loadScene(c.config);
     for (MemberSpec& m : scene.members) {
       m.damping = c.eta;
       if (m.type == MemberType::StrutTie) m.smoothing = 1e-3;
+      if (c.cables && m.type == MemberType::Rope) m.rope_element = RopeElement::Cable, m.transverse_damping = 0.0;
     }
     const SceneBooks b = sceneBooks(scene, c.t, 1e-6, 0.1, 1e-4);
-    INFO(c.config << ": worst |dqᵀr − (dE/dt − P_time + P_diss)| / scale " << b.worst << "; P_time " << b.time_power
+    INFO(c.config << (c.cables ? " (cables)" : "") << ": worst |dqᵀr − (dE/dt − P_time + P_diss)| / scale " << b.worst << "; P_time " << b.time_power
                   << " W, P_diss " << b.dissipated << " W");
     // A term missing or of the wrong sign shows as ≥ 1e-2. The difference quotient is only
     // first-order accurate where a rope is nearly slack (max(ε, 0)² has a kink in its second
@@ -181,14 +183,16 @@ TEST_CASE("A stretched damped rope dissipates EA η ε̇² per unit length, neve
 }
 
 TEST_CASE("A ball reeled up on a damped rope: the recorded balance closes", "[energy][rope][scenes]") {
+  const bool cable = GENERATE(false, true);  // the spline rope, and the same rope as a two-node cable
   Scene scene = test::loadScene("rope_reeling.yaml");
+  if (cable) scene.members[0].rope_element = RopeElement::Cable;
   scene.solver.rtol = 1e-8;
   scene.solver.atol = AbsoluteTolerance::uniform(1e-10);
   scene.solver.t_end = 4.0;  // at rest, accelerating, reeling at 0.5 m/s
   const test::SimulationRun run(scene);
   REQUIRE(run.outcome.complete);
   const auto& winch = run.recorder.winchWork();
-  INFO("balance drift " << run.recorder.relativeBalanceDrift() << " of " << run.recorder.energyScale()
+  INFO((cable ? "cable: " : "spline rope: ") << "balance drift " << run.recorder.relativeBalanceDrift() << " of " << run.recorder.energyScale()
                         << " J; winch work " << winch.back() << " J, dissipated " << run.recorder.dissipated().back()
                         << " J; steps " << run.outcome.statistics.steps);
   CHECK(run.recorder.relativeBalanceDrift() < 1e-6);

@@ -1,6 +1,6 @@
-// Strut tie (3.2) and cubic spline rope (7.2.1, C.5) kernels: mass, elastic forces against
-// the strain energy, Jacobians against finite differences, energy consistency, tension-only
-// behaviour, and the rope against the elastic catenary.
+// Strut tie (3.2), cubic spline rope (7.2.1, C.5) and two-node cable kernels: mass, elastic
+// forces against the strain energy, Jacobians against finite differences, energy consistency,
+// tension-only behaviour, and the rope against the elastic catenary.
 
 #include <catch2/catch.hpp>
 
@@ -9,6 +9,7 @@
 #include <numbers>
 #include <random>
 
+#include "cranesim/elements/cable.hpp"
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/elements/strut_tie.hpp"
 #include "cranesim/model/kernel_elements.hpp"
@@ -185,6 +186,67 @@ TEST_CASE("Spline rope: constant mass, tension only, energy gradient and Jacobia
   reeled.total_length = Profile(RampProfile{3.0, -0.5, 0.0});
   CHECK(translate.dot(reeled.massMatrix<double>(q, 2.0) * translate) ==
         Approx(k.material.density * k.section.area * 2.0).epsilon(1e-12));
+}
+
+TEST_CASE("Cable: the rod's mass and inertia, tension only, energy gradient, Jacobians, reeling", "[elements][rope][cable]") {
+  CableKernel k;
+  k.total_length = Profile(ConstantProfile{3.0});
+  k.section = Section::circular(0.01, 0.0, 0.3);
+  k.material = {7800.0, 1.0e11, 4.0e10};
+  const double EA = k.material.youngs_modulus * k.section.area, m = k.material.density * k.section.area * 3.0;
+  using V6 = Vq<CableKernel>;
+  V6 q;
+  q << 0, 0, 0, 3.03, 0, 0;  // straight along x, stretched 1 %
+  const Vec3 zero = Vec3::Zero();
+  const auto F = k.force<double>(q, V6::Zero(), 0.0, zero);
+  CHECK(F(0) == Approx(-0.01 * EA).epsilon(1e-12));
+  CHECK(F(3) == Approx(0.01 * EA).epsilon(1e-12));
+  CHECK(k.tension(q, 0.0) == Approx(0.01 * EA).epsilon(1e-12));
+  V6 qc;
+  qc << 0, 0, 0, 2.9, 0, 0;
+  CHECK(k.force<double>(qc, V6::Zero(), 0.0, zero).norm() == 0.0);  // compressed: slack
+  // Mass and rotary inertia of a uniform rod: m for a translation, m ℓ²/12 turning about its centre.
+  const auto M = k.massMatrix<double>(q, 0.0);
+  V6 translate, spin;
+  translate << 1, 0, 0, 1, 0, 0;
+  spin << 0, -1, 0, 0, 1, 0;  // ends moving ±1 m/s across: ω = 2/ℓ about the centre
+  CHECK(translate.dot(M * translate) == Approx(m).epsilon(1e-14));
+  CHECK(0.5 * spin.dot(M * spin) == Approx(0.5 * m * 3.03 * 3.03 / 12 * std::pow(2 / 3.03, 2)).epsilon(1e-12));
+  // Gravity: half the weight on each node.
+  const Vec3 g(0, 0, -9.81);
+  CHECK(k.force<double>(qc, V6::Zero(), 0.0, g)(2) == Approx(0.5 * m * 9.81).epsilon(1e-14));
+  // A general stretched state: forces = the strain energy's gradient; Jacobians by AD and polarization.
+  V6 qb;
+  qb << 0.1, -0.2, 0.3, 1.9, 1.6, -1.2;
+  const auto Fb = k.force<double>(qb, V6::Zero(), 0.0, zero);
+  for (int i = 0; i < 6; ++i) {
+    const double h = 1e-7;
+    V6 qp = qb, qm = qb;
+    qp(i) += h, qm(i) -= h;
+    CHECK(Fb(i) == Approx((k.potentialEnergy(qp, 0.0, zero) - k.potentialEnergy(qm, 0.0, zero)) / (2 * h)).epsilon(1e-6));
+  }
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  V6 v, a;
+  for (int i = 0; i < 6; ++i) v(i) = u(rng), a(i) = u(rng);
+  CableKernel damped = k;
+  damped.damping = 1e-3;
+  damped.total_length = Profile(RampProfile{3.0, -0.5, 0.0});  // reeled in at 0.5 m/s
+  CHECK(jacobianDeviation(k, qb, v, a) < 1e-6);
+  CHECK(jacobianDeviation(damped, qb, v, a) < 1e-6);
+  // Reeled at constant stretch (ℓ/L fixed: the ends close at the reeling rate times the stretch):
+  // the material does not stretch, so damping adds no tension.
+  const double t = 1.0, L = 2.5, stretch = 1.01;
+  V6 qr, vr = V6::Zero();
+  qr << 0, 0, 0, stretch * L, 0, 0;
+  vr(3) = -0.5 * stretch;
+  CableKernel undamped = damped;
+  undamped.damping = 0.0;
+  CHECK(damped.force<double>(qr, vr, t, zero)(3) == Approx(0.01 * EA).epsilon(1e-10));
+  CHECK(damped.force<double>(qr, vr, t, zero)(3) == Approx(undamped.force<double>(qr, vr, t, zero)(3)).epsilon(1e-12));
+  CHECK(damped.dissipatedPower(qr, vr, t, zero) == Approx(0.0).margin(1e-9));
+  // The mass follows the unstretched length: ρA L(t).
+  CHECK(translate.dot(damped.massMatrix<double>(qr, t) * translate) == Approx(m * L / 3.0).epsilon(1e-14));
 }
 
 TEST_CASE("A rope hanging between two points takes the elastic catenary", "[elements][rope][statics]") {

@@ -1,3 +1,4 @@
+#include "cranesim/elements/cable.hpp"
 #include "cranesim/elements/rigid_body.hpp"
 #include "cranesim/elements/rotated_ends.hpp"
 #include "cranesim/elements/spline_beam.hpp"
@@ -22,6 +23,10 @@ std::unique_ptr<Element> makeElement(StrutTieKernel kernel, std::vector<int> nod
 
 std::unique_ptr<Element> makeElement(SplineRopeKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices) {
   return std::make_unique<KernelElement<SplineRopeKernel>>(std::move(kernel), std::move(nodes), std::move(q_indices), std::move(v_indices));
+}
+
+std::unique_ptr<Element> makeElement(CableKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices) {
+  return std::make_unique<KernelElement<CableKernel>>(std::move(kernel), std::move(nodes), std::move(q_indices), std::move(v_indices));
 }
 
 std::unique_ptr<Element> makeElement(TimoshenkoBeamKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices) {

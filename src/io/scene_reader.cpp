@@ -337,7 +337,7 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
   std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "damping"};
   if (m.type == MemberType::Truss) keys.insert(keys.end(), {"truss", "fidelity", "element"});
   else keys.insert(keys.end(), {"section", "material"});
-  if (m.type == MemberType::Rope) keys.insert(keys.end(), {"length", "transverse_damping"});
+  if (m.type == MemberType::Rope) keys.insert(keys.end(), {"length", "transverse_damping", "element"});
   if (m.type == MemberType::StrutTie) keys.insert(keys.end(), {"constant_volume", "smoothing"});
   if (m.type == MemberType::Timoshenko) keys.push_back("arc");
   f.allowKeys(keys);
@@ -366,7 +366,14 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
       f.at("quadrature").fail(fmt::format("Gauss points must be 1…{}, found {}", kMaxGaussPoints, m.quadrature));
   }
   if (const auto d = f.find("damping")) m.damping = d->nonNegative();
+  if (m.type == MemberType::Rope)
+    if (const auto e = f.find("element"))
+      m.rope_element = e->choice({"spline", "cable"}) == "cable" ? RopeElement::Cable : RopeElement::Spline;
+  if (m.rope_element == RopeElement::Cable && f.has("quadrature"))
+    f.at("quadrature").fail("a cable (element: cable) is integrated exactly: it takes no quadrature");
   if (const auto c = f.find("transverse_damping")) {
+    if (m.rope_element == RopeElement::Cable)
+      c->fail("a cable (element: cable) is straight: it has no sideways vibration to damp");
     m.transverse_damping = c->nonNegative();
     // It damps the turning of the centre line against each element's chord: on one element,
     // the rope's sideways vibration; on several, only what bends within each element, a

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "cranesim/elements/cable.hpp"
 #include "cranesim/elements/rigid_body.hpp"
 #include "cranesim/elements/rotated_ends.hpp"
 #include "cranesim/elements/spline_beam.hpp"
@@ -18,8 +19,9 @@
 namespace cranesim {
 namespace {
 
-NodeKind memberNodeKind(MemberType type) {
-  switch (type) {
+NodeKind memberNodeKind(const MemberSpec& m) {
+  if (m.type == MemberType::Rope && m.rope_element == RopeElement::Cable) return NodeKind::Point;
+  switch (m.type) {
     case MemberType::StrutTie: return NodeKind::Point;
     case MemberType::Timoshenko: return NodeKind::Frame;
     case MemberType::SplineBeam: return NodeKind::FrameStretch;
@@ -67,7 +69,7 @@ void compileMember(Model& model, const MemberSpec& m) {
   const double unstretched = m.length ? (*m.length)(model.solver.t_start) : chord;
   if (!(unstretched > 0.0)) throw SceneError(m.where, "the rope's unstretched length must be positive");
   if (m.length) model.parameter_profiles.push_back(*m.length);
-  const NodeKind kind = memberNodeKind(m.type);
+  const NodeKind kind = memberNodeKind(m);
   std::vector<int> nodes;
   for (int i = 0; i <= m.segments; ++i) {
     const int n = model.addNode(fmt::format("{}.n{}", m.name, i), kind, m.name);
@@ -98,6 +100,16 @@ void compileMember(Model& model, const MemberSpec& m) {
         break;
       }
       case MemberType::Rope: {
+        if (m.rope_element == RopeElement::Cable) {
+          CableKernel k;
+          k.total_length = m.length ? *m.length : Profile(ConstantProfile{chord});
+          k.segments = m.segments;
+          k.section = m.section;
+          k.material = m.material;
+          k.damping = m.damping;
+          addElement(model, k, pair);
+          break;
+        }
         SplineRopeKernel k;
         k.total_length = m.length ? *m.length : Profile(ConstantProfile{chord});
         k.segments = m.segments;

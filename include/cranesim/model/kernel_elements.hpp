@@ -14,6 +14,7 @@ namespace cranesim {
 struct RigidBodyKernel;
 struct StrutTieKernel;
 struct SplineRopeKernel;
+struct CableKernel;
 struct TimoshenkoBeamKernel;
 struct RotatedEndsBeamKernel;
 struct SplineBeamKernel;
@@ -24,6 +25,7 @@ struct CondensedTrussKernel;
 std::unique_ptr<Element> makeElement(RigidBodyKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);
 std::unique_ptr<Element> makeElement(StrutTieKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);
 std::unique_ptr<Element> makeElement(SplineRopeKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);
+std::unique_ptr<Element> makeElement(CableKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);
 std::unique_ptr<Element> makeElement(TimoshenkoBeamKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);
 std::unique_ptr<Element> makeElement(RotatedEndsBeamKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);
 std::unique_ptr<Element> makeElement(SplineBeamKernel kernel, std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);

@@ -40,6 +40,10 @@ enum class MemberType { StrutTie, Timoshenko, SplineBeam, Rope, Truss };
 /// an equivalent Timoshenko beam, or every tube its own beam.
 enum class TrussFidelity { SuperTruss, Condensed, Beam, Members };
 
+/// How a rope is modelled: cubic spline elements (sag, string vibration) or straight two-node
+/// cables (elements/cable.hpp).
+enum class RopeElement { Spline, Cable };
+
 /// A flexible member: a straight line of `segments` elements from `start` to `end`, with nodes
 /// `<name>.n0 … <name>.n<segments>` (joints of the same names; `<name>.start`, `<name>.end`
 /// name the end nodes). Section axes: x along the member, z towards `z_axis`.
@@ -67,6 +71,7 @@ struct MemberSpec {
   double smoothing = 0.0;         // strut tie: smoothing factor h (3-16)
   double damping = 0.0;           // Kelvin–Voigt retardation time η of the material, s (0: undamped)
   double transverse_damping = 0.0;  // rope: damping of its sideways turning against its chords, N·s
+  RopeElement rope_element = RopeElement::Spline;
   std::string truss;              // truss: the truss type's name
   TrussFidelity fidelity = TrussFidelity::Members;
   MemberType tube_element = MemberType::Timoshenko;  // truss with fidelity Members: the tubes' beam element
