@@ -5,6 +5,10 @@ Top: every beam's axial force over time (the mean of its two ends), the most pul
 most pressed beams named. Bottom: the range of each beam's axial force over the run, in the
 order the results file lists them. Prints the extremes with their beams and times.
 
+A rope listed there records its tension along its elements instead: top, the tension at its two
+ends and its least along it over time (0: slack somewhere); bottom, the range of the tension
+along the rope over the run. Prints the largest tension, where and when, and the slack time.
+
 Example:
 
     crane-sim run my_crane.yaml -o lift.h5      # with output: {section_forces: [boom3]}
@@ -46,15 +50,48 @@ def member_name(results: Results, requested: str | None) -> str:
     return members[0]
 
 
+def plot_rope(path: Path, member: str, time: np.ndarray, tension: np.ndarray, status: str, output: str | None) -> None:
+    """Tension along a rope: (samples, elements, points) from its start to its end."""
+    samples, elements, points = tension.shape
+    along = (np.arange(elements)[:, None] + np.linspace(0.0, 1.0, points)[None, :]).ravel()  # element units
+    flat = tension.reshape(samples, elements * points)
+    figure, (history, envelope) = plt.subplots(2, 1, figsize=(10, 7.5))
+    history.plot(time, flat[:, 0] / 1e3, label=f"{member}.start")
+    history.plot(time, flat[:, -1] / 1e3, label=f"{member}.end")
+    history.plot(time, flat.min(axis=1) / 1e3, color="0.5", linewidth=0.8, label="least along the rope")
+    history.set_xlabel("time [s]")
+    history.set_ylabel(f"{member}: tension [kN]")
+    history.legend(fontsize="small")
+    envelope.fill_between(along, flat.min(axis=0) / 1e3, flat.max(axis=0) / 1e3, color="tab:red", alpha=0.4)
+    envelope.plot(along, flat[-1] / 1e3, color="tab:red", linewidth=1, label=f"at t = {time[-1]:.4g} s")
+    envelope.set_xlabel(f"along {member} [elements, from its start]")
+    envelope.set_ylabel("tension over the run [kN]")
+    envelope.legend(fontsize="small")
+    for axes in (history, envelope):
+        axes.grid(True, alpha=0.3)
+    figure.suptitle(path.name if status == "complete" else f"{path.name} ({status})")
+    figure.tight_layout()
+    target = Path(output) if output else path.with_name(f"{path.stem}_{member}_forces.png")
+    figure.savefig(target, dpi=100)
+    sample, point = np.unravel_index(int(np.argmax(flat)), flat.shape)
+    slack = (flat.min(axis=1) <= 0.0)[:-1] @ np.diff(time) if samples > 1 else 0.0
+    print(f"largest tension: {flat[sample, point]:.6g} N at {along[point]:.3g} elements along {member}, t = {time[sample]:.6g} s")
+    print(f"slack somewhere along {member} for {slack:.6g} s")
+    print(f"wrote {target}")
+
+
 def main() -> None:
     args = parse_arguments()
     path = Path(args.results)
     with Results(path) as results:
         member = member_name(results, args.member)
         time = results.sampled_time()
+        status = results.status
+        if results.has(f"section_forces/{member}/tension"):
+            plot_rope(path, member, time, results.get(f"section_forces/{member}/tension"), status, args.output)
+            return
         forces = results.get(f"section_forces/{member}/forces")  # (samples, beams, 12)
         nodes = results.names(f"/section_forces/{member}/element_nodes")
-        status = results.status
     axial = forces[:, :, [0, 6]]  # N at end 1 and end 2
     labels = [f"{a} – {b}" for a, b in nodes]
     tension = axial.max(axis=(0, 2))

@@ -83,9 +83,14 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
   const ElementInput in{q, v, motion.a.data(), t, model.gravity};
   for (std::size_t g = 0; g < model.section_force_groups.size(); ++g)
     for (const int e : model.section_force_groups[g].elements) {
-      double forces[12];
-      model.elements[e]->sectionForces(in, forces);
-      append(section_forces_[g], forces, 12);
+      double forces[std::max(12, kTensionPoints)];
+      if (model.section_force_groups[g].rope) {
+        model.elements[e]->tensions(in, forces);
+        append(section_forces_[g], forces, kTensionPoints);
+      } else {
+        model.elements[e]->sectionForces(in, forces);
+        append(section_forces_[g], forces, 12);
+      }
     }
   if (model.m > 0) {
     residual_position_.push_back(C.phi.cwiseAbs().maxCoeff());
@@ -116,7 +121,7 @@ double ResultsRecorder::estimatedBytes(const Model& model, double samples) {
   // velocity, every joint's position and rotation, time, energies and residuals (10 numbers),
   // the recorded section forces; twice: recorded, then the file's image.
   double section_forces = 0.0;
-  for (const Model::SectionForceGroup& g : model.section_force_groups) section_forces += 12.0 * g.elements.size();
+  for (const Model::SectionForceGroup& g : model.section_force_groups) section_forces += (g.rope ? kTensionPoints : 12.0) * g.elements.size();
   const double per_sample =
       8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 10.0 + section_forces);
   return 2.0 * per_sample * samples;
@@ -210,7 +215,10 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
       std::vector<std::string> nodes;
       for (const int e : group.elements)
         for (const int n : model.elements[e]->nodes()) nodes.push_back(model.nodes[n].name);
-      file.writeDoubles(path + "/forces", {N, hsize_t(group.elements.size()), 12}, section_forces_[g].data());
+      if (group.rope)
+        file.writeDoubles(path + "/tension", {N, hsize_t(group.elements.size()), hsize_t(kTensionPoints)}, section_forces_[g].data());
+      else
+        file.writeDoubles(path + "/forces", {N, hsize_t(group.elements.size()), 12}, section_forces_[g].data());
       file.writeStrings(path + "/element_nodes", {group.elements.size(), 2}, nodes);
     }
     file.writeDoubles("/residual/position", {N}, residual_position_.data());

@@ -460,10 +460,10 @@ LoadSpec readLoad(const YamlField& f) {
   return l;
 }
 
-/// `output.section_forces`: names of members made of beams.
+/// `output.section_forces`: names of members made of beams, or of ropes (their tensions).
 std::vector<std::string> readSectionForceMembers(const YamlField& f, const std::vector<MemberSpec>& members) {
   const auto hasBeams = [](const MemberSpec& m) {
-    return m.type == MemberType::Timoshenko ||
+    return m.type == MemberType::Timoshenko || m.type == MemberType::Rope ||
            (m.type == MemberType::Truss && (m.fidelity == TrussFidelity::Members || m.fidelity == TrussFidelity::Beam));
   };
   std::string eligible;
@@ -474,8 +474,8 @@ std::vector<std::string> readSectionForceMembers(const YamlField& f, const std::
     const std::string name = item.text();
     const auto m = std::find_if(members.begin(), members.end(), [&](const MemberSpec& spec) { return spec.name == name; });
     if (m == members.end() || !hasBeams(*m))
-      item.fail(fmt::format("{} '{}': section forces are recorded for timoshenko members and trusses of fidelity members "
-                            "or beam (here: {})", m == members.end() ? "no member" : "no beams in member", name,
+      item.fail(fmt::format("{} '{}': section forces are recorded for timoshenko members, ropes and trusses of fidelity "
+                            "members or beam (here: {})", m == members.end() ? "no member" : "no beams in member", name,
                             eligible.empty() ? "none" : eligible));
     if (std::find(names.begin(), names.end(), name) != names.end()) item.fail(fmt::format("'{}' is listed twice", name));
     names.push_back(name);

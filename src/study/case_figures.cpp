@@ -2,12 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 
 #include "cranesim/assembly/assembler.hpp"
-#include "cranesim/elements/cable.hpp"
-#include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/model/element.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
@@ -96,38 +93,32 @@ std::vector<double> tippingMoments(const FigureSpec& fig, const Model& model, co
   return moments;
 }
 
-/// Whether some point of a rope element carries no tension at sample s: its axial force at 9
-/// points (ends included).
-template <class Kernel>
-bool slackAt(const KernelElement<Kernel>& e, const std::vector<std::vector<double>>& columns, std::size_t s, double t) {
-  Eigen::Matrix<double, Kernel::kNq, 1> q;
-  for (int k = 0; k < Kernel::kNq; ++k) q(k) = columns[e.coordinateIndices()[k]][s];
-  for (int i = 0; i <= 8; ++i)
-    if (e.kernel().tension(q, t, i / 8.0) <= 0.0) return true;
-  return false;
-}
-
 /// The time within the window during which some point of the rope carries no tension (its
-/// spline or cable elements), every sample standing for the interval to the next (the window's
-/// last sample for none).
+/// elements' tensions at kTensionPoints points each, element.hpp), every sample standing for the
+/// interval to the next (the window's last sample for none).
 double slackTime(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder,
                  const std::vector<std::size_t>& window) {
+  std::vector<const Element*> elements;
+  double tension[kTensionPoints];
+  const VecX zero = VecX::Zero(model.nv);
+  for (const auto& e : model.elements)
+    if (model.nodes[e->nodes().front()].member == fig.rope &&
+        e->tensions({model.q0.data(), zero.data(), zero.data(), 0.0, model.gravity}, tension))
+      elements.push_back(e.get());
   std::vector<std::vector<double>> columns(model.nq);
   for (int k = 0; k < model.nq; ++k) columns[k] = recorder.stateColumn(k);
-  std::vector<std::function<bool(std::size_t, double)>> elements;
-  for (const auto& e : model.elements) {
-    if (model.nodes[e->nodes().front()].member != fig.rope) continue;
-    if (const auto* rope = dynamic_cast<const KernelElement<SplineRopeKernel>*>(e.get()))
-      elements.push_back([&, rope](std::size_t s, double t) { return slackAt(*rope, columns, s, t); });
-    else if (const auto* cable = dynamic_cast<const KernelElement<CableKernel>*>(e.get()))
-      elements.push_back([&, cable](std::size_t s, double t) { return slackAt(*cable, columns, s, t); });
-  }
+  VecX q(model.nq);
   double slack = 0.0;
   for (std::size_t w = 0; w + 1 < window.size(); ++w) {
     const std::size_t s = window[w];
     const double t = recorder.time()[s];
-    if (std::any_of(elements.begin(), elements.end(), [&](const auto& slack_at) { return slack_at(s, t); }))
-      slack += recorder.time()[window[w + 1]] - t;
+    for (int k = 0; k < model.nq; ++k) q(k) = columns[k][s];
+    const ElementInput in{q.data(), zero.data(), zero.data(), t, model.gravity};
+    const bool somewhere = std::any_of(elements.begin(), elements.end(), [&](const Element* e) {
+      e->tensions(in, tension);
+      return *std::min_element(tension, tension + kTensionPoints) <= 0.0;
+    });
+    if (somewhere) slack += recorder.time()[window[w + 1]] - t;
   }
   return slack;
 }

@@ -450,3 +450,41 @@ def test_a_run_killed_outright_leaves_its_last_checkpoint(tmp_path: Path):
                             text=True, timeout=60)
     assert report.returncode == 0, report.stderr
     assert "status: incomplete" in report.stdout
+
+
+def test_rope_tensions_are_recorded_along_the_rope(tmp_path: Path):
+    """A rope under output.section_forces records its tension at 9 points of every element:
+    rope_pendulum.yaml's ball (1 t) hanging still below its 10 m steel rope as two cables, then as
+    the spline rope: (m + ρA s) g at s m of unstretched rope above the ball, read and plotted."""
+    for element in ("cable", "spline"):
+        scene = tmp_path / f"hanging_{element}.yaml"
+        scene.write_text(f"""base: {SOURCE_DIR / 'configs' / 'rope_pendulum.yaml'}
+name: ball hanging still
+modify:
+  bodies.ball.position: [0, 0, -10.0079]
+  members.rope.end: [0, 0, -10.0079]
+  members.rope.element: {element}
+  members.rope.segments: 2
+  solver.t_end: 0.1
+  solver.initial_state: equilibrium
+  output.interval: 0.05
+  output.section_forces: [rope]
+""", encoding="utf-8")
+        out = tmp_path / f"hanging_{element}.h5"
+        result = subprocess.run([str(BINARY), "run", str(scene), "-o", str(out), "--quiet"], capture_output=True, text=True,
+                                timeout=120)
+        assert result.returncode == 0, result.stderr
+        with h5py.File(out, "r") as f:
+            tension = f["section_forces/rope/tension"][...]
+            nodes = f["section_forces/rope/element_nodes"][...].astype(str)
+        assert tension.shape == (3, 2, 9)
+        assert [list(n) for n in nodes] == [["rope.n0", "rope.n1"], ["rope.n1", "rope.n2"]]
+        rope_mass_per_m, g = 7800 * math.pi * 0.01**2, 9.81
+        top = (1000 + rope_mass_per_m * (7.5 if element == "cable" else 10.0)) * g   # cables: below the top element's middle
+        bottom = (1000 + rope_mass_per_m * (2.5 if element == "cable" else 0.0)) * g
+        assert tension[-1, 0, 0] == pytest.approx(top, rel=1e-6)
+        assert tension[-1, -1, -1] == pytest.approx(bottom, rel=1e-6)
+        plot = subprocess.run(["python3", str(SOURCE_DIR / "scripts" / "plot_section_forces.py"), str(out), "--member", "rope",
+                               "-o", str(tmp_path / f"{element}.png")], capture_output=True, text=True, timeout=120)
+        assert plot.returncode == 0, plot.stderr
+        assert "slack somewhere along rope for 0 s" in plot.stdout

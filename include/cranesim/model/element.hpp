@@ -48,6 +48,10 @@
 
 namespace cranesim {
 
+/// Points at which a rope element reports its tension: equally spaced over the element, ends
+/// included.
+inline constexpr int kTensionPoints = 9;
+
 /// Global state vectors an element reads its local coordinates from.
 struct ElementInput {
   const double* q;   // generalized coordinates
@@ -93,6 +97,9 @@ class Element {
   /// A beam's section forces [N, V_y, V_z, T, M_y, M_z] at its two ends (12 values, N, N·m) in
   /// its co-rotated frame, at (q, dq, d(dq)/dt); false for an element that is no beam.
   virtual bool sectionForces(const ElementInput&, double*) const { return false; }
+  /// A rope's axial force (elastic, N ≥ 0) at kTensionPoints points of the element at (q, t);
+  /// false for an element that is no rope.
+  virtual bool tensions(const ElementInput&, double*) const { return false; }
 };
 
 /// A kernel that computes M(q) a + F(q, dq, t) in one call.
@@ -132,6 +139,12 @@ template <class K>
 concept SectionForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
                                       const Eigen::Matrix<double, K::kNv, 1>& v, const Vec3& g) {
   { k.sectionForces(q, v, v, g) } -> std::convertible_to<Eigen::Matrix<double, 12, 1>>;
+};
+
+/// A rope kernel that reports its tension at ξ ∈ [0, 1].
+template <class K>
+concept TensionKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q) {
+  { k.tension(q, 0.0, 0.5) } -> std::convertible_to<double>;
 };
 
 template <class K>
@@ -229,6 +242,15 @@ template <class Kernel> class KernelElement final : public Element {
     if constexpr (SectionForceKernel<Kernel>) {
       Eigen::Map<Eigen::Matrix<double, 12, 1>> forces(out);
       forces = kernel_.sectionForces(gatherQ(in.q), gatherV(in.v), gatherV(in.a), in.gravity);
+      return true;
+    }
+    return false;
+  }
+
+  bool tensions(const ElementInput& in, double* out) const override {
+    if constexpr (TensionKernel<Kernel>) {
+      const Qd q = gatherQ(in.q);
+      for (int i = 0; i < kTensionPoints; ++i) out[i] = kernel_.tension(q, in.t, static_cast<double>(i) / (kTensionPoints - 1));
       return true;
     }
     return false;

@@ -100,10 +100,12 @@ struct Model {
   VecX q0, v0;  // initial state as given by the scene
   SolverSpec solver;
   OutputSpec output;
-  /// The beam elements of each member in output.section_forces, in that order.
+  /// The beam elements of each member in output.section_forces, in that order, or a rope's
+  /// elements (their tensions at kTensionPoints points each).
   struct SectionForceGroup {
     std::string member;
     std::vector<int> elements;
+    bool rope = false;
   };
   std::vector<SectionForceGroup> section_force_groups;
 
