@@ -143,7 +143,7 @@ void writePath(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& 
   if (target.slewing) {
     file.attribute("/path", "slewing_constraint", target.slewing->constraint);
     file.attribute("/path", "slewing_turn_deg", target.slewing->turn * 180.0 / std::numbers::pi);
-    file.attribute("/path", "slewing_start_deg", plan.slewing_start * 180.0 / std::numbers::pi);
+    file.attribute("/path", "slewing_start_deg", target.slewing->start * 180.0 / std::numbers::pi);
   }
   if (!plan.shaper.times.empty()) {
     writeVector(file, "/path/impulse_times", plan.shaper.times);

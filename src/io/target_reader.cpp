@@ -81,6 +81,7 @@ SlewingSpec readSlewing(const YamlField& f, const Scene& scene) {
   if (c == scene.constraints.end()) name.fail(fmt::format("the scene has no constraint '{}'", s.constraint));
   if (c->type != ConstraintType::Revolute || !c->drive)
     name.fail(fmt::format("'{}' is no driven revolute constraint: the slewing needs one (type: revolute, with a drive)", s.constraint));
+  s.start = (*c->drive)(scene.solver.t_start);
   const Model model = compileModel(scene);
   const Constraint& compiled = *std::find_if(model.constraints.begin(), model.constraints.end(),
                                              [&](const Constraint& k) { return k.name == s.constraint; });

@@ -31,38 +31,33 @@ NodeKind memberNodeKind(const MemberSpec& m) {
   return NodeKind::Frame;
 }
 
-/// A timoshenko member along an arc (model/arc.hpp): nodes on the arc with frames along its
-/// tangent, straight elements on the chords turned against them by constant rotations.
-void compileArcMember(Model& model, const MemberSpec& m) {
-  const ArcNodes arc = arcNodes(m.start, m.end, *m.arc, m.segments);
-  std::vector<int> nodes;
-  for (int i = 0; i <= m.segments; ++i) {
-    const int n = model.addNode(fmt::format("{}.n{}", m.name, i), NodeKind::Frame, m.name);
-    const Node& node = model.nodes[n];
-    model.q0.segment<3>(node.q) = arc.positions[i];
-    model.q0.segment<3>(node.q + 3) = rotationVector(arc.frames[i]);
-    model.joints.push_back({node.name, n, Vec3::Zero(), Mat3::Identity()});
-    if (i > 0) model.drawing_lines.push_back({static_cast<int>(model.joints.size()) - 2, static_cast<int>(model.joints.size()) - 1});
-    nodes.push_back(n);
-  }
-  model.joints.push_back({m.name + ".start", nodes.front(), Vec3::Zero(), Mat3::Identity()});
-  model.joints.push_back({m.name + ".end", nodes.back(), Vec3::Zero(), Mat3::Identity()});
-  for (int i = 0; i < m.segments; ++i) {
-    const Vec3 &a = arc.positions[i], &b = arc.positions[i + 1];
-    const Mat3 chord = memberFrame(a, b, arc.frames[i].col(2));
-    TimoshenkoBeamKernel beam;
-    beam.length = (b - a).norm();
-    beam.section = m.section;
-    beam.material = m.material;
-    if (m.quadrature > 0) beam.mass_points = m.quadrature;
-    beam.damping = m.damping;
-    addElement(model, RotatedEndsBeamKernel(beam, arc.frames[i].transpose() * chord, arc.frames[i + 1].transpose() * chord),
-               {nodes[i], nodes[i + 1]});
-  }
+/// The Timoshenko beam of one element of length `length` of a member.
+TimoshenkoBeamKernel timoshenkoBeam(const MemberSpec& m, double length) {
+  TimoshenkoBeamKernel k;
+  k.length = length;
+  k.section = m.section;
+  k.material = m.material;
+  if (m.quadrature > 0) k.mass_points = m.quadrature;
+  k.damping = m.damping;
+  return k;
 }
 
+/// A rope kernel (spline or cable) with the member's reeled length, section and damping.
+template <class Kernel> Kernel ropeKernel(const MemberSpec& m, double chord) {
+  Kernel k;
+  k.total_length = m.length ? *m.length : Profile(ConstantProfile{chord});
+  k.segments = m.segments;
+  k.section = m.section;
+  k.material = m.material;
+  k.damping = m.damping;
+  return k;
+}
+
+/// A member's nodes and elements: a straight line of elements from start to end, or for a
+/// timoshenko member along an arc (model/arc.hpp) nodes on the arc with frames along its tangent
+/// and straight elements on the chords, turned against them by constant rotations.
 void compileMember(Model& model, const MemberSpec& m) {
-  if (m.arc) return compileArcMember(model, m);
+  const ArcNodes arc = m.arc ? arcNodes(m.start, m.end, *m.arc, m.segments) : ArcNodes{};
   const Mat3 R = memberFrame(m.start, m.end, m.z_axis);
   const Vec3 axis = m.end - m.start;
   const double chord = axis.norm();
@@ -74,8 +69,8 @@ void compileMember(Model& model, const MemberSpec& m) {
   for (int i = 0; i <= m.segments; ++i) {
     const int n = model.addNode(fmt::format("{}.n{}", m.name, i), kind, m.name);
     const Node& node = model.nodes[n];
-    model.q0.segment<3>(node.q) = m.start + (static_cast<double>(i) / m.segments) * axis;
-    if (node.hasRotation()) model.q0.segment<3>(node.q + 3) = rotationVector(R);
+    model.q0.segment<3>(node.q) = m.arc ? arc.positions[i] : Vec3(m.start + (static_cast<double>(i) / m.segments) * axis);
+    if (node.hasRotation()) model.q0.segment<3>(node.q + 3) = rotationVector(m.arc ? arc.frames[i] : R);
     if (kind == NodeKind::FrameStretch) model.q0(node.q + 6) = 1.0;
     if (kind == NodeKind::PointSlope) model.q0.segment<3>(node.q + 3) = axis / unstretched;  // r' = dr/ds
     model.joints.push_back({node.name, n, Vec3::Zero(), Mat3::Identity()});
@@ -101,34 +96,26 @@ void compileMember(Model& model, const MemberSpec& m) {
       }
       case MemberType::Rope: {
         if (m.rope_element == RopeElement::Cable) {
-          CableKernel k;
-          k.total_length = m.length ? *m.length : Profile(ConstantProfile{chord});
-          k.segments = m.segments;
-          k.section = m.section;
-          k.material = m.material;
-          k.damping = m.damping;
-          addElement(model, k, pair);
+          addElement(model, ropeKernel<CableKernel>(m, chord), pair);
           break;
         }
-        SplineRopeKernel k;
-        k.total_length = m.length ? *m.length : Profile(ConstantProfile{chord});
-        k.segments = m.segments;
+        SplineRopeKernel k = ropeKernel<SplineRopeKernel>(m, chord);
         k.transverse_damping = m.transverse_damping;
-        k.section = m.section;
-        k.material = m.material;
         if (m.quadrature > 0) k.rule = gaussLegendre(m.quadrature);
-        k.damping = m.damping;
         addElement(model, k, pair);
         break;
       }
       case MemberType::Timoshenko: {
-        TimoshenkoBeamKernel k;
-        k.length = segment;
-        k.section = m.section;
-        k.material = m.material;
-        if (m.quadrature > 0) k.mass_points = m.quadrature;
-        k.damping = m.damping;
-        addElement(model, k, pair);
+        if (m.arc) {
+          const Vec3 &a = arc.positions[i], &b = arc.positions[i + 1];
+          const Mat3 along_chord = memberFrame(a, b, arc.frames[i].col(2));
+          addElement(model,
+                     RotatedEndsBeamKernel(timoshenkoBeam(m, (b - a).norm()), arc.frames[i].transpose() * along_chord,
+                                           arc.frames[i + 1].transpose() * along_chord),
+                     pair);
+          break;
+        }
+        addElement(model, timoshenkoBeam(m, segment), pair);
         break;
       }
       case MemberType::SplineBeam: {

@@ -258,7 +258,7 @@ void computeControls(const TargetSpec& target, QuasiStaticPlan& plan, const Effe
     hoist.push_back(c.hoist_length);
     if (target.slewing) {
       plan.slewing_angles.push_back(phi);
-      slewing.push_back(plan.slewing_start + phi);
+      slewing.push_back(target.slewing->start + phi);
     }
   }
   plan.luffing_spline = smoothControlTrajectory(plan.path.t, luffing, target.resample_points, target.steady_points);
@@ -384,11 +384,6 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   // limits: rates scale as 1/T, accelerations 1/T², jerks 1/T³ (were the path's shape kept), so
   // the duration grows by the limits' factor until they hold, and is bisected back to 0.1 %.
   t0 = Clock::now();
-  if (target.slewing) {
-    const auto& spec = *std::find_if(target.scene.constraints.begin(), target.scene.constraints.end(),
-                                     [&](const ConstraintSpec& c) { return c.name == target.slewing->constraint; });
-    plan.slewing_start = (*spec.drive)(target.scene.solver.t_start);
-  }
   computeControls(target, plan, pendulum);
   if (target.method == PlanMethod::Flatness && plan.drive_limit_factor > 1.0) {
     const auto flatPath = [&](double duration) {

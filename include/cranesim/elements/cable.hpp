@@ -21,32 +21,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cranesim/elements/reeled_length.hpp"
 #include "cranesim/elements/section.hpp"
-#include "cranesim/math/autodiff.hpp"
-#include "cranesim/math/profile.hpp"
 
 namespace cranesim {
 
-struct CableKernel {
+struct CableKernel : ReeledLength {
   static constexpr int kNq = 6;
   static constexpr int kNv = 6;
   template <class S> using Q = Eigen::Matrix<S, 6, 1>;
 
-  Profile total_length = Profile(ConstantProfile{1.0});  // unstretched length of the whole rope
-  int segments = 1;                                        // elements the rope is divided into
   Section section;
   Material material;
   double damping = 0.0;  // Kelvin–Voigt retardation time η, s
-
-  double segmentLength(double t) const { return total_length(t) / segments; }
-
-  /// L̇ = d/dt length(t)/segments, exact: forward AD through the profile; one-sided at a
-  /// breakpoint, or 0 with the length held (statics).
-  double segmentRate(double t, ParameterRates rates = ParameterRates::Left) const {
-    if (rates == ParameterRates::Held) return 0.0;
-    const Limit side = rates == ParameterRates::Right ? Limit::Right : Limit::Left;
-    return total_length(seeded<double, 1>(t, 0), side).derivatives()(0) / segments;
-  }
 
   template <class S> Eigen::Matrix<S, 6, 6> massMatrix(const Q<S>&, double t) const {
     const double m = material.density * section.area * segmentLength(t);

@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cranesim/elements/reeled_length.hpp"
 #include "cranesim/elements/section.hpp"
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
@@ -36,20 +37,16 @@
 
 namespace cranesim {
 
-struct SplineRopeKernel {
+struct SplineRopeKernel : ReeledLength {
   static constexpr int kNq = 12;
   static constexpr int kNv = 12;
   template <class S> using Q = Eigen::Matrix<S, 12, 1>;
 
-  Profile total_length = Profile(ConstantProfile{1.0});  // unstretched length of the whole rope
-  int segments = 1;                                        // elements the rope is divided into
   Section section;
   Material material;
   GaussRule rule = gaussLegendre(4);
   double damping = 0.0;  // Kelvin–Voigt retardation time η, s
   double transverse_damping = 0.0;  // c, N·s (see the file comment)
-
-  double segmentLength(double t) const { return total_length(t) / segments; }
 
   template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const Q<S>&, double t) const {
     const double L = segmentLength(t), rhoA = material.density * section.area;
@@ -101,14 +98,6 @@ struct SplineRopeKernel {
       U += rule.weight[g] * L * (0.5 * EA * strain * strain - rhoA * gravity.dot(shape(b.N) * q));
     }
     return U;
-  }
-
-  /// L̇ = d/dt length(t)/segments, exact: forward AD through the profile; one-sided at a
-  /// breakpoint, or 0 with the length held.
-  double segmentRate(double t, ParameterRates rates = ParameterRates::Left) const {
-    if (rates == ParameterRates::Held) return 0.0;
-    const Limit side = rates == ParameterRates::Right ? Limit::Right : Limit::Left;
-    return total_length(seeded<double, 1>(t, 0), side).derivatives()(0) / segments;
   }
 
   /// The winch's power on the element: ∂(T + V)/∂t at fixed (q, dq) = L̇ ∂(T + V)/∂L, plus the

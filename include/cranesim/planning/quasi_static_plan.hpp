@@ -82,10 +82,9 @@ struct QuasiStaticPlan {
   TableProfile luffing_spline, hoist_spline;
   /// The map's plane and how it turns (a plane that does not turn without a slewing target).
   SlewingPlane plane;
-  /// Slewing targets: the slewing angle per path point relative to the scene's (rad), the
-  /// drive's value at the start (rad) and its control spline (absolute, rad).
+  /// Slewing targets: the slewing angle per path point relative to the scene's (rad) and the
+  /// drive's control spline (absolute, rad).
   std::vector<double> slewing_angles;
-  double slewing_start = 0.0;
   TableProfile slewing_spline;
   /// What the control splines ask of the drives (planning/control_trajectory.hpp), and the factor
   /// by which the motion would have to last longer to keep the target's drive limits (≤ 1: kept;

@@ -33,7 +33,8 @@ inline std::string methodName(PlanMethod method) {
 /// that turns the crane, and the angle it turns by from its value at the scene's start.
 struct SlewingSpec {
   std::string constraint;
-  double turn = 0.0;  // rad
+  double turn = 0.0;   // rad
+  double start = 0.0;  // the drive's value at the scene's t_start (the map's slewing angle), rad
   SourceLocation where;
 };
 
