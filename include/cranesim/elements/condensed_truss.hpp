@@ -37,6 +37,7 @@
 #include <cmath>
 #include <vector>
 
+#include "cranesim/elements/section_inertia_tangent.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/rotation.hpp"
@@ -107,6 +108,27 @@ struct CondensedTrussKernel {
   /// M a + F in one pass over the stations (element.hpp: fused residual).
   template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
     return inertiaAndGravity<S>(q, v, &a, gravity) + elasticForce<S>(q, v);
+  }
+
+  /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp) and M beside it (element.hpp).
+  Mat12 velocityTangent(const Q<double>& q, const V<double>& v, double, Mat12& M) const {
+    const Vec3 r1 = q.segment<3>(0), r2 = q.segment<3>(6);
+    const Mat3 R1 = rotationMatrix<double>(Vec3(q.segment<3>(3))), R2 = rotationMatrix<double>(Vec3(q.segment<3>(9)));
+    const auto e = frame.endFramesAlongMotion<double>(r1, R1, r2, R2, v);
+    const Eigen::Matrix<Dual<double, 1>, 12, 1> vp = v.cast<Dual<double, 1>>();
+    SectionInertiaTangent MG = SectionInertiaTangent::Zero();
+    for (const MassStation& st : stations) {
+      TimoshenkoBeamKernel::SectionMapRate<double> rate;
+      const auto m = frame.sectionMotion<double>(e, st.xi, vp, &rate);
+      addStationTangent(m.map, rate, m.omega, st.mass, st.first_moment, st.inertia, MG);
+    }
+    M = MG.leftCols<12>();
+    Mat12 G = subtractTwistBracket(MG, v);
+    if (damped()) {
+      const Mat12 Jd = frame.coRotateWithTangent<double>(r1, R1, r2, R2).Jd;
+      G.noalias() += frame.damping * (Jd.transpose() * stiffness * Jd);
+    }
+    return G;
   }
 
   /// J_dᵀ K_red (d + η J_d dq): elastic and damping forces.

@@ -322,6 +322,77 @@ struct SuperTrussKernel {
     return forces<S>(q, V<S>(V<S>::Zero()), nullptr, gravity, Terms::AtRest);
   }
 
+  /// ∂(M_e a + F_e)/∂dq_e in closed form and M_e beside it (element.hpp). Member k adds
+  /// T_kᵀ (G_k T_k + M_k ∂(Ṫ_k dq_e)/∂dq_e), G_k its beam's velocity tangent; every node's velocity
+  /// map obeys the same twist bracket as a beam section (section_inertia_tangent.hpp):
+  ///     ∂(Ṫ_n dq_e)/∂dq_e = 2Ṫ_n − T_n C(dq_e) + [0; ω̃_n T_n^ω],
+  /// ω_n the node's angular velocity and T_n^ω the angular rows of its map.
+  Mat12 velocityTangent(const Q<double>& q, const V<double>& v, double, Mat12& M) const {
+    using P = Dual<double, 1>;
+    const SectionFrames<double> s = sectionFrames<double>(q);
+    const SectionFrames<P> path = framesAlongMotion<double>(s, v);
+    Mat12 C = Mat12::Zero();  // C(dq_e) u = [dq_e, u]
+    for (int i = 0; i < 2; ++i) C.block<3, 3>(6 * i + 3, 6 * i + 3) = skew<double>(Vec3(v.segment<3>(6 * i + 3)));
+    std::vector<NodeTangent>& node = scratch<NodeTangent>();
+    const auto nodeTangent = [&](std::size_t n) {
+      const NodeState<P> p = nodeState<P>(path, nodes[n]);
+      NodeTangent& out = node[n];
+      NodeMap<double> rate;
+      for (int i = 0; i < 3; ++i) {
+        out.state.r(i) = p.r(i).value();
+        for (int j = 0; j < 3; ++j) out.state.R(i, j) = p.R(i, j).value();
+      }
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < kNv; ++j) out.state.map(i, j) = p.map(i, j).value(), rate(i, j) = p.map(i, j).derivatives()(0);
+      out.v.noalias() = out.state.map * v;
+      out.acceleration_tangent.noalias() = 2.0 * rate - out.state.map * C;
+      out.acceleration_tangent.bottomRows<3>().noalias() += skew<double>(Vec3(out.v.tail<3>())) * out.state.map.bottomRows<3>();
+    };
+    // [M_e | ∂r/∂dq_e] of member k, added to MG.
+    using Tangent = Eigen::Matrix<double, 12, 24>;
+    const auto addMember = [&](const MemberModel& m, Tangent& MG) {
+      const NodeTangent* end[2] = {&node[m.node[0]], &node[m.node[1]]};
+      const Mat12 T = memberMap<double>(m, end[0]->state, end[1]->state);
+      Mat12 D;  // ∂(Ṫ_k dq_e)/∂dq_e in the member's node frames
+      for (int e = 0; e < 2; ++e) {
+        D.middleRows<3>(6 * e) = end[e]->acceleration_tangent.topRows<3>();
+        D.middleRows<3>(6 * e + 3).noalias() = m.relative[e].transpose() * end[e]->acceleration_tangent.bottomRows<3>();
+      }
+      Mat12 Mk;
+      const Mat12 Gk = m.beam.velocityTangent(end[0]->state.r, Mat3(end[0]->state.R * m.relative[0]), end[1]->state.r,
+                                              Mat3(end[1]->state.R * m.relative[1]), Eigen::Matrix<double, 12, 1>(T * v),
+                                              m.stiffness, Mk);
+      MG.leftCols<12>().noalias() += T.transpose() * (Mk * T);
+      MG.rightCols<12>().noalias() += T.transpose() * (Gk * T + Mk * D);
+    };
+    Tangent MG = Tangent::Zero();
+    tbb::this_task_arena::isolate([&] {
+      tbb::parallel_for(std::size_t{0}, nodes.size(), nodeTangent);
+      MG = tbb::parallel_deterministic_reduce(
+          tbb::blocked_range<std::size_t>(0, members.size(), kMembersPerTask), Tangent(Tangent::Zero()),
+          [&](const tbb::blocked_range<std::size_t>& range, Tangent sum) {
+            for (std::size_t k = range.begin(); k != range.end(); ++k) addMember(members[k], sum);
+            return sum;
+          },
+          [](const Tangent& x, const Tangent& y) -> Tangent { return x + y; });
+    });
+    M = MG.leftCols<12>();
+    Mat12 G = MG.rightCols<12>();
+    // The rigid parts: M = [[m I, −R s̃], [s̃ Rᵀ, J]], quadratic forces [R(ω × (ω × s)); ω × Jω].
+    for (int i = 0; i < 2; ++i) {
+      const RigidPart& p = rigid[i];
+      const Vec3 w = v.segment<3>(6 * i + 3), c = p.first_moment;
+      const Mat3 Rs = s.R[i] * skew<double>(c), W = skew<double>(w);
+      M.block<3, 3>(6 * i, 6 * i).diagonal().array() += p.mass;
+      M.block<3, 3>(6 * i, 6 * i + 3) -= Rs;
+      M.block<3, 3>(6 * i + 3, 6 * i) -= Rs.transpose();
+      M.block<3, 3>(6 * i + 3, 6 * i + 3) += p.inertia;
+      G.block<3, 3>(6 * i, 6 * i + 3) -= s.R[i] * (skew<double>(Vec3(w.cross(c))) + W * skew<double>(c));
+      G.block<3, 3>(6 * i + 3, 6 * i + 3) += W * p.inertia - skew<double>(Vec3(p.inertia * w));
+    }
+    return G;
+  }
+
   double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
     return 0.5 * v.dot(massMatrix<double>(q) * v);
   }
@@ -397,6 +468,28 @@ struct SuperTrussKernel {
     return m.beam.endFrames<S>(a.r, Mat3T<S>(a.R * m.relative[0].cast<S>()), b.r, Mat3T<S>(b.R * m.relative[1].cast<S>()));
   }
 
+  /// The section frames along the path r(τ) = r + τṙ, R(τ) = R(I + τω̃) (first order): the
+  /// derivative parts of anything computed from them are its rates at d(dq)/dt = 0.
+  template <class S> static SectionFrames<Dual<S, 1>> framesAlongMotion(const SectionFrames<S>& s, const V<S>& v) {
+    using P = Dual<S, 1>;
+    SectionFrames<P> path;
+    for (int i = 0; i < 2; ++i) {
+      const Mat3T<S> dR = s.R[i] * skew<S>(Vec3T<S>(v.template segment<3>(6 * i + 3)));
+      for (int j = 0; j < 3; ++j) {
+        path.r[i](j) = P(s.r[i](j), Eigen::Matrix<S, 1, 1>(v(6 * i + j)));
+        for (int k = 0; k < 3; ++k) path.R[i](j, k) = P(s.R[i](j, k), Eigen::Matrix<S, 1, 1>(dR(j, k)));
+      }
+    }
+    return path;
+  }
+
+  /// A node's state, its velocity v = map dq and ∂(ṁap dq)/∂dq (velocityTangent).
+  struct NodeTangent {
+    NodeState<double> state;
+    Vec6T<double> v;
+    NodeMap<double> acceleration_tangent;
+  };
+
   /// A node's state with its velocity v = map dq and its acceleration at d(dq)/dt = 0, a0 = ṁap dq.
   template <class S> struct NodeMotion {
     NodeState<S> state;
@@ -410,16 +503,8 @@ struct SuperTrussKernel {
   /// F_e (+ M_e a when `a` is given), or the part of it that `terms` names.
   template <class S> V<S> forces(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity, Terms terms) const {
     using P = Dual<S, 1>;
-    // Section frames along the path r(τ) = r + τṙ, R(τ) = R(I + τω̃) (first order).
     const SectionFrames<S> s = sectionFrames<S>(q);
-    SectionFrames<P> path;
-    for (int i = 0; i < 2; ++i) {
-      const Mat3T<S> dR = s.R[i] * skew<S>(Vec3T<S>(v.template segment<3>(6 * i + 3)));
-      for (int j = 0; j < 3; ++j) {
-        path.r[i](j) = P(s.r[i](j), Eigen::Matrix<S, 1, 1>(v(6 * i + j)));
-        for (int k = 0; k < 3; ++k) path.R[i](j, k) = P(s.R[i](j, k), Eigen::Matrix<S, 1, 1>(dR(j, k)));
-      }
-    }
+    const SectionFrames<P> path = framesAlongMotion<S>(s, v);
     const Eigen::Matrix<P, kNv, 1> vp = v.template cast<P>();
     std::vector<NodeMotion<S>>& motion = scratch<NodeMotion<S>>();
     const auto nodeMotion = [&](std::size_t n) {

@@ -57,6 +57,7 @@
 #include <type_traits>
 
 #include "cranesim/elements/section.hpp"
+#include "cranesim/elements/section_inertia_tangent.hpp"
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/hermite.hpp"
@@ -481,6 +482,37 @@ struct TimoshenkoBeamKernel {
     return F;
   }
 
+  /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp: the Gauss points as stations
+  /// with mass w ρA, no first moment, inertia w ρJ) and M beside it (element.hpp).
+  Mat12 velocityTangent(const Q<double>& q, const V<double>& v, double, Mat12& M) const {
+    return velocityTangent(q.segment<3>(0), rotationMatrix<double>(Vec3(q.segment<3>(3))), q.segment<3>(6),
+                           rotationMatrix<double>(Vec3(q.segment<3>(9))), v, stiffness(), M);
+  }
+
+  /// The same from the end frames and a precomputed K = localStiffness().
+  Mat12 velocityTangent(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2, const V<double>& v, const Mat12& K,
+                        Mat12& M) const {
+    const EndFrames<Dual<double, 1>> e = endFramesAlongMotion<double>(r1, R1, r2, R2, v);
+    const Eigen::Matrix<Dual<double, 1>, 12, 1> vp = v.cast<Dual<double, 1>>();
+    const SectionProperties p = section.properties(material);
+    const Vec3 J(p.rhoIp, p.rhoIy, p.rhoIz);
+    const GaussRule& rule = gaussLegendre(mass_points);
+    SectionInertiaTangent MG = SectionInertiaTangent::Zero();
+    for (int gp = 0; gp < rule.points; ++gp) {
+      SectionMapRate<double> rate;
+      const SectionMotion<double> m = sectionMotion<double>(e, rule.xi[gp], vp, &rate);
+      const double wl = rule.weight[gp] * length;
+      addStationTangent(m.map, rate, m.omega, wl * p.rhoA, Vec3::Zero(), Mat3((wl * J).asDiagonal()), MG);
+    }
+    M = MG.leftCols<12>();
+    Mat12 G = subtractTwistBracket(MG, v);
+    if (damped()) {
+      const Mat12 Jd = coRotateWithTangent<double>(r1, R1, r2, R2).Jd;
+      G.noalias() += damping * (Jd.transpose() * K * Jd);
+    }
+    return G;
+  }
+
   /// The end frames moving along r(τ) = r + τṙ, R(τ) = R (I + τω̃) with dq held constant: the
   /// derivative parts of anything computed from them are its rates at d(dq)/dt = 0.
   template <class S>
@@ -509,9 +541,15 @@ struct TimoshenkoBeamKernel {
     SectionMap<S> map;
     Vec3T<S> omega, ax, aw;
   };
+  /// Ḣ along the motion: the rates of H_x's blocks X[n] and H_Ω's W[n] (its a[n] are constant).
+  template <class S> struct SectionMapRate {
+    Mat3T<S> X[2], W[2];
+  };
 
+  /// With `rate`, Ḣ as well (section_inertia_tangent.hpp).
   template <class S>
-  SectionMotion<S> sectionMotion(const EndFrames<Dual<S, 1>>& e, double xi, const Eigen::Matrix<Dual<S, 1>, 12, 1>& vp) const {
+  SectionMotion<S> sectionMotion(const EndFrames<Dual<S, 1>>& e, double xi, const Eigen::Matrix<Dual<S, 1>, 12, 1>& vp,
+                                 SectionMapRate<S>* rate = nullptr) const {
     const SectionMap<Dual<S, 1>> m = sectionMap<Dual<S, 1>>(e, xi);
     const Vec3T<Dual<S, 1>> xdot = m.velocity(vp), omega = m.angularVelocity(vp);
     SectionMotion<S> out;
@@ -526,6 +564,11 @@ struct TimoshenkoBeamKernel {
         for (int n = 0; n < 2; ++n) out.map.X[n](i, j) = m.X[n](i, j).value(), out.map.W[n](i, j) = m.W[n](i, j).value();
       }
     }
+    if (rate)
+      for (int n = 0; n < 2; ++n)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            rate->X[n](i, j) = m.X[n](i, j).derivatives()(0), rate->W[n](i, j) = m.W[n](i, j).derivatives()(0);
     return out;
   }
 

@@ -2,7 +2,8 @@
 // The assembler's view of an element: equations of motion M(q) d(dq)/dt + F(q, dq, t) on a
 // few nodes, with their Jacobians. KernelElement adapts any header-only kernel to it and
 // obtains the Jacobians from the kernel's templated code: ∂/∂q by forward automatic
-// differentiation, ∂/∂dq by polarization of the quadratic in dq (exact, see jacobian).
+// differentiation, ∂/∂dq by the kernel's closed form or by polarization of the quadratic in dq
+// (exact, see jacobian).
 //
 // Kernel contract (DESIGN §3). A kernel is a small struct with
 //   static constexpr int kNq, kNv;                       local sizes of q_e and dq_e
@@ -34,6 +35,10 @@
 // terms are costly provides the force at rest
 //   template <class S> Matrix<S, kNv, 1> staticForce(q, t, gravity) const;       F(q, 0, t)
 // which the statics' Jacobian (coordinateJacobian at dq = 0, d(dq)/dt = 0) then differentiates.
+// A kernel whose inertial terms make polarization costly provides the velocity tangent
+//   Matrix<double, kNv, kNv> velocityTangent(q, dq, t, Matrix<double, kNv, kNv>& M) const;
+//   ∂(M(q) a + F)/∂dq in closed form, and M(q)
+// which KernelElement's jacobian then uses for the velocity columns.
 // The templated functions must not branch on derivative parts and must not allocate, and F must
 // be a polynomial of degree ≤ 2 in dq (inertial terms quadratic, damping linear): a force
 // nonlinear in the velocities (drag, friction) would need its own ∂/∂dq.
@@ -147,6 +152,13 @@ concept TensionKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq,
   { k.tension(q, 0.0, 0.5) } -> std::convertible_to<double>;
 };
 
+/// A kernel that computes ∂(M a + F)/∂dq in closed form, with M beside it.
+template <class K>
+concept VelocityTangentKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
+                                         const Eigen::Matrix<double, K::kNv, 1>& v, Eigen::Matrix<double, K::kNv, K::kNv>& M) {
+  { k.velocityTangent(q, v, 0.0, M) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, K::kNv>>;
+};
+
 template <class K>
 concept StaticForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q, const Vec3& g) {
   { k.template staticForce<double>(q, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
@@ -174,9 +186,10 @@ template <class Kernel> class KernelElement final : public Element {
     out = residualAt(gatherQ(in.q), gatherV(in.v), gatherV(in.a), in);
   }
 
-  /// ∂r/∂q by forward AD in the kNq coordinate directions (coordinateJacobian). ∂r/∂dq by
-  /// polarization: r is a polynomial of degree ≤ 2 in dq (kinetic energy is quadratic in the
-  /// velocities, material damping linear; the kernel contract), so the central difference
+  /// ∂r/∂q by forward AD in the kNq coordinate directions (coordinateJacobian). ∂r/∂dq by the
+  /// kernel's velocityTangent, or else by polarization: r is a polynomial of degree ≤ 2 in dq
+  /// (kinetic energy is quadratic in the velocities, material damping linear; the kernel
+  /// contract), so the central difference
   /// (r(dq + s e_j) − r(dq − s e_j)) / 2s is its exact derivative for any s, up to rounding
   /// (≈ ε‖r‖/s). s is kept small so that a kink in dq (a damped rope's max(ε + η ε̇, 0) at the
   /// verge of slack) lies between the probes only within s of it.
@@ -185,6 +198,12 @@ template <class Kernel> class KernelElement final : public Element {
     const Qd q = gatherQ(in.q);
     const Vd v = gatherV(in.v), a = gatherV(in.a);
     Eigen::Map<Eigen::Matrix<double, kNv, kNv>> Jv(J + kNv * kNq);
+    if constexpr (VelocityTangentKernel<Kernel>) {
+      Eigen::Matrix<double, kNv, kNv> M;
+      Jv = kernel_.velocityTangent(q, v, in.t, M);
+      Jv += (cj + in.mass_damping) * M;
+      return;
+    }
     for (int j = 0; j < kNv; ++j) {
       const double s = 1e-3 * (1.0 + std::abs(v(j)));
       Vd vp = v, vm = v;
