@@ -110,6 +110,17 @@ struct CondensedTrussKernel {
     return inertiaAndGravity<S>(q, v, &a, gravity) + elasticForce<S>(q, v);
   }
 
+  /// ∂(M a + F)/∂q (element.hpp): the elastic and damping forces by forward AD in all twelve
+  /// directions, the inertial and gravity forces in the six rotation directions
+  /// (section_inertia_tangent.hpp).
+  Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity) const {
+    return coordinateDerivative(q, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }) +
+           rotationDerivative(q, [&]<class S>(const Q<S>& qs) {
+             const V<S> as = a.cast<S>();
+             return inertiaAndGravity<S>(qs, v.cast<S>(), &as, gravity);
+           });
+  }
+
   /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp) and M beside it (element.hpp).
   Mat12 velocityTangent(const Q<double>& q, const V<double>& v, double, Mat12& M) const {
     const Vec3 r1 = q.segment<3>(0), r2 = q.segment<3>(6);

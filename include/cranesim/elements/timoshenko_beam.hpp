@@ -482,6 +482,17 @@ struct TimoshenkoBeamKernel {
     return F;
   }
 
+  /// ∂(M a + F)/∂q (element.hpp): the elastic and damping forces by forward AD in all twelve
+  /// directions, the inertial and gravity forces in the six rotation directions
+  /// (section_inertia_tangent.hpp).
+  Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity) const {
+    return coordinateDerivative(q, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }) +
+           rotationDerivative(q, [&]<class S>(const Q<S>& qs) {
+             const V<S> as = a.cast<S>();
+             return inertialAndGravityForce<S>(qs, v.cast<S>(), gravity, &as);
+           });
+  }
+
   /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp: the Gauss points as stations
   /// with mass w ρA, no first moment, inertia w ρJ) and M beside it (element.hpp).
   Mat12 velocityTangent(const Q<double>& q, const V<double>& v, double, Mat12& M) const {

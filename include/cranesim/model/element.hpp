@@ -38,7 +38,9 @@
 // A kernel whose inertial terms make polarization costly provides the velocity tangent
 //   Matrix<double, kNv, kNv> velocityTangent(q, dq, t, Matrix<double, kNv, kNv>& M) const;
 //   ∂(M(q) a + F)/∂dq in closed form, and M(q)
-// which KernelElement's jacobian then uses for the velocity columns.
+// which KernelElement's jacobian then uses for the velocity columns, and
+//   Matrix<double, kNv, kNq> coordinateTangent(q, dq, a, t, gravity) const;   ∂(M a + F)/∂q
+// which coordinateJacobian then uses instead of forward AD over the whole kernel.
 // The templated functions must not branch on derivative parts and must not allocate, and F must
 // be a polynomial of degree ≤ 2 in dq (inertial terms quadratic, damping linear): a force
 // nonlinear in the velocities (drag, friction) would need its own ∂/∂dq.
@@ -159,6 +161,13 @@ concept VelocityTangentKernel = requires(const K& k, const Eigen::Matrix<double,
   { k.velocityTangent(q, v, 0.0, M) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, K::kNv>>;
 };
 
+/// A kernel that computes ∂(M a + F)/∂q itself.
+template <class K>
+concept CoordinateTangentKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
+                                           const Eigen::Matrix<double, K::kNv, 1>& v, const Vec3& g) {
+  { k.coordinateTangent(q, v, v, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, K::kNq>>;
+};
+
 template <class K>
 concept StaticForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q, const Vec3& g) {
   { k.template staticForce<double>(q, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
@@ -217,6 +226,11 @@ template <class Kernel> class KernelElement final : public Element {
     using D = Dual<double, kNq>;
     const Qd qd = gatherQ(in.q);
     const Vd vd = gatherV(in.v), ad = gatherV(in.a) + in.mass_damping * vd;
+    if constexpr (CoordinateTangentKernel<Kernel>) {
+      Eigen::Map<Eigen::Matrix<double, kNv, kNq>> Jq(J);
+      Jq = kernel_.coordinateTangent(qd, vd, ad, in.t, in.gravity);
+      return;
+    }
     Eigen::Matrix<D, kNq, 1> q;
     for (int k = 0; k < kNq; ++k) q(k) = seeded<double, kNq>(qd(k), k);
     Eigen::Matrix<D, kNv, 1> r;
