@@ -37,6 +37,7 @@
 #include <cmath>
 #include <vector>
 
+#include "cranesim/elements/section_inertia_forces.hpp"
 #include "cranesim/elements/section_inertia_tangent.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
@@ -185,22 +186,10 @@ struct CondensedTrussKernel {
  private:
   /// Inertial (and, with `a`, M a) and gravity forces of the mass stations.
   template <class S> V<S> inertiaAndGravity(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity) const {
-    const auto e = frame.endFramesAlongMotion<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
-                                                 q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v);
-    const Eigen::Matrix<Dual<S, 1>, 12, 1> vp = v.template cast<Dual<S, 1>>();
-    const Vec3T<S> g = gravity.cast<S>();
-    V<S> F = V<S>::Zero();
-    for (const MassStation& st : stations) {
-      const auto m = frame.sectionMotion<S>(e, st.xi, vp);
-      Vec3T<S> xdd = m.ax, wd = m.aw;  // ẍ, Ω̇
-      if (a) xdd += m.map.velocity(*a), wd += m.map.angularVelocity(*a);
-      const Vec3T<S> s = st.first_moment.cast<S>();
-      const Mat3T<S> J = st.inertia.cast<S>();
-      const Vec3T<S> f = S(st.mass) * (xdd - g) + m.map.Rc * Vec3T<S>(wd.cross(s) + m.omega.cross(m.omega.cross(s)));
-      const Vec3T<S> tau = s.cross(Vec3T<S>(m.map.Rc.transpose() * (xdd - g))) + J * wd + m.omega.cross(Vec3T<S>(J * m.omega));
-      F += m.map.project(f, tau);
-    }
-    return F;
+    SectionInertiaForces<S> inertia(rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                                    rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v, a, gravity, length);
+    for (const MassStation& st : stations) inertia.add(st.xi, st.mass, st.first_moment, st.inertia);
+    return inertia.forces();
   }
 
   /// K_red of the linear full-member model (see the file comment).

@@ -41,8 +41,9 @@
 // M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds and, by d'Alembert (3-45, C-36),
 // F_ine = ∫ (ρA H_xᵀ Ḣ_x dq + H_Ωᵀ (ρJ Ḣ_Ω dq + Ω × ρJ Ω)) ds. Since Ṁ = ∫ (ḢᵀWH + HᵀWḢ) ds,
 // M d(dq)/dt = −F_ine gives dT/dt = dqᵀ M d(dq)/dt + ½ dqᵀ Ṁ dq = 0 exactly: the inertial terms
-// do no work. H is written explicitly; Ḣ dq is its derivative along the motion (one forward-AD
-// direction). Gravity (3-47): F_g = −∫ ρA H_xᵀ g ds, the exact gradient of −∫ ρA g·x ds.
+// do no work. H is written explicitly (the mass matrix, the velocity tangent); Ḣ dq is its
+// derivative along the motion (one forward-AD direction), and the forces are evaluated in the
+// arrangement of section_inertia_forces.hpp, without H's blocks. Gravity (3-47): F_g = −∫ ρA H_xᵀ g ds, the exact gradient of −∫ ρA g·x ds.
 // At the undeformed state M is the Euler–Bernoulli consistent mass plus rotary inertia with
 // linear rotations. Quadrature: `mass_points` = 4 (exact for the cubic centre line at rest),
 // `stiffness_points` = 2 (exact strain energy; no reduced integration is needed).
@@ -57,6 +58,7 @@
 #include <type_traits>
 
 #include "cranesim/elements/section.hpp"
+#include "cranesim/elements/section_inertia_forces.hpp"
 #include "cranesim/elements/section_inertia_tangent.hpp"
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
@@ -449,8 +451,7 @@ struct TimoshenkoBeamKernel {
   }
 
   /// Quadratic-velocity inertial forces and gravity: ∫ H_xᵀ ρA (Ḣ_x dq − g)
-  /// + H_Ωᵀ (ρJ Ḣ_Ω dq + Ω × ρJ Ω) ds. Ḣ dq is the derivative of H(q(t)) dq along the motion
-  /// r(t) = r + t ṙ, R(t) = R (I + t ω̃) with dq held constant (one forward-AD direction).
+  /// + H_Ωᵀ (ρJ Ḣ_Ω dq + Ω × ρJ Ω) ds, Gauss point by Gauss point (section_inertia_forces.hpp).
   /// With accelerations `a`, M a is added in the same pass (H a joins Ḣ dq), which is cheaper
   /// than building M.
   template <class S>
@@ -462,24 +463,17 @@ struct TimoshenkoBeamKernel {
 
   /// The same from the end frames.
   template <class S>
-  V<S> inertialAndGravityForce(const Vec3T<S>& r1s, const Mat3T<S>& R1, const Vec3T<S>& r2s, const Mat3T<S>& R2,
-                               const V<S>& v, const Vec3& gravity, const V<S>* a = nullptr) const {
-    const EndFrames<Dual<S, 1>> e = endFramesAlongMotion<S>(r1s, R1, r2s, R2, v);
-    const Eigen::Matrix<Dual<S, 1>, 12, 1> vp = v.template cast<Dual<S, 1>>();
+  V<S> inertialAndGravityForce(const Vec3T<S>&, const Mat3T<S>& R1, const Vec3T<S>&, const Mat3T<S>& R2, const V<S>& v,
+                               const Vec3& gravity, const V<S>* a = nullptr) const {
     const SectionProperties p = section.properties(material);
-    const double rhoA = p.rhoA;
-    const Vec3T<S> J = Vec3(p.rhoIp, p.rhoIy, p.rhoIz).template cast<S>();
-    const Vec3T<S> g = gravity.cast<S>();
+    const Vec3 J(p.rhoIp, p.rhoIy, p.rhoIz);
     const GaussRule& rule = gaussLegendre(mass_points);
-    V<S> F = V<S>::Zero();
+    SectionInertiaForces<S> inertia(R1, R2, v, a, gravity, length);
     for (int gp = 0; gp < rule.points; ++gp) {
-      SectionMotion<S> m = sectionMotion<S>(e, rule.xi[gp], vp);
-      if (a) m.ax += m.map.velocity(*a), m.aw += m.map.angularVelocity(*a);
       const double wl = rule.weight[gp] * length;
-      const Vec3T<S> Jw = J.cwiseProduct(m.omega);
-      F += m.map.project(Vec3T<S>(S(wl * rhoA) * (m.ax - g)), Vec3T<S>(S(wl) * (J.cwiseProduct(m.aw) + m.omega.cross(Jw))));
+      inertia.add(rule.xi[gp], wl * p.rhoA, Vec3(wl * J));
     }
-    return F;
+    return inertia.forces();
   }
 
   /// ∂(M a + F)/∂q (element.hpp): the elastic and damping forces by forward AD in all twelve
