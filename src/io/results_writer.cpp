@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "cranesim/assembly/constraint_reaction.hpp"
 #include "cranesim/version.hpp"
 #include "hdf5_file.hpp"
 
@@ -21,6 +22,30 @@ void appendRowMajor(std::vector<double>& out, const Mat3& R) {
     for (int j = 0; j < 3; ++j) out.push_back(R(i, j));
 }
 
+/// /constraint_loads/<name>: force and moment (N × 3 each, constraint_reaction.hpp) with their
+/// peaks and the dynamic factor (peak force over the first sample's: φ2 of EN 13001-2 for a run
+/// that starts from its equilibrium).
+void writeConstraintLoads(Hdf5File& file, const Constraint& c, const std::vector<double>& loads) {
+  const std::size_t N = loads.size() / 6;
+  std::vector<double> force(3 * N), moment(3 * N);
+  double peak_force = 0.0, peak_moment = 0.0;
+  for (std::size_t s = 0; s < N; ++s) {
+    const Eigen::Map<const Vec3> f(&loads[6 * s]), m(&loads[6 * s + 3]);
+    std::copy(f.data(), f.data() + 3, &force[3 * s]);
+    std::copy(m.data(), m.data() + 3, &moment[3 * s]);
+    peak_force = std::max(peak_force, f.norm());
+    peak_moment = std::max(peak_moment, m.norm());
+  }
+  const std::string path = "/constraint_loads/" + c.name;
+  file.writeDoubles(path + "/force", {N, 3}, force.data());
+  file.writeDoubles(path + "/moment", {N, 3}, moment.data());
+  const double first = N > 0 ? Eigen::Map<const Vec3>(loads.data()).norm() : 0.0;
+  file.attribute(path, "peak_force", peak_force);
+  file.attribute(path, "peak_moment", peak_moment);
+  file.attribute(path, "dynamic_factor", first > 0.0 ? peak_force / first : std::numeric_limits<double>::quiet_NaN());
+  file.attribute(path, "axes", "the first joint's, moment about the second joint's origin, on the second joint's side");
+}
+
 }  // namespace
 
 ResultsRecorder::ResultsRecorder(const Assembler& assembler)
@@ -31,7 +56,13 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
       body_omega_(assembler.model().nodes.size()),
       joint_position_(assembler.model().joints.size()),
       joint_rotation_(assembler.model().joints.size()),
-      section_forces_(assembler.model().section_force_groups.size()) {}
+      section_forces_(assembler.model().section_force_groups.size()) {
+  const Model& model = assembler.model();
+  for (const std::string& name : model.output.constraint_loads)
+    for (std::size_t c = 0; c < model.constraints.size(); ++c)
+      if (model.constraints[c].name == name) load_constraints_.push_back(static_cast<int>(c));
+  constraint_loads_.resize(load_constraints_.size());
+}
 
 DynamicState ResultsRecorder::motionAt(double t, const double* y, const ConstraintState& constraints,
                                        const Eigen::SparseMatrix<double>& mass) const {
@@ -92,6 +123,11 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
         append(section_forces_[g], forces, 12);
       }
     }
+  for (std::size_t k = 0; k < load_constraints_.size(); ++k) {
+    const ConstraintReaction load = constraintReaction(model, model.constraints[load_constraints_[k]], C.G, q, motion.lambda.data());
+    append(constraint_loads_[k], load.force.data(), 3);
+    append(constraint_loads_[k], load.moment.data(), 3);
+  }
   if (model.m > 0) {
     residual_position_.push_back(C.phi.cwiseAbs().maxCoeff());
     residual_velocity_.push_back(C.phi_dot.cwiseAbs().maxCoeff());
@@ -122,8 +158,8 @@ double ResultsRecorder::estimatedBytes(const Model& model, double samples) {
   // the recorded section forces; twice: recorded, then the file's image.
   double section_forces = 0.0;
   for (const Model::SectionForceGroup& g : model.section_force_groups) section_forces += (g.rope ? kTensionPoints : 12.0) * g.elements.size();
-  const double per_sample =
-      8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 10.0 + section_forces);
+  const double per_sample = 8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 10.0 +
+                                   section_forces + 6.0 * model.output.constraint_loads.size());
   return 2.0 * per_sample * samples;
 }
 
@@ -221,6 +257,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
         file.writeDoubles(path + "/forces", {N, hsize_t(group.elements.size()), 12}, section_forces_[g].data());
       file.writeStrings(path + "/element_nodes", {group.elements.size(), 2}, nodes);
     }
+    for (std::size_t k = 0; k < load_constraints_.size(); ++k) writeConstraintLoads(file, model.constraints[load_constraints_[k]], constraint_loads_[k]);
     file.writeDoubles("/residual/position", {N}, residual_position_.data());
     file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());
 

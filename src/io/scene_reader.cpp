@@ -483,6 +483,22 @@ std::vector<std::string> readSectionForceMembers(const YamlField& f, const std::
   return names;
 }
 
+/// `output.constraint_loads`: names of constraints.
+std::vector<std::string> readConstraintLoadNames(const YamlField& f, const std::vector<ConstraintSpec>& constraints) {
+  std::vector<std::string> names;
+  for (const YamlField& item : f.items()) {
+    const std::string name = item.text();
+    if (std::none_of(constraints.begin(), constraints.end(), [&](const ConstraintSpec& c) { return c.name == name; })) {
+      std::string known;
+      for (const ConstraintSpec& c : constraints) known += (known.empty() ? "" : ", ") + c.name;
+      item.fail(fmt::format("no constraint '{}' (here: {})", name, known.empty() ? "none" : known));
+    }
+    if (std::find(names.begin(), names.end(), name) != names.end()) item.fail(fmt::format("'{}' is listed twice", name));
+    names.push_back(name);
+  }
+  return names;
+}
+
 }  // namespace
 
 Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) {
@@ -538,10 +554,11 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
   }
   placeMemberEnds(s);
   if (const auto o = f.find("output")) {
-    o->allowKeys({"interval", "section_forces"});
+    o->allowKeys({"interval", "section_forces", "constraint_loads"});
     s.output.interval = o->positive("interval", s.output.interval);
     if (o->has("interval")) s.output.where = o->at("interval").where();
     if (const auto sf = o->find("section_forces")) s.output.section_forces = readSectionForceMembers(*sf, s.members);
+    if (const auto cl = o->find("constraint_loads")) s.output.constraint_loads = readConstraintLoadNames(*cl, s.constraints);
   }
   return s;
 }

@@ -71,6 +71,8 @@ class ResultsRecorder final : public SampleSink {
   std::vector<double> kinetic_, potential_, drive_work_, load_work_, winch_work_, dissipated_, balance_;
   std::vector<double> residual_position_, residual_velocity_;
   std::vector<std::vector<double>> section_forces_;  // per Model::section_force_groups: 12 per element and sample
+  std::vector<int> load_constraints_;                 // output.constraint_loads, as indices into Model::constraints
+  std::vector<std::vector<double>> constraint_loads_;  // per recorded constraint: force and moment, 6 per sample
 };
 
 /// Refuses, before any work, a run whose results would not fit in memory (more than 4 GiB):

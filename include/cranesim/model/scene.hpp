@@ -173,6 +173,8 @@ struct OutputSpec {
   /// Members whose beams' section forces are recorded (timoshenko members, trusses of fidelity
   /// members or beam).
   std::vector<std::string> section_forces;
+  /// Constraints whose transmitted force and moment are recorded (constraint_reaction.hpp).
+  std::vector<std::string> constraint_loads;
 };
 
 struct Scene {
