@@ -62,6 +62,14 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
     for (std::size_t c = 0; c < model.constraints.size(); ++c)
       if (model.constraints[c].name == name) load_constraints_.push_back(static_cast<int>(c));
   constraint_loads_.resize(load_constraints_.size());
+  for (const TippingLineSpec& line : model.output.tipping_lines) {
+    std::vector<int> supports;
+    for (const std::string& name : line.supports)
+      for (std::size_t c = 0; c < model.constraints.size(); ++c)
+        if (model.constraints[c].name == name) supports.push_back(static_cast<int>(c));
+    tipping_supports_.push_back(std::move(supports));
+  }
+  tipping_moments_.resize(tipping_supports_.size());
 }
 
 DynamicState ResultsRecorder::motionAt(double t, const double* y, const ConstraintState& constraints,
@@ -128,6 +136,10 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
     append(constraint_loads_[k], load.force.data(), 3);
     append(constraint_loads_[k], load.moment.data(), 3);
   }
+  for (std::size_t k = 0; k < tipping_supports_.size(); ++k) {
+    const TippingLineSpec& line = model.output.tipping_lines[k];
+    tipping_moments_[k].push_back(supportMoment(model, tipping_supports_[k], line.from, line.to, C.G, q, motion.lambda.data()));
+  }
   if (model.m > 0) {
     residual_position_.push_back(C.phi.cwiseAbs().maxCoeff());
     residual_velocity_.push_back(C.phi_dot.cwiseAbs().maxCoeff());
@@ -159,7 +171,8 @@ double ResultsRecorder::estimatedBytes(const Model& model, double samples) {
   double section_forces = 0.0;
   for (const Model::SectionForceGroup& g : model.section_force_groups) section_forces += (g.rope ? kTensionPoints : 12.0) * g.elements.size();
   const double per_sample = 8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 10.0 +
-                                   section_forces + 6.0 * model.output.constraint_loads.size());
+                                   section_forces + 6.0 * model.output.constraint_loads.size() +
+                                   static_cast<double>(model.output.tipping_lines.size()));
   return 2.0 * per_sample * samples;
 }
 
@@ -258,6 +271,18 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
       file.writeStrings(path + "/element_nodes", {group.elements.size(), 2}, nodes);
     }
     for (std::size_t k = 0; k < load_constraints_.size(); ++k) writeConstraintLoads(file, model.constraints[load_constraints_[k]], constraint_loads_[k]);
+    for (std::size_t k = 0; k < tipping_moments_.size(); ++k) {
+      const TippingLineSpec& line = model.output.tipping_lines[k];
+      const std::string path = "/tipping_moments/" + line.name;
+      file.writeDoubles(path, {N}, tipping_moments_[k].data());
+      file.attribute(path, "min", N > 0 ? *std::min_element(tipping_moments_[k].begin(), tipping_moments_[k].end())
+                                        : std::numeric_limits<double>::quiet_NaN());
+      file.attribute(path, "line", fmt::format("[[{}, {}, {}], [{}, {}, {}]]", line.from.x(), line.from.y(), line.from.z(),
+                                               line.to.x(), line.to.y(), line.to.z()));
+      std::string supports;
+      for (const std::string& s : line.supports) supports += (supports.empty() ? "" : ", ") + s;
+      file.attribute(path, "supports", supports);
+    }
     file.writeDoubles("/residual/position", {N}, residual_position_.data());
     file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());
 

@@ -499,6 +499,37 @@ std::vector<std::string> readConstraintLoadNames(const YamlField& f, const std::
   return names;
 }
 
+/// `output.tipping_lines`: [{name, supports: [constraints between the ground and the structure],
+/// line: [[x, y, z], [x, y, z]]}].
+std::vector<TippingLineSpec> readTippingLines(const YamlField& f, const std::vector<ConstraintSpec>& constraints) {
+  std::vector<TippingLineSpec> lines;
+  const auto onGround = [](const std::string& joint) { return joint.rfind("ground.", 0) == 0; };
+  for (const YamlField& item : f.items()) {
+    item.allowKeys({"name", "supports", "line"});
+    TippingLineSpec line;
+    line.name = item.at("name").identifier();
+    if (std::any_of(lines.begin(), lines.end(), [&](const TippingLineSpec& l) { return l.name == line.name; }))
+      item.at("name").fail(fmt::format("duplicate tipping line name '{}'", line.name));
+    const YamlField supports = item.at("supports");
+    for (const YamlField& s : supports.items()) {
+      const std::string name = s.text();
+      const auto c = std::find_if(constraints.begin(), constraints.end(), [&](const ConstraintSpec& k) { return k.name == name; });
+      if (c == constraints.end()) s.fail(fmt::format("no constraint '{}'", name));
+      if (onGround(c->joint1) == onGround(c->joint2))
+        s.fail(fmt::format("constraint '{}' does not join the structure to the ground", name));
+      if (std::find(line.supports.begin(), line.supports.end(), name) != line.supports.end())
+        s.fail(fmt::format("'{}' is listed twice", name));
+      line.supports.push_back(name);
+    }
+    if (line.supports.empty()) supports.fail("name at least one constraint that holds the structure on the ground");
+    const std::array<Vec3, 2> points = item.at("line").tippingLine();
+    line.from = points[0];
+    line.to = points[1];
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
 }  // namespace
 
 Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) {
@@ -554,11 +585,12 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
   }
   placeMemberEnds(s);
   if (const auto o = f.find("output")) {
-    o->allowKeys({"interval", "section_forces", "constraint_loads"});
+    o->allowKeys({"interval", "section_forces", "constraint_loads", "tipping_lines"});
     s.output.interval = o->positive("interval", s.output.interval);
     if (o->has("interval")) s.output.where = o->at("interval").where();
     if (const auto sf = o->find("section_forces")) s.output.section_forces = readSectionForceMembers(*sf, s.members);
     if (const auto cl = o->find("constraint_loads")) s.output.constraint_loads = readConstraintLoadNames(*cl, s.constraints);
+    if (const auto tl = o->find("tipping_lines")) s.output.tipping_lines = readTippingLines(*tl, s.constraints);
   }
   return s;
 }

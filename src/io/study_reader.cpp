@@ -177,12 +177,9 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
       fig.supports.push_back(c.name);
     }
     if (fig.supports.empty()) supports.fail("name at least one constraint that holds the structure on the ground");
-    const YamlField line = f.at("line");
-    const auto points = line.items();
-    if (points.size() != 2) line.fail(fmt::format("a tipping line is two points [[x, y, z], [x, y, z]], found {}", points.size()));
-    fig.line_from = points[0].vec3();
-    fig.line_to = points[1].vec3();
-    if (!((fig.line_to - fig.line_from).norm() > 1e-9)) line.fail("the tipping line's two points coincide");
+    const std::array<Vec3, 2> line = f.at("line").tippingLine();
+    fig.line_from = line[0];
+    fig.line_to = line[1];
   } else if (quantity == "position") {
     f.allowKeys({"name", "quantity", "body", "joint", "component", "statistic", "after"});
     fig.quantity = FigureQuantity::Position;

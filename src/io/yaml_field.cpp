@@ -157,6 +157,14 @@ Vec3 YamlField::vec3() const {
   return {v[0], v[1], v[2]};
 }
 
+std::array<Vec3, 2> YamlField::tippingLine() const {
+  const std::vector<YamlField> points = items();
+  if (points.size() != 2) fail(fmt::format("a tipping line is two points [[x, y, z], [x, y, z]], found {}", points.size()));
+  const std::array<Vec3, 2> line{points[0].vec3(), points[1].vec3()};
+  if (!((line[1] - line[0]).norm() > 1e-9)) fail("the tipping line's two points coincide");
+  return line;
+}
+
 Vec3 YamlField::position() const {
   const Vec3 p = vec3();
   if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)

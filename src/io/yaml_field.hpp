@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -47,6 +48,8 @@ class YamlField {
   Vec3 vec3() const;
   /// A point of the scene's geometry, m: three numbers within kMaxCoordinate of the origin.
   Vec3 position() const;
+  /// A directed line [[x, y, z], [x, y, z]] of two distinct points (a tipping edge).
+  std::array<Vec3, 2> tippingLine() const;
   std::vector<double> numbers() const;
   std::vector<YamlField> items() const;
   /// One of `choices`; fails listing them.

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "cranesim/assembly/assembler.hpp"
+#include "cranesim/assembly/constraint_reaction.hpp"
 #include "cranesim/model/element.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
@@ -56,14 +57,14 @@ std::vector<double> horizontalDistances(const FigureSpec& fig, const Model& mode
   return distances;
 }
 
-/// At every sample, the moment about the directed line `fig.line_from` → `fig.line_to` (right
-/// hand) of the forces and moments the ground exerts on the structure through the constraints
-/// `fig.supports`: −Gᵀλ on each node they hold, a force on its origin and a torque in its body
-/// axes (virtual power: ṙᵀf + ωᵀτ). Minus the moment of everything else (gravity, loads,
-/// inertia) about the same line.
+/// At every sample, the moment about the tipping line of the ground's loads on the structure
+/// through `fig.supports` (constraint_reaction.hpp: supportMoment).
 std::vector<double> tippingMoments(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder) {
   const Assembler assembler(model);
-  const Vec3 axis = (fig.line_to - fig.line_from).normalized();
+  std::vector<int> supports;
+  for (const std::string& name : fig.supports)
+    for (std::size_t k = 0; k < model.constraints.size(); ++k)
+      if (model.constraints[k].name == name) supports.push_back(static_cast<int>(k));
   std::vector<std::vector<double>> columns(model.nq + model.nv + model.m);
   for (int k = 0; k < static_cast<int>(columns.size()); ++k) columns[k] = recorder.stateColumn(k);
   std::vector<double> moments(recorder.samples());
@@ -72,23 +73,8 @@ std::vector<double> tippingMoments(const FigureSpec& fig, const Model& model, co
     for (int k = 0; k < model.nq; ++k) q(k) = columns[k][s];
     for (int k = 0; k < model.nv; ++k) v(k) = columns[model.nq + k][s];
     for (int k = 0; k < model.m; ++k) lambda(k) = columns[model.nq + model.nv + k][s];
-    const MatX G = MatX(assembler.constraints(recorder.time()[s], q.data(), v.data()).G);
-    double moment = 0.0;
-    for (const std::string& name : fig.supports) {
-      const Constraint& c = *std::find_if(model.constraints.begin(), model.constraints.end(),
-                                          [&](const Constraint& k) { return k.name == name; });
-      const VecX generalized = -G.middleRows(c.row, c.rows).transpose() * lambda.segment(c.row, c.rows);
-      for (const int joint : {c.joint1, c.joint2}) {
-        const int n = model.joints[joint].node;
-        if (n < 0) continue;
-        const Frame frame = model.nodeFrame(q.data(), n);
-        const Vec3 force = generalized.segment<3>(model.nodes[n].v);
-        Vec3 torque = (frame.r - fig.line_from).cross(force);
-        if (model.nodes[n].hasRotation()) torque += frame.R * Vec3(generalized.segment<3>(model.nodes[n].v + 3));
-        moment += axis.dot(torque);
-      }
-    }
-    moments[s] = moment;
+    const Eigen::SparseMatrix<double> G = assembler.constraints(recorder.time()[s], q.data(), v.data()).G;
+    moments[s] = supportMoment(model, supports, fig.line_from, fig.line_to, G, q.data(), lambda.data());
   }
   return moments;
 }

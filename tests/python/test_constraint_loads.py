@@ -58,3 +58,20 @@ def test_the_ground_side_when_the_ground_is_the_second_joint(tmp_path):
         assert on_rod.shape == on_ground.shape
         turned = np.einsum("sij,sj->si", axes, on_ground)
         assert np.abs(turned + on_rod).max() < 1e-5 * WEIGHT
+
+
+def test_tipping_moment_about_a_line_beside_the_hinge(tmp_path):
+    # output.tipping_lines: the ground's moment on the rod through the hinge about a line along y
+    # half a metre beside it is 0.5 m times the hinge's vertical force (its only moment arm), and
+    # the same line directed the other way gives the opposite.
+    line = "[[0.5, -1, 0], [0.5, 1, 0]]"
+    with run(tmp_path, "tipping", "output.constraint_loads: [hinge], output.tipping_lines: "
+             f"[{{name: edge, supports: [hinge], line: {line}}}, {{name: back, supports: [hinge], line: [[0.5, 1, 0], [0.5, -1, 0]]}}], "
+             "solver.t_end: 2") as f:
+        edge, back = f["tipping_moments/edge"][...], f["tipping_moments/back"][...]
+        force = f["constraint_loads/hinge/force"][...]
+        assert edge.shape == (force.shape[0],)
+        assert np.abs(edge - 0.5 * force[:, 2]).max() < 1e-7 * WEIGHT
+        assert np.abs(edge + back).max() < 1e-9 * WEIGHT
+        assert f["tipping_moments/edge"].attrs["min"] == pytest.approx(edge.min())
+        assert f["tipping_moments/edge"].attrs["supports"] == "hinge"

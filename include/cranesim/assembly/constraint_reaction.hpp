@@ -22,4 +22,12 @@ struct ConstraintReaction {
 ConstraintReaction constraintReaction(const Model& model, const Constraint& constraint, const Eigen::SparseMatrix<double>& G,
                                       const double* q, const double* lambda);
 
+/// The moment about the directed line `from` → `to` (right hand) of the loads the constraints
+/// `supports` carry to the nodes they hold (−Gᵀλ of their rows: a force on each node's origin,
+/// a torque in its axes). For supports that join the structure to the ground this is the
+/// ground's moment on the structure about a tipping edge: minus the moment of gravity, loads and
+/// inertia about it, positive while the structure stands on its footprint.
+double supportMoment(const Model& model, const std::vector<int>& supports, const Vec3& from, const Vec3& to,
+                     const Eigen::SparseMatrix<double>& G, const double* q, const double* lambda);
+
 }  // namespace cranesim

@@ -73,6 +73,8 @@ class ResultsRecorder final : public SampleSink {
   std::vector<std::vector<double>> section_forces_;  // per Model::section_force_groups: 12 per element and sample
   std::vector<int> load_constraints_;                 // output.constraint_loads, as indices into Model::constraints
   std::vector<std::vector<double>> constraint_loads_;  // per recorded constraint: force and moment, 6 per sample
+  std::vector<std::vector<int>> tipping_supports_;     // per output.tipping_lines: its supports, as constraint indices
+  std::vector<std::vector<double>> tipping_moments_;   // per tipping line: 1 per sample
 };
 
 /// Refuses, before any work, a run whose results would not fit in memory (more than 4 GiB):

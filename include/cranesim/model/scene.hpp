@@ -167,6 +167,14 @@ struct SolverSpec {
   double relaxation_duration = 100.0;  // pseudo-time limit of the relaxation, s
 };
 
+/// A tipping line whose support moment every sample records (constraint_reaction.hpp:
+/// supportMoment).
+struct TippingLineSpec {
+  std::string name;
+  std::vector<std::string> supports;  // constraints joining the structure to the ground
+  Vec3 from = Vec3::Zero(), to = Vec3::UnitX();
+};
+
 struct OutputSpec {
   double interval = 0.01;
   SourceLocation where{"output.interval", 0, 0};  // of the interval, for errors about the output's size
@@ -175,6 +183,7 @@ struct OutputSpec {
   std::vector<std::string> section_forces;
   /// Constraints whose transmitted force and moment are recorded (constraint_reaction.hpp).
   std::vector<std::string> constraint_loads;
+  std::vector<TippingLineSpec> tipping_lines;
 };
 
 struct Scene {
