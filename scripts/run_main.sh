@@ -17,6 +17,10 @@ python3 "$root/scripts/report.py" "$results"
 if python3 -c 'import sys, h5py; sys.exit("bodies/load" not in h5py.File(sys.argv[1], "r"))' "$results"; then
   python3 "$root/scripts/plot_load.py" "$results" -o "$out/${name}_load.png"
 fi
+if python3 -c 'import sys, h5py; sys.exit("constraint_loads/slewing" not in h5py.File(sys.argv[1], "r"))' "$results"; then
+  python3 "$root/scripts/plot_timeseries.py" "$results" constraint_loads/slewing/force[2] constraint_loads/hook/force[norm] \
+    --title "$name: slewing ring's axial force, hook load (N)" -o "$out/${name}_loads.png"
+fi
 python3 "$root/scripts/plot_timeseries.py" "$results" energy/kinetic energy/potential energy/drive_work energy/winch_work \
   --title "$name: energies" -o "$out/${name}_energy.png"
 python3 "$root/scripts/plot_snapshot.py" "$results" -o "$out/${name}_snapshot.png"
