@@ -7,7 +7,7 @@
 // The same sum as timoshenko_beam.hpp's sectionMotion and project, arranged so that a station
 // costs a few vector operations and one small map: no 3 × 12 blocks of H, no forward-AD
 // direction along the motion through the whole section map.
-// - Centre line: ẍ = N₀ r̈¹ + N₂ r̈² − N₁ R¹ kⁱ − N₃ R² k² with kⁿ = e_x × ω̇ⁿ + ωⁿ × (e_x × ωⁿ)
+// - Centre line: ẍ = N₀ r̈¹ + N₂ r̈² − N₁ R¹ k¹ − N₃ R² k² with kⁿ = e_x × ω̇ⁿ + ωⁿ × (e_x × ωⁿ)
 //   (H_x's blocks −N R ẽ_x and their rates −N R ω̃ ẽ_x), evaluated in the axes of end 1, where
 //   R² = R¹ R_rel: every station's ẍ is a combination of four vectors fixed per call.
 // - Section rotation: Ω = E_Rᵀ ω¹ + ξ E_T φ̇ and Ω̇ = Ė_Rᵀ ω¹ + E_Rᵀ ω̇¹ + ξ (Ė_T φ̇ + E_T φ̈), with
@@ -30,8 +30,9 @@ template <class S> class SectionInertiaForces {
  public:
   using V12 = Eigen::Matrix<S, 12, 1>;
 
-  /// End frames (r¹, R¹), (r², R²), velocities dq = [ṙ¹, ω¹, ṙ², ω²], accelerations d(dq)/dt (or
-  /// none: F without M a), gravity, and the length that scales the Hermite slopes.
+  /// End rotations R¹, R² (the forces do not depend on the end positions), velocities
+  /// dq = [ṙ¹, ω¹, ṙ², ω²], accelerations d(dq)/dt (or none: F without M a), gravity, and the
+  /// length that scales the Hermite slopes.
   SectionInertiaForces(const Mat3T<S>& R1, const Mat3T<S>& R2, const V12& v, const V12* a, const Vec3& gravity,
                        double length)
       : length_(length), R1_(R1), Rrel_(R1.transpose() * R2) {
