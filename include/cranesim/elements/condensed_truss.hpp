@@ -124,23 +124,11 @@ struct CondensedTrussKernel {
 
   /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp) and M beside it (element.hpp).
   Mat12 velocityTangent(const Q<double>& q, const V<double>& v, double, Mat12& M) const {
-    const Vec3 r1 = q.segment<3>(0), r2 = q.segment<3>(6);
-    const Mat3 R1 = rotationMatrix<double>(Vec3(q.segment<3>(3))), R2 = rotationMatrix<double>(Vec3(q.segment<3>(9)));
-    const auto e = frame.endFramesAlongMotion<double>(r1, R1, r2, R2, v);
-    const Eigen::Matrix<Dual<double, 1>, 12, 1> vp = v.cast<Dual<double, 1>>();
-    SectionInertiaTangent MG = SectionInertiaTangent::Zero();
-    for (const MassStation& st : stations) {
-      TimoshenkoBeamKernel::SectionMapRate<double> rate;
-      const auto m = frame.sectionMotion<double>(e, st.xi, vp, &rate);
-      addStationTangent(m.map, rate, m.omega, st.mass, st.first_moment, st.inertia, MG);
-    }
-    M = MG.leftCols<12>();
-    Mat12 G = subtractTwistBracket(MG, v);
-    if (damped()) {
-      const Mat12 Jd = frame.coRotateWithTangent<double>(r1, R1, r2, R2).Jd;
-      G.noalias() += frame.damping * (Jd.transpose() * stiffness * Jd);
-    }
-    return G;
+    const auto massStations = [&](const auto& add) {
+      for (const MassStation& st : stations) add(st.xi, st.mass, st.first_moment, st.inertia);
+    };
+    return frame.stationVelocityTangent(q.segment<3>(0), rotationMatrix<double>(Vec3(q.segment<3>(3))), q.segment<3>(6),
+                                        rotationMatrix<double>(Vec3(q.segment<3>(9))), v, stiffness, massStations, M);
   }
 
   /// J_dᵀ K_red (d + η J_d dq): elastic and damping forces.

@@ -380,10 +380,6 @@ struct TimoshenkoBeamKernel {
     Vec3T<T> x;
     Mat3T<T> Rc;
 
-    Vec3T<T> velocity(const Eigen::Matrix<T, 12, 1>& v) const {
-      return T(a[0]) * v.template segment<3>(0) + X[0] * v.template segment<3>(3) + T(a[1]) * v.template segment<3>(6) +
-             X[1] * v.template segment<3>(9);
-    }
     Vec3T<T> angularVelocity(const Eigen::Matrix<T, 12, 1>& v) const {
       return W[0] * v.template segment<3>(3) + W[1] * v.template segment<3>(9);
     }
@@ -497,18 +493,31 @@ struct TimoshenkoBeamKernel {
   /// The same from the end frames and a precomputed K = localStiffness().
   Mat12 velocityTangent(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2, const V<double>& v, const Mat12& K,
                         Mat12& M) const {
-    const EndFrames<Dual<double, 1>> e = endFramesAlongMotion<double>(r1, R1, r2, R2, v);
-    const Eigen::Matrix<Dual<double, 1>, 12, 1> vp = v.cast<Dual<double, 1>>();
     const SectionProperties p = section.properties(material);
     const Vec3 J(p.rhoIp, p.rhoIy, p.rhoIz);
     const GaussRule& rule = gaussLegendre(mass_points);
+    const auto gaussPoints = [&](const auto& add) {
+      for (int gp = 0; gp < rule.points; ++gp) {
+        const double wl = rule.weight[gp] * length;
+        add(rule.xi[gp], wl * p.rhoA, Vec3::Zero(), Mat3((wl * J).asDiagonal()));
+      }
+    };
+    return stationVelocityTangent(r1, R1, r2, R2, v, K, gaussPoints, M);
+  }
+
+  /// ∂(M a + F)/∂dq in closed form and M beside it for mass stations riding on this interpolation
+  /// (section_inertia_tangent.hpp), with the damping η J_dᵀ K J_d of the co-rotated stiffness K.
+  /// `stations(add)` calls add(ξ, m, s, J) for every station.
+  template <class Stations>
+  Mat12 stationVelocityTangent(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2, const V<double>& v,
+                               const Mat12& K, const Stations& stations, Mat12& M) const {
+    const EndFrames<Dual<double, 1>> e = endFramesAlongMotion<double>(r1, R1, r2, R2, v);
+    const Eigen::Matrix<Dual<double, 1>, 12, 1> vp = v.cast<Dual<double, 1>>();
     SectionInertiaTangent MG = SectionInertiaTangent::Zero();
-    for (int gp = 0; gp < rule.points; ++gp) {
-      SectionMapRate<double> rate;
-      const SectionMotion<double> m = sectionMotion<double>(e, rule.xi[gp], vp, &rate);
-      const double wl = rule.weight[gp] * length;
-      addStationTangent(m.map, rate, m.omega, wl * p.rhoA, Vec3::Zero(), Mat3((wl * J).asDiagonal()), MG);
-    }
+    stations([&](double xi, double mass, const Vec3& first_moment, const Mat3& inertia) {
+      const SectionMotion<double> m = sectionMotion<double>(e, xi, vp);
+      addStationTangent(m.map, m.rate, m.omega, mass, first_moment, inertia, MG);
+    });
     M = MG.leftCols<12>();
     Mat12 G = subtractTwistBracket(MG, v);
     if (damped()) {
@@ -540,40 +549,35 @@ struct TimoshenkoBeamKernel {
     return endFrames<P>(r1, R1p, r2, R2p);
   }
 
-  /// The section at ξ: its map H (value parts), angular velocity Ω = H_Ω dq, and the rates
-  /// Ḣ_x dq, Ḣ_Ω dq at d(dq)/dt = 0.
-  template <class S> struct SectionMotion {
-    SectionMap<S> map;
-    Vec3T<S> omega, ax, aw;
-  };
   /// Ḣ along the motion: the rates of H_x's blocks X[n] and H_Ω's W[n] (its a[n] are constant).
   template <class S> struct SectionMapRate {
     Mat3T<S> X[2], W[2];
   };
+  /// The section at ξ: its map H, the rate Ḣ along the motion and the angular velocity
+  /// Ω = H_Ω dq (what section_inertia_tangent.hpp needs).
+  template <class S> struct SectionMotion {
+    SectionMap<S> map;
+    SectionMapRate<S> rate;
+    Vec3T<S> omega;
+  };
 
-  /// With `rate`, Ḣ as well (section_inertia_tangent.hpp).
   template <class S>
-  SectionMotion<S> sectionMotion(const EndFrames<Dual<S, 1>>& e, double xi, const Eigen::Matrix<Dual<S, 1>, 12, 1>& vp,
-                                 SectionMapRate<S>* rate = nullptr) const {
+  SectionMotion<S> sectionMotion(const EndFrames<Dual<S, 1>>& e, double xi, const Eigen::Matrix<Dual<S, 1>, 12, 1>& vp) const {
     const SectionMap<Dual<S, 1>> m = sectionMap<Dual<S, 1>>(e, xi);
-    const Vec3T<Dual<S, 1>> xdot = m.velocity(vp), omega = m.angularVelocity(vp);
+    const Vec3T<Dual<S, 1>> omega = m.angularVelocity(vp);
     SectionMotion<S> out;
     out.map.a[0] = m.a[0], out.map.a[1] = m.a[1];
     for (int i = 0; i < 3; ++i) {
       out.map.x(i) = m.x(i).value();
-      out.ax(i) = xdot(i).derivatives()(0);
-      out.aw(i) = omega(i).derivatives()(0);
       out.omega(i) = omega(i).value();
       for (int j = 0; j < 3; ++j) {
         out.map.Rc(i, j) = m.Rc(i, j).value();
-        for (int n = 0; n < 2; ++n) out.map.X[n](i, j) = m.X[n](i, j).value(), out.map.W[n](i, j) = m.W[n](i, j).value();
+        for (int n = 0; n < 2; ++n) {
+          out.map.X[n](i, j) = m.X[n](i, j).value(), out.map.W[n](i, j) = m.W[n](i, j).value();
+          out.rate.X[n](i, j) = m.X[n](i, j).derivatives()(0), out.rate.W[n](i, j) = m.W[n](i, j).derivatives()(0);
+        }
       }
     }
-    if (rate)
-      for (int n = 0; n < 2; ++n)
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j)
-            rate->X[n](i, j) = m.X[n](i, j).derivatives()(0), rate->W[n](i, j) = m.W[n](i, j).derivatives()(0);
     return out;
   }
 
