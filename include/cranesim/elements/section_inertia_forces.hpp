@@ -77,7 +77,7 @@ template <class S> class SectionInertiaForces {
     const Vec3T<S> s = first_moment.cast<S>();
     const Mat3T<S> J = inertia.cast<S>();
     const Section m = sectionRotation(xi);
-    const Vec3T<S> xdd_g = S(h.N[0]) * acc1_ + S(h.N[2]) * acc2_ - S(h.N[1]) * k1_ - S(h.N[3]) * k2_ - g1_;  // R¹ᵀ(ẍ − g)
+    const Vec3T<S> xdd_g = relativeAcceleration(h);
     const Vec3T<S> y = m.domega.cross(s) + m.omega.cross(Vec3T<S>(m.omega.cross(s)));
     const Vec3T<S> f = S(mass) * xdd_g + m.R * y;  // R¹ᵀ f
     const Vec3T<S> tau = s.cross(Vec3T<S>(m.R.transpose() * xdd_g)) + J * m.domega + m.omega.cross(Vec3T<S>(J * m.omega));
@@ -88,7 +88,7 @@ template <class S> class SectionInertiaForces {
   void add(double xi, double mass, const Vec3& j) {
     const HermiteBasis h = hermiteBasis(xi, length_);
     const Section m = sectionRotation(xi);
-    const Vec3T<S> xdd_g = S(h.N[0]) * acc1_ + S(h.N[2]) * acc2_ - S(h.N[1]) * k1_ - S(h.N[3]) * k2_ - g1_;
+    const Vec3T<S> xdd_g = relativeAcceleration(h);
     const Vec3T<S> J = j.cast<S>();
     const Vec3T<S> Jw = J.cwiseProduct(m.omega);
     accumulate(xi, h, Vec3T<S>(S(mass) * xdd_g), m, Vec3T<S>(J.cwiseProduct(m.domega) + m.omega.cross(Jw)));
@@ -111,6 +111,11 @@ template <class S> class SectionInertiaForces {
     Mat3T<S> R, T;           // E_R = exp(ξφ̃): the section's rotation in the axes of end 1; E_T = T(ξφ)
     Vec3T<S> omega, domega;  // Ω, Ω̇ (section axes)
   };
+
+  /// R¹ᵀ (ẍ − g) of the centre line at the station with Hermite basis h.
+  Vec3T<S> relativeAcceleration(const HermiteBasis& h) const {
+    return S(h.N[0]) * acc1_ + S(h.N[2]) * acc2_ - S(h.N[1]) * k1_ - S(h.N[3]) * k2_ - g1_;
+  }
 
   Section sectionRotation(double xi) const {
     using P = Dual<S, 1>;
