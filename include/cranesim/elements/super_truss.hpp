@@ -335,15 +335,9 @@ struct SuperTrussKernel {
     for (int i = 0; i < 2; ++i) C.block<3, 3>(6 * i + 3, 6 * i + 3) = skew<double>(Vec3(v.segment<3>(6 * i + 3)));
     std::vector<NodeTangent>& node = scratch<NodeTangent>();
     const auto nodeTangent = [&](std::size_t n) {
-      const NodeState<P> p = nodeState<P>(path, nodes[n]);
       NodeTangent& out = node[n];
       NodeMap<double> rate;
-      for (int i = 0; i < 3; ++i) {
-        out.state.r(i) = p.r(i).value();
-        for (int j = 0; j < 3; ++j) out.state.R(i, j) = p.R(i, j).value();
-      }
-      for (int i = 0; i < 6; ++i)
-        for (int j = 0; j < kNv; ++j) out.state.map(i, j) = p.map(i, j).value(), rate(i, j) = p.map(i, j).derivatives()(0);
+      out.state = valuesOf<double>(nodeState<P>(path, nodes[n]), &rate);
       out.v.noalias() = out.state.map * v;
       out.acceleration_tangent.noalias() = 2.0 * rate - out.state.map * C;
       out.acceleration_tangent.bottomRows<3>().noalias() += skew<double>(Vec3(out.v.tail<3>())) * out.state.map.bottomRows<3>();
@@ -483,6 +477,22 @@ struct SuperTrussKernel {
     return path;
   }
 
+  /// The values of a node state computed along the motion (framesAlongMotion) and, with `rate`,
+  /// the rate of its map, ṁap.
+  template <class S> static NodeState<S> valuesOf(const NodeState<Dual<S, 1>>& p, NodeMap<S>* rate = nullptr) {
+    NodeState<S> out;
+    for (int i = 0; i < 3; ++i) {
+      out.r(i) = p.r(i).value();
+      for (int j = 0; j < 3; ++j) out.R(i, j) = p.R(i, j).value();
+    }
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < kNv; ++j) {
+        out.map(i, j) = p.map(i, j).value();
+        if (rate) (*rate)(i, j) = p.map(i, j).derivatives()(0);
+      }
+    return out;
+  }
+
   /// A node's state, its velocity v = map dq and ∂(ṁap dq)/∂dq (velocityTangent).
   struct NodeTangent {
     NodeState<double> state;
@@ -516,12 +526,8 @@ struct SuperTrussKernel {
       }
       const NodeState<P> p = nodeState<P>(path, nodes[n]);
       const Vec6T<P> vn = p.map * vp;
-      for (int i = 0; i < 3; ++i) {
-        out.state.r(i) = p.r(i).value();
-        for (int j = 0; j < 3; ++j) out.state.R(i, j) = p.R(i, j).value();
-      }
+      out.state = valuesOf<S>(p);
       for (int i = 0; i < 6; ++i) {
-        for (int j = 0; j < kNv; ++j) out.state.map(i, j) = p.map(i, j).value();
         out.v(i) = vn(i).value();
         out.a0(i) = vn(i).derivatives()(0);
       }
