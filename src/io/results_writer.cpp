@@ -58,15 +58,11 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
       joint_rotation_(assembler.model().joints.size()),
       section_forces_(assembler.model().section_force_groups.size()) {
   const Model& model = assembler.model();
-  for (const std::string& name : model.output.constraint_loads)
-    for (std::size_t c = 0; c < model.constraints.size(); ++c)
-      if (model.constraints[c].name == name) load_constraints_.push_back(static_cast<int>(c));
+  for (const std::string& name : model.output.constraint_loads) load_constraints_.push_back(model.findConstraint(name));
   constraint_loads_.resize(load_constraints_.size());
   for (const TippingLineSpec& line : model.output.tipping_lines) {
     std::vector<int> supports;
-    for (const std::string& name : line.supports)
-      for (std::size_t c = 0; c < model.constraints.size(); ++c)
-        if (model.constraints[c].name == name) supports.push_back(static_cast<int>(c));
+    for (const std::string& name : line.supports) supports.push_back(model.findConstraint(name));
     tipping_supports_.push_back(std::move(supports));
   }
   tipping_moments_.resize(tipping_supports_.size());

@@ -49,6 +49,12 @@ int Model::findJoint(const std::string& name) const {
   return -1;
 }
 
+int Model::findConstraint(const std::string& name) const {
+  for (std::size_t k = 0; k < constraints.size(); ++k)
+    if (constraints[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
 std::vector<double> Model::breakpoints() const {
   std::vector<double> out;
   const auto add = [&](const Profile& p) {

@@ -16,8 +16,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// The recorded force (or, with `moment`, the moment) constraint `name` carries at every sample.
 std::vector<double> constraintLoads(const Model& model, const ResultsRecorder& recorder, const std::string& name, bool moment) {
-  const Constraint& c = *std::find_if(model.constraints.begin(), model.constraints.end(),
-                                      [&](const Constraint& k) { return k.name == name; });
+  const Constraint& c = model.constraints[model.findConstraint(name)];
   std::vector<std::vector<double>> rows;
   for (int k = 0; k < c.rows; ++k) rows.push_back(recorder.stateColumn(model.nq + model.nv + c.row + k));
   std::vector<double> forces(recorder.samples());
@@ -62,9 +61,7 @@ std::vector<double> horizontalDistances(const FigureSpec& fig, const Model& mode
 std::vector<double> tippingMoments(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder) {
   const Assembler assembler(model);
   std::vector<int> supports;
-  for (const std::string& name : fig.supports)
-    for (std::size_t k = 0; k < model.constraints.size(); ++k)
-      if (model.constraints[k].name == name) supports.push_back(static_cast<int>(k));
+  for (const std::string& name : fig.supports) supports.push_back(model.findConstraint(name));
   std::vector<std::vector<double>> columns(model.nq + model.nv + model.m);
   for (int k = 0; k < static_cast<int>(columns.size()); ++k) columns[k] = recorder.stateColumn(k);
   std::vector<double> moments(recorder.samples());

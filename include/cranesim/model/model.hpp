@@ -118,6 +118,7 @@ struct Model {
   /// Frame of a joint at coordinates q.
   Frame jointFrame(const double* q, int joint) const;
   int findJoint(const std::string& name) const;  // −1 if absent
+  int findConstraint(const std::string& name) const;  // −1 if absent
   /// All times where a drive, load or element-parameter profile has a kink or jump in its
   /// second derivative.
   std::vector<double> breakpoints() const;
