@@ -43,7 +43,8 @@
 // M d(dq)/dt = −F_ine gives dT/dt = dqᵀ M d(dq)/dt + ½ dqᵀ Ṁ dq = 0 exactly: the inertial terms
 // do no work. H is written explicitly (the mass matrix, the velocity tangent); Ḣ dq is its
 // derivative along the motion (one forward-AD direction), and the forces are evaluated in the
-// arrangement of section_inertia_forces.hpp, without H's blocks. Gravity (3-47): F_g = −∫ ρA H_xᵀ g ds, the exact gradient of −∫ ρA g·x ds.
+// arrangement of section_inertia_forces.hpp, without H's blocks. Gravity (3-47):
+// F_g = −∫ ρA H_xᵀ g ds, the exact gradient of −∫ ρA g·x ds.
 // At the undeformed state M is the Euler–Bernoulli consistent mass plus rotary inertia with
 // linear rotations. Quadrature: `mass_points` = 4 (exact for the cubic centre line at rest),
 // `stiffness_points` = 2 (exact strain energy; no reduced integration is needed).
