@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -15,20 +14,14 @@
 #include "cranesim/io/command_line.hpp"
 #include "cranesim/io/study_writer.hpp"
 #include "cranesim/study/study_checkpoint.hpp"
+#include "cranesim/parallel/task_farm.hpp"
 #include "cranesim/study/study_execution.hpp"
 #ifdef CRANESIM_WITH_MPI
-#include "cranesim/study/mpi_study.hpp"
+#include "cranesim/parallel/mpi_farm.hpp"
 #endif
 
 namespace cranesim {
 namespace {
-
-/// Whether an MPI launcher (mpirun, mpiexec, srun) started this process: it names a rank.
-bool startedByMpiLauncher() {
-  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "PMI_RANK", "MPI_LOCALNRANKS"})
-    if (std::getenv(variable)) return true;
-  return false;
-}
 
 /// Rank 0's part (or the whole study without MPI): the checkpoint, the rows, the results file.
 class StudyBook {
@@ -60,7 +53,7 @@ class StudyBook {
   }
 
   /// A row from any worker: recorded in the checkpoint, then in the table.
-  void record(CaseRow row, CaseQueue& queue) {
+  void record(CaseRow row, TaskQueue& queue) {
     const std::lock_guard<std::mutex> guard(lock_);
     if (row.status == kCaseInterrupted || done(row.index)) return;
     try {
@@ -182,11 +175,15 @@ int runStudyCommand(const StudyCommand& command) {
 #ifdef CRANESIM_WITH_MPI
   if (mpi && !master) {
     if (study->keep_results) execution.cases_dir = casesDirectory(tablePath(command));
-    computeCasesForRank0(*study, execution);
+    computeTasksForRank0(*mpi, [&](long index, const std::string& worker) {
+      CaseRow row = computeCase(*study, index, execution);
+      row.worker = worker;
+      return encodeRow(row);
+    });
     return 0;
   }
 #endif
-  CaseQueue queue(book->pending(), command.stop);
+  TaskQueue queue(book->pending(), command.stop);
   const RowSink sink = [&](CaseRow row) { book->record(std::move(row), queue); };
   std::string workers = fmt::format("{} thread{}", command.jobs, command.jobs == 1 ? "" : "s"), label;
 #ifdef CRANESIM_WITH_MPI
@@ -195,9 +192,16 @@ int runStudyCommand(const StudyCommand& command) {
     label = "rank 0 ";
   }
 #endif
-  LocalWorkers local(*study, queue, command.jobs, execution, sink, label);
+  LocalWorkers local(queue, command.jobs, [&](long index, const std::string& worker) {
+    CaseRow row = computeCase(*study, index, execution);
+    row.worker = worker;
+    sink(std::move(row));
+  }, label);
 #ifdef CRANESIM_WITH_MPI
-  if (mpi) serveCasesToRanks(*mpi, queue, study->figures.size(), sink);
+  if (mpi)
+    serveTasksToRanks(*mpi, queue, [&](std::string line, int) {
+      if (auto row = decodeRow(line, study->figures.size())) sink(std::move(*row));
+    });
 #endif
   local.join();
   return book->finish(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), workers);

@@ -1,0 +1,40 @@
+#include "cranesim/parallel/task_farm.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <numeric>
+
+namespace cranesim {
+
+std::optional<long> TaskQueue::next() {
+  const std::lock_guard<std::mutex> guard(lock_);
+  if (abandoned_ || (stop_ && *stop_) || next_ == pending_.size()) return std::nullopt;
+  return pending_[next_++];
+}
+
+std::vector<long> allTasks(long count) {
+  std::vector<long> tasks(static_cast<std::size_t>(std::max(count, 0L)));
+  std::iota(tasks.begin(), tasks.end(), 0L);
+  return tasks;
+}
+
+LocalWorkers::LocalWorkers(TaskQueue& queue, int jobs, const TaskWork& work, const std::string& label) {
+  for (int k = 0; k < jobs; ++k)
+    threads_.emplace_back([&queue, work, worker = fmt::format("{}thread {}", label, k)] {
+      while (const std::optional<long> task = queue.next()) work(*task, worker);
+    });
+}
+
+void LocalWorkers::join() {
+  for (std::thread& t : threads_)
+    if (t.joinable()) t.join();
+}
+
+bool startedByMpiLauncher() {
+  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "PMI_RANK", "MPI_LOCALNRANKS"})
+    if (std::getenv(variable)) return true;
+  return false;
+}
+
+}  // namespace cranesim
