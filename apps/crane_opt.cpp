@@ -4,48 +4,97 @@
 //       verification by simulation (its full results beside the plan: <plan>_simulation.h5)
 //   crane-opt map TARGET [-o map.h5] [--threads N] [--quiet]
 //       the static map alone
+//   mpirun -n N crane-opt plan|map …: the static map's rows farmed out to N ranks
 // Exit codes: 0 success, 1 solver failure, 2 bad input (the message names the YAML path and line).
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <optional>
 
 #include "cranesim/io/command_line.hpp"
 #include "cranesim/io/plan_writer.hpp"
+#include "cranesim/parallel/task_farm.hpp"
 #include "cranesim/planning/quasi_static_plan.hpp"
+#ifdef CRANESIM_WITH_MPI
+#include "cranesim/parallel/mpi_farm.hpp"
+#endif
 
 namespace {
 
 using namespace cranesim;
 
-int plan(const std::string& target_path, const std::string& out_arg, int threads, bool quiet, bool map_only) {
-  TargetSpec target = readTarget(target_path);
-  if (threads > 0) target.map.threads = threads;
+#ifdef CRANESIM_WITH_MPI
+using MpiRanks = MpiSession;
+#else
+struct MpiRanks {  // without MPI there are never other ranks
+  int rank() const { return 0; }
+};
+#endif
+
+/// Reads the target on every rank; only rank 0 reports a bad one. Under MPI, a target that rank
+/// 0 read but another rank could not ends the job rather than leave rank 0 waiting for it.
+std::optional<TargetSpec> readTargetOnEveryRank(const std::string& target_path, MpiRanks* mpi, int& verdict) {
+  const bool master = !mpi || mpi->rank() == 0;
+  std::optional<TargetSpec> target;
+  try {
+    target = readTarget(target_path);
+  } catch (const SceneError& e) {
+    if (master) fmt::print(stderr, "error: {}: {}\n", target_path, e.what());
+    verdict = kExitBadInput;
+  } catch (const std::exception& e) {
+    if (master) fmt::print(stderr, "error: {}\n", e.what());
+    verdict = kExitSolverFailure;
+  }
+#ifdef CRANESIM_WITH_MPI
+  if (mpi) {
+    verdict = mpi->broadcast(verdict);
+    if (verdict == 0 && !target) mpi->abort(kExitBadInput);
+  }
+#endif
+  return target;
+}
+
+int plan(const std::string& target_path, const std::string& out_arg, int threads, bool quiet, bool map_only,
+         MpiRanks* mpi) {
+  int verdict = 0;
+  std::optional<TargetSpec> target = readTargetOnEveryRank(target_path, mpi, verdict);
+  if (verdict != 0) return verdict;
+  if (threads > 0) target->map.threads = threads;
+#ifdef CRANESIM_WITH_MPI
+  if (mpi && mpi->rank() > 0) {  // this rank computes rows of the map, then its part is over
+    computeStaticMapRowsForRank0(target->scene, target->controls, target->map, *mpi);
+    return 0;
+  }
+#endif
   const std::string out = outputPath(target_path, out_arg, map_only ? "_map.h5" : "_plan.h5");
   const PlanLog log = [quiet](const std::string& line) {
     if (!quiet) fmt::print(stderr, "{}\n", line);
   };
   QuasiStaticPlan result;
+  StaticMap map = computeStaticMap(target->scene, target->controls, target->map, log, mpi);
+#ifdef CRANESIM_WITH_MPI
+  if (mpi) mpi->finish();  // the map was the farmed part; rank 0 goes on alone
+#endif
   if (map_only) {
-    result.map = computeStaticMap(target.scene, target.controls, target.map, log);
-    result.map_s = result.map.start_time_s + result.map.sweep_time_s;
-    writePlan(out, target, result, true);
-    fmt::print(stderr, "static map: {} × {} points, {} failed, sweep {:.1f} s on {} threads; written to {}\n",
-               result.map.rows(), result.map.columns(), result.map.failures.size(), result.map.sweep_time_s,
-               result.map.threads, out);
+    result.map = std::move(map);
+    result.map_s = result.map.time_s;
+    writePlan(out, *target, result, true);
+    fmt::print(stderr, "static map: {} × {} points, {} failed, rows {:.1f} s on {}; written to {}\n", result.map.rows(),
+               result.map.columns(), result.map.failures.size(), result.map.sweep_time_s, result.map.execution, out);
     return result.map.failures.empty() ? 0 : kExitSolverFailure;
   }
-  result = planQuasiStatic(target, log);
+  result = planQuasiStatic(*target, std::move(map), log);
   const std::string simulation = std::filesystem::path(out).replace_extension().string() + "_simulation.h5";
   try {
-    verifyPlan(target, result, simulation, log);
+    verifyPlan(*target, result, simulation, log);
   } catch (const std::runtime_error& e) {
-    writePlan(out, target, result);
+    writePlan(out, *target, result);
     fmt::print(stderr, "error: {}\n  plan written to {} (verification incomplete)\n", e.what(), out);
     return kExitSolverFailure;
   }
-  writePlan(out, target, result);
+  writePlan(out, *target, result);
   fmt::print(stderr, "plan written to {}; verification run in {}\n", out, simulation);
   return 0;
 }
@@ -73,13 +122,25 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : kExitBadInput;
   }
+  // Under mpirun (or srun) the static map's rows are farmed out to every rank; rank 0 does the rest.
+  std::optional<MpiRanks> mpi;
+  if (startedByMpiLauncher()) {
+#ifdef CRANESIM_WITH_MPI
+    mpi.emplace();
+#else
+    fmt::print(stderr, "error: mpirun: this crane-opt was built without MPI (install libopenmpi-dev and rebuild), so "
+                       "its ranks would each compute the whole plan: run it without mpirun, with --threads\n");
+    return kExitBadInput;
+#endif
+  }
+  const bool master = !mpi || mpi->rank() == 0;
   try {
-    return plan(target_path, out_path, threads, quiet, map_cmd->parsed());
+    return plan(target_path, out_path, threads, quiet, map_cmd->parsed(), mpi ? &*mpi : nullptr);
   } catch (const SceneError& e) {
-    fmt::print(stderr, "error: {}: {}\n", target_path, e.what());
+    if (master) fmt::print(stderr, "error: {}: {}\n", target_path, e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    if (master) fmt::print(stderr, "error: {}\n", e.what());
     return kExitSolverFailure;
   }
 }

@@ -38,9 +38,11 @@ void writeMap(Hdf5File& file, const StaticMap& map) {
   file.attribute("/map", "hoist_length_reference", map.hoist_length);
   file.attribute("/map", "jacobians", static_cast<long>(map.jacobians));
   file.attribute("/map", "threads", static_cast<long>(map.threads));
+  file.attribute("/map", "execution", map.execution);
   file.attribute("/map", "start_iterations", static_cast<long>(map.start_iterations));
   file.attribute("/map", "start_time_s", map.start_time_s);
   file.attribute("/map", "sweep_time_s", map.sweep_time_s);
+  file.attribute("/map", "time_s", map.time_s);
 }
 
 void writeFit(Hdf5File& file, const MapFit& fit, const SurfaceSpec& spec) {

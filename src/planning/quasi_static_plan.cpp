@@ -275,7 +275,7 @@ void computeControls(const TargetSpec& target, QuasiStaticPlan& plan, const Effe
 
 }  // namespace
 
-QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
+QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const PlanLog& log) {
   const auto say = [&](const std::string& line) {
     if (log) log(line);
   };
@@ -284,17 +284,16 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log) {
   const Eigen::Vector2d origin = target.origin;
 
   // 1. Static map (6.2).
-  auto t0 = Clock::now();
-  plan.map = computeStaticMap(target.scene, target.controls, target.map, log);
-  plan.map_s = secondsSince(t0);
+  plan.map = std::move(map);
+  plan.map_s = plan.map.time_s;
   if (!plan.map.failures.empty())
     throw std::runtime_error(fmt::format("{} static map points failed; the first: {}", plan.map.failures.size(),
                                          plan.map.failures.front()));
-  say(fmt::format("static map: {} × {} equilibria in {:.1f} s ({} Jacobian factorisations, {} threads)",
-                  plan.map.rows(), plan.map.columns(), plan.map_s, plan.map.jacobians, plan.map.threads));
+  say(fmt::format("static map: {} × {} equilibria in {:.1f} s ({} Jacobian factorisations, {})", plan.map.rows(),
+                  plan.map.columns(), plan.map_s, plan.map.jacobians, plan.map.execution));
 
   // 2. Fitted surfaces.
-  t0 = Clock::now();
+  auto t0 = Clock::now();
   plan.fit = fitStaticMap(plan.map, target.fit);
   plan.fit_s = secondsSince(t0);
   say(fmt::format("fit: max residual x {:.3g} m, z {:.3g} m, luffing rope {:.3g} m", plan.fit.fx.maxResidual(),

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 #include <tbb/info.h>
 
 #include <Eigen/SparseLU>
@@ -18,7 +17,13 @@
 #include <numbers>
 #include <optional>
 
+#include "cranesim/io/command_line.hpp"
 #include "cranesim/model/compile.hpp"
+#include "cranesim/parallel/byte_stream.hpp"
+#include "cranesim/parallel/task_farm.hpp"
+#ifdef CRANESIM_WITH_MPI
+#include "cranesim/parallel/mpi_farm.hpp"
+#endif
 #include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/equilibrium_system.hpp"
 #include "cranesim/solvers/statics.hpp"
@@ -226,157 +231,324 @@ Model mapModel(const Scene& scene, const CraneControls& controls, double hoist_l
   return compileModel(driven);
 }
 
-StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, const StaticMapSpec& spec,
-                           const std::function<void(const std::string&)>& log) {
-  using Clock = std::chrono::steady_clock;
-  const int threads = spec.threads > 0 ? spec.threads : tbb::info::default_concurrency();
-  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
-  const auto say = [&](const std::string& line) {
-    if (log) log(line);
-  };
+namespace {
 
-  StaticMap map;
-  map.boom_angles_deg = spec.boom_angles_deg;
-  map.hoist_changes = spec.hoist_changes;
-  map.threads = threads;
-  const int rows = map.rows(), columns = map.columns();
-  for (Eigen::MatrixXd* m : {&map.luffing_length, &map.hoist_rope_length, &map.end_x, &map.end_y, &map.end_z})
-    m->setConstant(rows, columns, std::numeric_limits<double>::quiet_NaN());
-  map.iterations.setZero(rows, columns);
-  map.equilibria.resize(static_cast<std::size_t>(rows) * columns);
+/// One sweep of the grid: the models (one per hoist change), the spine column (boom angles
+/// outwards from the scene's equilibrium) and the rows of hoist changes at each boom angle, each
+/// row a task of the farm (parallel/task_farm.hpp) that starts from its spine point alone, so a
+/// row is the same whichever thread or rank computes it.
+class StaticMapSweep {
+ public:
+  StaticMapSweep(const Scene& scene, const CraneControls& controls, const StaticMapSpec& spec)
+      : scene_(scene), controls_(controls), spec_(spec) {
+    map_.boom_angles_deg = spec.boom_angles_deg;
+    map_.hoist_changes = spec.hoist_changes;
+    for (Eigen::MatrixXd* m : {&map_.luffing_length, &map_.hoist_rope_length, &map_.end_x, &map_.end_y, &map_.end_z})
+      m->setConstant(rows(), columns(), std::numeric_limits<double>::quiet_NaN());
+    map_.iterations.setZero(rows(), columns());
+    map_.equilibria.resize(static_cast<std::size_t>(rows()) * columns());
+    failures_.resize(static_cast<std::size_t>(rows()) * columns());
 
-  // The spine column: the hoist change closest to the scene's own hoist rope.
-  const auto t0 = Clock::now();
-  const double start_luffing = ropeLengthAtStart(scene, controls.luffing_rope);
-  const double scene_hoist = ropeLengthAtStart(scene, controls.hoist_rope);
-  map.hoist_length = spec.hoist_length > 0.0 ? spec.hoist_length : scene_hoist;
-  int spine_column = 0;
-  for (int j = 1; j < columns; ++j)
-    if (std::abs(map.hoist_length - map.hoist_changes[j] - scene_hoist) <
-        std::abs(map.hoist_length - map.hoist_changes[spine_column] - scene_hoist))
-      spine_column = j;
-
-  // Where the continuation starts: the scene's equilibrium with its hoist rope at the spine
-  // column's length (a hoist rope paid out from a solved state would start slack).
-  const Scene start_scene = withControls(scene, controls, Profile(ConstantProfile{start_luffing}),
-                                         Profile(ConstantProfile{map.hoist_length - map.hoist_changes[spine_column]}));
-  const Model start_model = compileModel(start_scene);
-  const StaticResult start = solveEquilibrium(start_scene, start_model, start_scene.solver.t_start);
-  map.start_iterations = start.iterations;
-  map.start_time_s = std::chrono::duration<double>(Clock::now() - t0).count();
-  if (!start.converged) throw std::runtime_error("the scene's equilibrium, where the map starts: " + start.message);
-  say(fmt::format("scene equilibrium: {} Newton iterations, {:.1f} s", start.iterations, map.start_time_s));
-
-  std::vector<Model> models;
-  for (double change : spec.hoist_changes) {
-    if (!(map.hoist_length - change > 0.0))
-      throw std::invalid_argument(fmt::format("hoist change {} m exceeds the hoist rope's length {} m", change, map.hoist_length));
-    models.push_back(mapModel(scene, controls, map.hoist_length - change, start_luffing));
-  }
-  const CraneGeometry geometry(models[0], controls);  // joints sit alike in every map model
-
-  const auto t1 = Clock::now();
-  std::mutex record_mutex;
-  std::atomic<int> factorisations{0};
-  const auto record = [&](int i, int j, const PointState& s, const PointOutcome& outcome) {
-    std::lock_guard lock(record_mutex);
-    map.iterations(i, j) = outcome.iterations;
-    if (!outcome.converged) {
-      map.failures.push_back(fmt::format("boom angle {:g}°, hoist change {:g} m: {}", map.boom_angles_deg[i],
-                                         map.hoist_changes[j], outcome.why));
-      return;
+    start_luffing_ = ropeLengthAtStart(scene, controls.luffing_rope);
+    const double scene_hoist = ropeLengthAtStart(scene, controls.hoist_rope);
+    map_.hoist_length = spec.hoist_length > 0.0 ? spec.hoist_length : scene_hoist;
+    for (int j = 1; j < columns(); ++j)  // the hoist change closest to the scene's own hoist rope
+      if (std::abs(map_.hoist_length - map_.hoist_changes[j] - scene_hoist) <
+          std::abs(map_.hoist_length - map_.hoist_changes[spine_column_] - scene_hoist))
+        spine_column_ = j;
+    for (double change : spec.hoist_changes) {
+      if (!(map_.hoist_length - change > 0.0))
+        throw std::invalid_argument(fmt::format("hoist change {} m exceeds the hoist rope's length {} m", change, map_.hoist_length));
+      models_.push_back(mapModel(scene, controls, map_.hoist_length - change, start_luffing_));
     }
-    const Vec3 end = geometry.endPoint(s.x);
-    map.luffing_length(i, j) = s.luffing_length;
-    map.hoist_rope_length(i, j) = map.hoist_length - map.hoist_changes[j];
-    map.end_x(i, j) = end.x();
-    map.end_y(i, j) = end.y();
-    map.end_z(i, j) = end.z();
-    map.equilibria[static_cast<std::size_t>(i) * columns + j] = s.x;
-  };
+    geometry_.emplace(models_[0], controls);  // joints sit alike in every map model
+    spine_.resize(rows());
+  }
 
-  // The spine: boom angles outwards from the scene's equilibrium, in the spine column.
-  std::vector<PointState> spine(rows);
-  std::vector<bool> spine_ok(rows, false);
-  {
-    EquilibriumSystem system(models[spine_column], start_luffing);
+  int rows() const { return static_cast<int>(map_.boom_angles_deg.size()); }
+  int columns() const { return static_cast<int>(map_.hoist_changes.size()); }
+  StaticMap& map() { return map_; }
+
+  /// The scene's equilibrium with its hoist rope at the spine column's length (a hoist rope paid
+  /// out from a solved state would start slack), then the boom angles outwards from it.
+  void solveSpine(const std::function<void(const std::string&)>& say) {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    const Scene start_scene =
+        withControls(scene_, controls_, Profile(ConstantProfile{start_luffing_}),
+                     Profile(ConstantProfile{map_.hoist_length - map_.hoist_changes[spine_column_]}));
+    const Model start_model = compileModel(start_scene);
+    const StaticResult start = solveEquilibrium(start_scene, start_model, start_scene.solver.t_start);
+    map_.start_iterations = start.iterations;
+    map_.start_time_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (!start.converged) throw std::runtime_error("the scene's equilibrium, where the map starts: " + start.message);
+    say(fmt::format("scene equilibrium: {} Newton iterations, {:.1f} s", start.iterations, map_.start_time_s));
+
+    const auto t1 = Clock::now();
+    EquilibriumSystem system(models_[spine_column_], start_luffing_);
     PointState origin;
     origin.x.resize(system.size());
     origin.x << start.q, start.lambda;
-    origin.luffing_length = start_luffing;
-    const double start_angle = geometry.boomAngle(origin.x);
+    origin.luffing_length = start_luffing_;
+    const double start_angle = geometry_->boomAngle(origin.x);
     int nearest = 0;
-    for (int i = 1; i < rows; ++i)
-      if (std::abs(map.boom_angles_deg[i] * kDegree - start_angle) < std::abs(map.boom_angles_deg[nearest] * kDegree - start_angle))
-        nearest = i;
+    for (int i = 1; i < rows(); ++i)
+      if (std::abs(angle(i) - start_angle) < std::abs(angle(nearest) - start_angle)) nearest = i;
     ChordJacobian jacobian;
     for (int direction : {-1, +1}) {
       jacobian.valid = false;
-      for (int i = direction < 0 ? nearest : nearest + 1; i >= 0 && i < rows; i += direction) {
+      for (int i = direction < 0 ? nearest : nearest + 1; i >= 0 && i < rows(); i += direction) {
         const int back1 = i - direction, back2 = i - 2 * direction;
-        const auto solved = [&](int k) { return k >= 0 && k < rows && spine_ok[k]; };
-        const double angle = map.boom_angles_deg[i] * kDegree;
+        const auto solved = [&](int k) { return k >= 0 && k < rows() && spine_[k]; };
         PointState s;
         PointOutcome outcome;
         if (solved(back1) && solved(back2)) {
-          s = predict(spine[back2], spine[back1], map.boom_angles_deg[back2], map.boom_angles_deg[back1],
-                      map.boom_angles_deg[i]);
-          outcome = solvePoint(system, geometry, s, angle, jacobian, spec);
+          s = predict(*spine_[back2], *spine_[back1], map_.boom_angles_deg[back2], map_.boom_angles_deg[back1],
+                      map_.boom_angles_deg[i]);
+          outcome = solvePoint(system, *geometry_, s, angle(i), jacobian, spec_);
         }
         if (!outcome.converged) {  // no extrapolation, or it failed: from the neighbour, in halved steps if need be
           const int spent = outcome.iterations;
-          s = solved(back1) ? spine[back1] : origin;
+          s = solved(back1) ? *spine_[back1] : origin;
           if (spent > 0) jacobian.valid = false;
-          outcome = solveAngleStep(system, geometry, s, solved(back1) ? map.boom_angles_deg[back1] * kDegree : start_angle,
-                                   angle, jacobian, spec);
+          outcome = solveAngleStep(system, *geometry_, s, solved(back1) ? angle(back1) : start_angle, angle(i),
+                                   jacobian, spec_);
           outcome.iterations += spent;
         }
-        record(i, spine_column, s, outcome);
+        record(i, spine_column_, s, outcome);
         if (!outcome.converged) break;  // the angles beyond would start from a failed point
-        spine[i] = s;
-        spine_ok[i] = true;
+        spine_[i] = s;
       }
     }
-    factorisations += jacobian.factorisations;
+    map_.jacobians += jacobian.factorisations;
+    say(fmt::format("hoist change {:g} m: {} boom angles, {:.1f} s", map_.hoist_changes[spine_column_],
+                    std::count_if(spine_.begin(), spine_.end(), [](const auto& p) { return p.has_value(); }),
+                    std::chrono::duration<double>(Clock::now() - t1).count()));
   }
-  say(fmt::format("hoist change {:g} m: {} boom angles, {:.1f} s", map.hoist_changes[spine_column],
-                  std::count(spine_ok.begin(), spine_ok.end(), true),
-                  std::chrono::duration<double>(Clock::now() - t1).count()));
 
-  // The rows: hoist changes at each boom angle, one task per row.
-  tbb::enumerable_thread_specific<std::vector<std::unique_ptr<EquilibriumSystem>>> systems;
-  std::atomic<int> rows_done{0};
-  tbb::parallel_for(0, rows, [&](int i) {
-    if (!spine_ok[i]) return;
-    auto& mine = systems.local();
-    if (mine.empty()) mine.resize(columns);
+  /// The spine's points, for the other ranks.
+  std::string encodeSpine() const {
+    ByteWriter out;
+    encodePoints(out, spine_);
+    return out.take();
+  }
+  void decodeSpine(const std::string& bytes) {
+    ByteReader in(bytes);
+    decodePoints(in, spine_);
+  }
+
+  /// The rows whose spine point was found: the farm's tasks.
+  std::vector<long> rowTasks() const {
+    std::vector<long> tasks;
+    for (int i = 0; i < rows(); ++i)
+      if (spine_[i]) tasks.push_back(i);
+    return tasks;
+  }
+
+  /// Row i: hoist changes from the spine column towards both ends of the row, as bytes
+  /// (recordRow reads them). `systems` holds the calling worker's equilibrium system per column.
+  std::string computeRow(int i, std::vector<std::unique_ptr<EquilibriumSystem>>& systems) const {
+    if (systems.empty()) systems.resize(columns());
     ChordJacobian jacobian;
-    std::vector<std::optional<PointState>> row(columns);
-    row[spine_column] = spine[i];
-    for (int direction : {+1, -1}) {  // from the spine column towards both ends of the row
+    std::vector<std::optional<PointState>> row(columns());
+    std::vector<PointOutcome> outcomes(columns());
+    row[spine_column_] = *spine_[i];
+    for (int direction : {+1, -1}) {
       jacobian.valid = false;
-      for (int j = spine_column + direction; j >= 0 && j < columns; j += direction) {
-        if (!mine[j]) mine[j] = std::make_unique<EquilibriumSystem>(models[j], start_luffing);
+      for (int j = spine_column_ + direction; j >= 0 && j < columns(); j += direction) {
+        if (!systems[j]) systems[j] = std::make_unique<EquilibriumSystem>(models_[j], start_luffing_);
         // Extrapolated from the two previous points of the row; on the way back from the spine
         // column those are the spine and its neighbour on the other side. (A copy of the
         // neighbour would leave a paid-out hoist rope slack, without stiffness: Newton fails.)
         const int back1 = j - direction, back2 = j - 2 * direction;
-        PointState s = back2 >= 0 && back2 < columns && row[back2]
-                           ? predict(*row[back2], *row[back1], map.hoist_changes[back2], map.hoist_changes[back1],
-                                     map.hoist_changes[j])
+        PointState s = back2 >= 0 && back2 < columns() && row[back2]
+                           ? predict(*row[back2], *row[back1], map_.hoist_changes[back2], map_.hoist_changes[back1],
+                                     map_.hoist_changes[j])
                            : *row[back1];
-        const PointOutcome outcome = solvePoint(*mine[j], geometry, s, map.boom_angles_deg[i] * kDegree, jacobian, spec);
-        record(i, j, s, outcome);
-        if (!outcome.converged) break;
+        outcomes[j] = solvePoint(*systems[j], *geometry_, s, angle(i), jacobian, spec_);
+        if (!outcomes[j].converged) break;
         row[j] = s;
       }
     }
-    factorisations += jacobian.factorisations;
-    say(fmt::format("boom angle {:g}°: row done ({}/{})", map.boom_angles_deg[i], ++rows_done, rows));
-  });
-  map.jacobians = factorisations;
+    row[spine_column_].reset();  // the spine's point is recorded already
+    ByteWriter out;
+    out.put(i);
+    out.put(jacobian.factorisations);
+    for (const PointOutcome& outcome : outcomes) {
+      out.put(outcome.iterations);
+      out.put(outcome.why);
+    }
+    encodePoints(out, row);
+    return out.take();
+  }
+
+  /// Records a row computeRow wrote; returns its boom angle's index.
+  int recordRow(const std::string& bytes) {
+    ByteReader in(bytes);
+    const int i = in.get<int>();
+    if (i < 0 || i >= rows()) throw std::runtime_error("corrupt static map row");
+    map_.jacobians += in.get<int>();
+    std::vector<PointOutcome> outcomes(columns());
+    for (PointOutcome& outcome : outcomes) {
+      outcome.iterations = in.get<int>();
+      outcome.why = in.getString();
+    }
+    std::vector<std::optional<PointState>> row(columns());
+    decodePoints(in, row);
+    for (int j = 0; j < columns(); ++j) {
+      if (j == spine_column_ || (outcomes[j].iterations == 0 && !row[j])) continue;  // the spine's, or not tried
+      outcomes[j].converged = row[j].has_value();
+      record(i, j, row[j] ? *row[j] : PointState{}, outcomes[j]);
+    }
+    return i;
+  }
+
+  /// The failed points' lines, in the grid's order.
+  void collectFailures() {
+    for (std::string& failure : failures_)
+      if (!failure.empty()) map_.failures.push_back(std::move(failure));
+  }
+
+ private:
+  double angle(int i) const { return map_.boom_angles_deg[i] * kDegree; }
+
+  void record(int i, int j, const PointState& s, const PointOutcome& outcome) {
+    const std::size_t k = static_cast<std::size_t>(i) * columns() + j;
+    map_.iterations(i, j) = outcome.iterations;
+    if (!outcome.converged) {
+      failures_[k] = fmt::format("boom angle {:g}°, hoist change {:g} m: {}", map_.boom_angles_deg[i],
+                                 map_.hoist_changes[j], outcome.why);
+      return;
+    }
+    const Vec3 end = geometry_->endPoint(s.x);
+    map_.luffing_length(i, j) = s.luffing_length;
+    map_.hoist_rope_length(i, j) = map_.hoist_length - map_.hoist_changes[j];
+    map_.end_x(i, j) = end.x();
+    map_.end_y(i, j) = end.y();
+    map_.end_z(i, j) = end.z();
+    map_.equilibria[k] = s.x;
+  }
+
+  static void encodePoints(ByteWriter& out, const std::vector<std::optional<PointState>>& points) {
+    for (const std::optional<PointState>& p : points) {
+      out.put(p.has_value());
+      if (!p) continue;
+      out.put(p->luffing_length);
+      out.putArray(p->x.data(), p->x.size());
+    }
+  }
+  static void decodePoints(ByteReader& in, std::vector<std::optional<PointState>>& points) {
+    for (std::optional<PointState>& p : points) {
+      p.reset();
+      if (!in.get<bool>()) continue;
+      p.emplace();
+      p->luffing_length = in.get<double>();
+      p->x.resize(in.getLength());
+      in.getArrayValues(p->x.data(), p->x.size());
+    }
+  }
+
+  const Scene& scene_;
+  const CraneControls& controls_;
+  const StaticMapSpec& spec_;
+  StaticMap map_;
+  std::vector<std::string> failures_;  // per point, row-major; empty where none
+  double start_luffing_ = 0.0;
+  int spine_column_ = 0;
+  std::vector<Model> models_;
+  std::optional<CraneGeometry> geometry_;
+  std::vector<std::optional<PointState>> spine_;
+};
+
+}  // namespace
+
+StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, const StaticMapSpec& spec,
+                           const std::function<void(const std::string&)>& log, const MpiSession* ranks) {
+  using Clock = std::chrono::steady_clock;
+  const auto say = [&](const std::string& line) {
+    if (log) log(line);
+  };
+  // Under MPI every rank is a core's worth of work: rank 0 computes on one thread unless told more.
+  const int threads = spec.threads > 0 ? spec.threads : ranks ? 1 : tbb::info::default_concurrency();
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, threads);
+
+  const auto t0 = Clock::now();
+  StaticMapSweep sweep(scene, controls, spec);
+  std::string spine;
+  try {
+    sweep.solveSpine(say);
+    spine = sweep.encodeSpine();
+  } catch (...) {
+#ifdef CRANESIM_WITH_MPI
+    if (ranks) ranks->broadcast(spine);  // empty: the other ranks stop
+#endif
+    throw;
+  }
+#ifdef CRANESIM_WITH_MPI
+  if (ranks) ranks->broadcast(spine);
+#endif
+
+  const auto t1 = Clock::now();
+  StaticMap& map = sweep.map();
+  map.threads = threads;
+  map.execution = fmt::format("{} thread{}", threads, threads == 1 ? "" : "s");
+  const std::vector<long> tasks = sweep.rowTasks();
+  std::mutex record_mutex;
+  int rows_done = 0;
+  const auto record = [&](const std::string& bytes, const std::string& worker) {
+    std::lock_guard lock(record_mutex);
+    const int i = sweep.recordRow(bytes);
+    say(fmt::format("boom angle {:g}°: row done ({}/{}, {})", map.boom_angles_deg[i], ++rows_done, tasks.size(), worker));
+  };
+  {
+    // One row per core: the rows are the parallelism, each row's element loops run serially.
+    const tbb::global_control one_thread_per_row(tbb::global_control::max_allowed_parallelism, 1);
+    tbb::enumerable_thread_specific<std::vector<std::unique_ptr<EquilibriumSystem>>> systems;
+    TaskQueue queue(tasks);
+    std::exception_ptr error;  // the first exception of a worker thread, rethrown here
+    LocalWorkers local(queue, threads, [&](long i, const std::string& worker) {
+      try {
+        record(sweep.computeRow(static_cast<int>(i), systems.local()), worker);
+      } catch (...) {
+        std::lock_guard lock(record_mutex);
+        if (!error) error = std::current_exception();
+        queue.abandon();
+      }
+    }, ranks ? "rank 0 " : "");
+#ifdef CRANESIM_WITH_MPI
+    if (ranks) {
+      map.execution = fmt::format("{} MPI ranks ({} on rank 0, one on each other rank)", ranks->size(), map.execution);
+      serveTasksToRanks(*ranks, queue, [&](std::string bytes, int rank) { record(bytes, fmt::format("rank {}", rank)); });
+    }
+#endif
+    local.join();
+    if (error) std::rethrow_exception(error);
+  }
+  sweep.collectFailures();
   map.sweep_time_s = std::chrono::duration<double>(Clock::now() - t1).count();
-  return map;
+  map.time_s = std::chrono::duration<double>(Clock::now() - t0).count();
+  return std::move(map);
 }
+
+#ifdef CRANESIM_WITH_MPI
+void computeStaticMapRowsForRank0(const Scene& scene, const CraneControls& controls, const StaticMapSpec& spec,
+                                  const MpiSession& ranks) {
+  const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  StaticMapSweep sweep(scene, controls, spec);
+  std::string spine;
+  ranks.broadcast(spine);
+  if (spine.empty()) return;  // rank 0 could not start the map
+  sweep.decodeSpine(spine);
+  std::vector<std::unique_ptr<EquilibriumSystem>> systems;
+  computeTasksForRank0(ranks, [&](long i, const std::string& worker) {
+    try {
+      return sweep.computeRow(static_cast<int>(i), systems);
+    } catch (const std::exception& e) {  // rank 0 would wait for this row forever: end the job
+      fmt::print(stderr, "error: static map, {}, boom angle {:g}°: {}\n", worker, spec.boom_angles_deg[i], e.what());
+      ranks.abort(kExitSolverFailure);
+    }
+  });
+}
+#endif
 
 }  // namespace cranesim

@@ -11,6 +11,7 @@ Environment: CRANEOPT_BIN (default <repo>/build/crane-opt), CRANESIM_BIN (defaul
 """
 
 import os
+import shutil
 import subprocess
 from pathlib import Path
 
@@ -203,6 +204,88 @@ def test_map_only(tmp_path: Path):
 
 CRANE_TARGET = SOURCE_DIR / "configs" / "target.yaml"
 SLEWING_TARGET = SOURCE_DIR / "configs" / "target_slewing.yaml"
+
+
+def mpirun_crane_opt(ranks: int, *arguments, cwd: Path) -> subprocess.CompletedProcess:
+    launcher = ["mpirun", "--oversubscribe", "-n", str(ranks)]
+    if os.geteuid() == 0:
+        launcher.insert(1, "--allow-run-as-root")
+    return subprocess.run(launcher + [str(BINARY), *map(str, arguments)], capture_output=True, text=True, cwd=cwd,
+                          timeout=300)
+
+
+def map_datasets(path: Path) -> dict:
+    with h5py.File(path, "r") as f:
+        return {name: f["map"][name][...] for name in f["map"]}
+
+
+def coarse_condensed_crane_target(directory: Path) -> Path:
+    """The thesis crane's map (configs/target.yaml) on the condensed crane, on a 9 × 14 grid."""
+    text = CRANE_TARGET.read_text(encoding="utf-8")
+    text = text.replace("scene: crane.yaml", f"scene: {SOURCE_DIR / 'configs' / 'crane_condensed.yaml'}", 1)
+    text = text.replace("boom_angle: {from: 45, to: 85, step: 1}", "boom_angle: {from: 45, to: 85, step: 5}", 1)
+    text = text.replace("hoist_change: {from: -2, to: 24, step: 1}", "hoist_change: {from: -2, to: 24, step: 2}", 1)
+    assert "step: 5}" in text and "step: 2}" in text and "crane_condensed" in text
+    path = directory / "target.yaml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_map_is_bitwise_identical_on_threads_and_ranks(tmp_path: Path):
+    """Each row of the map starts from its spine point alone, so it is the same whoever computes
+    it: 1 thread, 2 threads and (when MPI is installed) 2 MPI ranks give the same bits."""
+    target = coarse_condensed_crane_target(tmp_path)
+    maps, logs = {}, {}
+    for threads in (1, 2):
+        out = tmp_path / f"threads_{threads}.h5"
+        result = crane_opt("map", target, "-o", out, "--threads", threads, cwd=tmp_path)
+        assert result.returncode == 0, result.stderr
+        maps[f"{threads} threads"], logs[f"{threads} threads"] = map_datasets(out), result.stderr
+    if shutil.which("mpirun"):
+        out = tmp_path / "ranks_2.h5"
+        result = mpirun_crane_opt(2, "map", target, "-o", out, cwd=tmp_path)
+        if "built without MPI" in result.stderr:
+            pytest.skip("crane-opt built without MPI: threads compared only")
+        assert result.returncode == 0, result.stderr
+        maps["2 ranks"], logs["2 ranks"] = map_datasets(out), result.stderr
+        with h5py.File(out, "r") as f:
+            assert f["map"].attrs["execution"].startswith("2 MPI ranks")
+        # Both ranks computed rows (9 rows of about 30 ms each; rank 0 computes on one thread).
+        assert "rank 1)" in result.stderr and "rank 0 thread 0)" in result.stderr, result.stderr
+    assert "thread 1)" in logs["2 threads"] and "thread 0)" in logs["2 threads"]
+    reference = maps["1 threads"]
+    assert np.all(np.isfinite(reference["luffing_length"])) and reference["luffing_length"].shape == (9, 14)
+    for name, datasets in maps.items():
+        for key, values in reference.items():
+            assert datasets[key].tobytes() == values.tobytes(), f"{key} differs with {name}"
+
+
+def test_plan_under_mpirun(tmp_path: Path):
+    """Under mpirun the map's rows are farmed out and rank 0 alone plans, verifies and writes; a
+    bad target is reported once, with exit code 2."""
+    if not shutil.which("mpirun"):
+        pytest.skip("mpirun not installed")
+    out = tmp_path / "plan.h5"
+    result = mpirun_crane_opt(2, "plan", JIB_TARGET, "-o", out, cwd=tmp_path)
+    if "built without MPI" in result.stderr:
+        pytest.skip("crane-opt built without MPI")
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.count("plan written to") == 1
+    with h5py.File(out, "r") as f:
+        assert f["verification"].attrs["status"] == "complete"
+        assert f["map"].attrs["execution"].startswith("2 MPI ranks")
+    serial_map = tmp_path / "serial.h5"
+    serial = crane_opt("map", JIB_TARGET, "-o", serial_map, "--threads", "1", "--quiet", cwd=tmp_path)
+    assert serial.returncode == 0, serial.stderr
+    for key, values in map_datasets(serial_map).items():
+        assert map_datasets(out)[key].tobytes() == values.tobytes(), key
+
+    bad = BAD_TARGETS[0]
+    expect, _ = expectations(bad)
+    result = mpirun_crane_opt(2, "plan", bad, "-o", tmp_path / "bad.h5", cwd=tmp_path)
+    assert result.returncode == 2
+    assert result.stderr.count(expect) == 1, result.stderr
+    assert not (tmp_path / "bad.h5").exists()
 
 
 def plan_condensed_crane(tmp_path: Path, target: tuple, method: str = "quasi_static", base: Path = CRANE_TARGET) -> Path:

@@ -101,9 +101,10 @@ struct QuasiStaticPlan {
 
 using PlanLog = std::function<void(const std::string&)>;
 
-/// Map, fit, trajectory, control trajectory and the inversion checks. Throws SceneError (bad
-/// input: a start or target outside the map) or std::runtime_error (a solver failure).
-QuasiStaticPlan planQuasiStatic(const TargetSpec& target, const PlanLog& log = {});
+/// Fit, trajectory, control trajectory and the inversion checks on the target's static map
+/// (computeStaticMap). Throws SceneError (bad input: a start or target outside the map) or
+/// std::runtime_error (a solver failure, failed map points).
+QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const PlanLog& log = {});
 
 /// Simulates the crane driven by the plan's control splines (8.4.3) and fills
 /// plan.verification; writes the run as a crane-sim results file when `results_path` is given.

@@ -10,7 +10,9 @@
 // and refreshed when the contraction slows. Every point starts from its neighbour's solution:
 // first the boom angles at the hoist change nearest the scene's own hoist rope, outwards from
 // the scene's equilibrium (a step that fails is halved), then every boom angle's row of hoist
-// changes in both directions, the rows in parallel.
+// changes in both directions, the rows in parallel: threads, and MPI ranks under mpirun (each
+// row is a task of parallel/task_farm.hpp and starts from its spine point alone, so the map is
+// the same, bit for bit, whoever computes its rows).
 
 #include <functional>
 #include <string>
@@ -48,7 +50,9 @@ struct StaticMap {
   int jacobians = 0;                     // Jacobian factorisations over the sweep
   int start_iterations = 0;              // Newton iterations of the scene's own equilibrium
   double start_time_s = 0.0, sweep_time_s = 0.0;
-  int threads = 1;
+  double time_s = 0.0;                   // all of it: models, start, spine and rows
+  int threads = 1;                       // rank 0's threads
+  std::string execution;                 // who computed the rows, e.g. "2 threads"
 
   int rows() const { return static_cast<int>(boom_angles_deg.size()); }
   int columns() const { return static_cast<int>(hoist_changes.size()); }
@@ -69,8 +73,20 @@ void checkControls(const Scene& scene, const CraneControls& controls, const Sour
 /// equilibrium system at time L is the crane with luffing rope L), starting at `luffing_length`.
 Model mapModel(const Scene& scene, const CraneControls& controls, double hoist_length, double luffing_length);
 
-/// Sweeps the grid. `log` receives one progress line per finished row (may be empty).
+class MpiSession;  // parallel/mpi_farm.hpp
+
+/// Sweeps the grid. `log` receives one progress line per finished row (may be empty). With
+/// `ranks` (rank 0 of an MPI job), the rows are also farmed out to the other ranks, which call
+/// computeStaticMapRowsForRank0 with the same arguments; rank 0 then computes on spec.threads
+/// threads, or one when that is 0.
 StaticMap computeStaticMap(const Scene& scene, const CraneControls& controls, const StaticMapSpec& spec,
-                           const std::function<void(const std::string&)>& log = {});
+                           const std::function<void(const std::string&)>& log = {}, const MpiSession* ranks = nullptr);
+
+#ifdef CRANESIM_WITH_MPI
+/// Ranks 1 … of an MPI job: computes the rows rank 0's computeStaticMap hands out, until the
+/// map is done (or rank 0 could not start it).
+void computeStaticMapRowsForRank0(const Scene& scene, const CraneControls& controls, const StaticMapSpec& spec,
+                                  const MpiSession& ranks);
+#endif
 
 }  // namespace cranesim
