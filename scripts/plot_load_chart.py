@@ -1,7 +1,9 @@
 """A load chart from a crane-sim study's case table: per crane configuration (e.g. luffing rope
 length), the largest load such that it and every lighter load of the grid are admissible (every
 criterion of the study holds: /cases/admissible), with the radius of that case. Prints the chart
-as a table, with the criterion that the next heavier load violates, and plots load over radius.
+as a table, with each criterion's utilisation at that load (figure / max, or min / figure for a
+lower bound: 100 % is the limit) and the criterion that the next heavier load violates, and
+plots load over radius.
 
 Example:
 
@@ -42,6 +44,17 @@ def dataset(table: h5py.File, path: str) -> np.ndarray:
     return table[path][...]
 
 
+def utilisation(table: h5py.File, criterion: h5py.Dataset, case: int) -> float:
+    """How much of a criterion's limit a case uses: figure / max, or min / figure (1 at the limit)."""
+    value = table[f"figures/{criterion.attrs['figure']}"][case]
+    upper, lower = criterion.attrs["max"], criterion.attrs["min"]
+    if np.isfinite(upper) and upper > 0:
+        return value / upper
+    if np.isfinite(lower) and lower > 0 and value > 0:
+        return lower / value
+    return np.nan
+
+
 def load_chart(table: h5py.File, load_name: str, configuration_name: str, radius_name: str) -> list[dict]:
     """One row per configuration: its largest admissible load, the radius there and what limits it."""
     if table.attrs.get("contents") != "study":
@@ -50,21 +63,22 @@ def load_chart(table: h5py.File, load_name: str, configuration_name: str, radius
     configuration = dataset(table, f"parameters/{configuration_name}")
     radius = dataset(table, f"figures/{radius_name}")
     admissible = dataset(table, "cases/admissible") == 1.0  # NaN (not computed) is not admissible
-    criteria = [(table[f"criteria/{k}"].attrs["figure"], table[f"criteria/{k}"][...] == 1.0)
-                for k in sorted(table["criteria"], key=int)]
+    criteria = [table[f"criteria/{k}"] for k in sorted(table["criteria"], key=int)]
     chart = []
     for value in np.unique(configuration):
         cases = np.flatnonzero(configuration == value)
         cases = cases[np.argsort(load[cases], kind="stable")]
         held = np.cumprod(admissible[cases]).astype(bool)  # every lighter load admissible too
-        row = {"configuration": value, "load": np.nan, "radius": np.nan, "limit": "none in the grid"}
+        row = {"configuration": value, "load": np.nan, "radius": np.nan, "limit": "none in the grid",
+               "utilisation": {c.attrs["figure"]: np.nan for c in criteria}}
         if held.any():
             last = cases[np.flatnonzero(held)[-1]]
             row.update(load=load[last], radius=radius[last])
+            row["utilisation"] = {c.attrs["figure"]: utilisation(table, c, last) for c in criteria}
         count = int(held.sum())
         if count < len(cases):
             beyond = cases[count]
-            violated = [figure for figure, holds in criteria if not holds[beyond]]
+            violated = [c.attrs["figure"] for c in criteria if c[beyond] != 1.0]
             status = table["cases/status"].asstr()[beyond]
             row["limit"] = ", ".join(violated) if violated else f"case {beyond} {status}"
         elif held.any():
@@ -78,18 +92,39 @@ def main() -> None:
     path = Path(args.table)
     with h5py.File(path, "r") as table:
         chart = load_chart(table, args.load, args.configuration, args.radius)
-    print(f"{args.configuration:>28} {args.radius + ' [m]':>12} {args.load:>20}   limited by")
+        title = table.attrs.get("study_path", path.name)
+        title = Path(title.decode() if isinstance(title, bytes) else str(title)).name
+    names = list(chart[0]["utilisation"]) if chart else []
+    width = max([len(name) for name in names] + [5])
+    print(f"{args.configuration:>28} {args.radius + ' [m]':>12} {args.load:>20} "
+          + "".join(f" {name:>{width}}" for name in names) + "   limited by")
     for row in chart:
-        print(f"{row['configuration']:>28.6g} {row['radius']:>12.2f} {row['load']:>20.6g}   {row['limit']}")
-    figure, axes = plt.subplots(figsize=(8, 5))
+        used = "".join(f" {row['utilisation'][name]:>{width}.0%}" if np.isfinite(row['utilisation'][name])
+                       else f" {'-':>{width}}" for name in names)
+        print(f"{row['configuration']:>28.6g} {row['radius']:>12.2f} {row['load']:>20.6g} {used}   {row['limit']}")
+    figure, (axes, used_axes) = plt.subplots(1, 2, figsize=(13, 5))
     radius = np.array([row["radius"] for row in chart])
     load = np.array([row["load"] for row in chart])
     order = np.argsort(radius)
-    axes.plot(radius[order], load[order] / 1e3, "o-")
+    axes.plot(radius[order], load[order] / 1e3, "-", color="0.6", zorder=1)
+    for limit in sorted({row["limit"] for row in chart}):
+        mine = np.array([row["limit"] == limit for row in chart])
+        axes.plot(radius[mine], load[mine] / 1e3, "o", label=f"limited by {limit}", zorder=2)
     axes.set_xlabel(f"{args.radius} [m]")
     axes.set_ylabel(f"largest admissible {args.load} [t]")
     axes.grid(True, alpha=0.3)
-    axes.set_title(f"{path.name}: load chart")
+    axes.legend()
+    axes.set_title(f"{title}: load chart")
+    for name in names:
+        used = np.array([row["utilisation"][name] for row in chart])
+        used_axes.plot(radius[order], 100 * used[order], "o-", label=name)
+    used_axes.axhline(100, color="k", linewidth=1)
+    used_axes.set_xlabel(f"{args.radius} [m]")
+    used_axes.set_ylabel("utilisation at the chart's load [% of the limit]")
+    used_axes.set_ylim(0, 130)
+    used_axes.grid(True, alpha=0.3)
+    used_axes.legend(loc="upper center", ncol=2)
+    used_axes.set_title("each criterion at the chart's load")
     figure.tight_layout()
     output = Path(args.output) if args.output else path.with_name(f"{path.stem}_chart.png")
     figure.savefig(output, dpi=100)

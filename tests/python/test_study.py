@@ -383,6 +383,8 @@ criteria:
     assert chart.returncode == 0, chart.stderr
     rows = [line.split() for line in chart.stdout.splitlines()[1:3]]
     assert [row[0] for row in rows] == ["9.5", "10"]
-    assert all(row[2] == "1500" and row[3] == "hook_tension" for row in rows), chart.stdout
+    assert all(row[2] == "1500" and row[-1] == "hook_tension" for row in rows), chart.stdout
+    # utilisation at the chart's load: hook tension 1500 kg g / 15 kN = 98 %, radius 0 / 1 m = 0 %
+    assert all(row[3:5] == ["98%", "0%"] for row in rows), chart.stdout
     assert all(float(row[1]) < 1e-6 for row in rows)  # hanging under the suspension
     assert (tmp_path / "chart.png").stat().st_size > 0
