@@ -22,11 +22,11 @@
 // Both sums are accumulated station by station into [M | ∂r/∂dq + M C] (addStationTangent);
 // the kernel then subtracts M C once (subtractTwistBracket).
 //
-// The coordinate columns ∂r/∂q stay forward AD (coordinateDerivative), but the inertial and
-// gravity forces of an interpolation whose centre-line tangents and section rotations follow
-// the end rotations alone (x = Σ Nᵢ rⁱ + N' Rⁱ e_x, R_c = R¹ exp(ξ φ̃)) do not depend on the end
-// positions: H, Ḣ, R_c and Ω are functions of φ¹, φ² only, so their derivatives need the six
-// rotation directions (rotationDerivative), not twelve.
+// The coordinate columns ∂r/∂q stay forward AD (coordinateDerivative in autodiff.hpp), but the
+// inertial and gravity forces of an interpolation whose centre-line tangents and section
+// rotations follow the end rotations alone (x = Σ Nᵢ rⁱ + N' Rⁱ e_x, R_c = R¹ exp(ξ φ̃)) do not
+// depend on the end positions: H, Ḣ, R_c and Ω are functions of φ¹, φ² only, so their
+// derivatives need the six rotation directions (rotationDerivative), not twelve.
 
 #include <Eigen/Dense>
 
@@ -36,18 +36,6 @@
 namespace cranesim {
 
 using Coordinates12 = Eigen::Matrix<double, 12, 1>;
-
-/// ∂f/∂q of f(q) (12 → 12) by forward AD in the 12 coordinate directions; f is called with
-/// Eigen::Matrix<Dual<double, 12>, 12, 1>.
-template <class Function> Eigen::Matrix<double, 12, 12> coordinateDerivative(const Coordinates12& q, const Function& f) {
-  using D = Dual<double, 12>;
-  Eigen::Matrix<D, 12, 1> qd;
-  for (int k = 0; k < 12; ++k) qd(k) = seeded<double, 12>(q(k), k);
-  const Eigen::Matrix<D, 12, 1> r = f(qd);
-  Eigen::Matrix<double, 12, 12> J;
-  for (int i = 0; i < 12; ++i) J.row(i) = r(i).derivatives().transpose();
-  return J;
-}
 
 /// ∂f/∂q of f(q) for q = [r¹, φ¹, r², φ²] and an f that does not depend on r¹, r²: forward AD
 /// in the six rotation directions, zero columns for the positions.

@@ -41,6 +41,7 @@ struct SplineRopeKernel : ReeledLength {
   static constexpr int kNq = 12;
   static constexpr int kNv = 12;
   template <class S> using Q = Eigen::Matrix<S, 12, 1>;
+  using Mat12 = Eigen::Matrix<double, 12, 12>;
 
   Section section;
   Material material;
@@ -76,12 +77,64 @@ struct SplineRopeKernel : ReeledLength {
       if (damping > 0.0) stress += damping * rs.dot(slopeRate<S>(q, v, rate, dN, rule.xi[g], L)) / stretch;
       if (stress > 0.0) F += (rule.weight[g] * L * EA) * (stress / stretch) * (dN.transpose().template cast<S>() * rs);
       F -= (rule.weight[g] * L * rhoA) * (shape(b.N).transpose() * gravity).template cast<S>();
+    }
+    if (transverse_damping > 0.0) F += transverseDampingForce<S>(q, v, rate, L);
+    return F;
+  }
+
+  /// ∂(M a + F)/∂dq in closed form, and M beside it (element.hpp). Per Gauss point where the rope
+  /// is taut, the damping stress' share: with r' = dN q, λ = ‖r'‖, u = r'/λ, the force
+  /// k (σ/λ) dNᵀ r' (k = w L EA) and ∂σ/∂dq = η uᵀ dN give k η dNᵀ u uᵀ dN; the transverse
+  /// damping's c Aᵀ A, A = ∂w/∂dq. M does not depend on q.
+  Mat12 velocityTangent(const Q<double>& q, const Q<double>& v, double t, Mat12& M,
+                        ParameterRates rates = ParameterRates::Left) const {
+    M = massMatrix<double>(q, t);
+    Mat12 J = Mat12::Zero();
+    if (damping == 0.0 && transverse_damping == 0.0) return J;
+    const double L = segmentLength(t), rate = segmentRate(t, rates), EA = material.youngs_modulus * section.area;
+    for (int g = 0; g < rule.points; ++g) {
+      const auto dN = shape(hermiteBasis(rule.xi[g], L).dN);
+      if (damping > 0.0) {
+        const AxialStress s = axialStress(q, v, rate, dN, rule.xi[g], L);
+        if (s.stress > 0.0) J.noalias() += (rule.weight[g] * L * EA * damping) * s.du.transpose() * s.du;
+      }
       if (transverse_damping > 0.0) {
-        const TransverseTurning<S> turning = transverseTurning<S>(q, v, rate, dN, rule.xi[g], L);
-        F += (rule.weight[g] * L * transverse_damping) * turning.force();
+        const Eigen::Matrix<double, 3, 12> A = transverseTurning<double>(q, v, rate, dN, rule.xi[g], L).dw_dv;
+        J.noalias() += (rule.weight[g] * L * transverse_damping) * A.transpose() * A;
       }
     }
-    return F;
+    return J;
+  }
+
+  /// ∂(M a + F)/∂q (element.hpp): M a and gravity do not depend on q; the axial force
+  /// k (σ/λ) dNᵀ r' in closed form, k dNᵀ ((σ/λ)(I − u uᵀ) dN + u ∂σ/∂q) where taut, with
+  /// ∂σ/∂q = uᵀ dN + η ∂ε̇/∂q, ε̇ = r'·ṡ/λ, ṡ = dN dq + L̇ dN_L q (slopeRate):
+  /// ∂ε̇/∂q = (ṡᵀ dN + L̇ r'ᵀ dN_L)/λ − (ε̇/λ) uᵀ dN; the transverse damping's by forward AD of
+  /// its force alone.
+  Mat12 coordinateTangent(const Q<double>& q, const Q<double>& v, const Q<double>&, double t, const Vec3&,
+                          ParameterRates rates = ParameterRates::Left) const {
+    const double L = segmentLength(t);
+    const double rate = damping > 0.0 || transverse_damping > 0.0 ? segmentRate(t, rates) : 0.0;
+    const double EA = material.youngs_modulus * section.area;
+    Mat12 J = Mat12::Zero();
+    for (int g = 0; g < rule.points; ++g) {
+      const auto dN = shape(hermiteBasis(rule.xi[g], L).dN);
+      const AxialStress s = axialStress(q, v, rate, dN, rule.xi[g], L);
+      if (!(s.stress > 0.0)) continue;
+      Eigen::Matrix<double, 1, 12> dstress = s.du;
+      if (damping > 0.0) {
+        Eigen::Matrix<double, 1, 12> dstrain_rate = (s.slope_rate.transpose() * dN - s.strain_rate * s.du) / s.stretch;
+        if (rate != 0.0)
+          dstrain_rate += (rate / s.stretch) * s.slope.transpose() * shape(hermiteBasisLengthDerivative(rule.xi[g], L).dN);
+        dstress += damping * dstrain_rate;
+      }
+      const Eigen::Matrix<double, 3, 12> inner =
+          (s.stress / s.stretch) * (dN - s.u * s.du) + s.u * dstress;  // (σ/λ)(I − u uᵀ) dN + u ∂σ/∂q
+      J.noalias() += (rule.weight[g] * L * EA) * dN.transpose() * inner;
+    }
+    if (transverse_damping > 0.0)
+      J += coordinateDerivative(q, [&]<class S>(const Q<S>& qs) { return transverseDampingForce<S>(qs, v.cast<S>(), rate, L); });
+    return J;
   }
 
   double kineticEnergy(const Q<double>& q, const Q<double>& v, double t) const {
@@ -199,6 +252,35 @@ struct SplineRopeKernel : ReeledLength {
     if (rate != 0.0) out.w_reeling = (Pt / stretch) * (rate * shape(hermiteBasisLengthDerivative(xi, L).dN)).template cast<S>() * q;
     out.w = out.dw_dv * v + out.w_reeling;
     return out;
+  }
+
+  /// c ∫ (∂w/∂dq)ᵀ w ds: the transverse damping force (file comment).
+  template <class S> Q<S> transverseDampingForce(const Q<S>& q, const Q<S>& v, double rate, double L) const {
+    Q<S> F = Q<S>::Zero();
+    for (int g = 0; g < rule.points; ++g)
+      F += (rule.weight[g] * L * transverse_damping) *
+           transverseTurning<S>(q, v, rate, shape(hermiteBasis(rule.xi[g], L).dN), rule.xi[g], L).force();
+    return F;
+  }
+
+  /// The axial state at a point: slope r' = dN q, stretch λ = ‖r'‖, u = r'/λ, uᵀ dN = ∂λ/∂q, the
+  /// slope's rate ṡ, ε̇ = r'·ṡ/λ and σ/E = λ − 1 + η ε̇ (force's law before the max).
+  struct AxialStress {
+    Vec3 slope, u, slope_rate;
+    double stretch, strain_rate, stress;
+    Eigen::Matrix<double, 1, 12> du;
+  };
+  AxialStress axialStress(const Q<double>& q, const Q<double>& v, double rate, const Eigen::Matrix<double, 3, 12>& dN,
+                          double xi, double L) const {
+    AxialStress s;
+    s.slope = dN * q;
+    s.stretch = s.slope.norm();
+    s.u = s.slope / s.stretch;
+    s.du = s.u.transpose() * dN;
+    s.slope_rate = damping > 0.0 ? slopeRate<double>(q, v, rate, dN, xi, L) : Vec3::Zero();
+    s.strain_rate = s.slope.dot(s.slope_rate) / s.stretch;
+    s.stress = s.stretch - 1.0 + damping * s.strain_rate;
+    return s;
   }
 
   /// d/dt of the slope r' = dN(L(t)) q at fixed ξ: dN dq + L̇ ∂(dN)/∂L q.

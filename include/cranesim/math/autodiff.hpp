@@ -273,3 +273,20 @@ template <class T, int N, class BinaryOp> struct ScalarBinaryOpTraits<T, cranesi
 };
 
 }  // namespace Eigen
+
+namespace cranesim {
+
+/// ∂f/∂q of f(q) (12 → 12) by forward AD in the 12 coordinate directions; f is called with
+/// Eigen::Matrix<Dual<double, 12>, 12, 1>.
+template <class Function>
+Eigen::Matrix<double, 12, 12> coordinateDerivative(const Eigen::Matrix<double, 12, 1>& q, const Function& f) {
+  using D = Dual<double, 12>;
+  Eigen::Matrix<D, 12, 1> qd;
+  for (int k = 0; k < 12; ++k) qd(k) = seeded<double, 12>(q(k), k);
+  const Eigen::Matrix<D, 12, 1> r = f(qd);
+  Eigen::Matrix<double, 12, 12> J;
+  for (int i = 0; i < 12; ++i) J.row(i) = r(i).derivatives().transpose();
+  return J;
+}
+
+}  // namespace cranesim

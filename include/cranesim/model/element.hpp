@@ -35,12 +35,13 @@
 // terms are costly provides the force at rest
 //   template <class S> Matrix<S, kNv, 1> staticForce(q, t, gravity) const;       F(q, 0, t)
 // which the statics' Jacobian (coordinateJacobian at dq = 0, d(dq)/dt = 0) then differentiates.
-// A kernel whose inertial terms make polarization costly provides the velocity tangent
+// A kernel with a closed form of its velocity derivative provides the velocity tangent
 //   Matrix<double, kNv, kNv> velocityTangent(q, dq, t, Matrix<double, kNv, kNv>& M) const;
 //   ∂(M(q) a + F)/∂dq in closed form, and M(q)
 // which KernelElement's jacobian then uses for the velocity columns, and
 //   Matrix<double, kNv, kNq> coordinateTangent(q, dq, a, t, gravity) const;   ∂(M a + F)/∂q
-// which coordinateJacobian then uses instead of forward AD over the whole kernel.
+// which coordinateJacobian then uses instead of forward AD over the whole kernel; a kernel with
+// explicitTimePower takes ElementInput::rates as their last argument too.
 // The templated functions must not branch on derivative parts and must not allocate, and F must
 // be a polynomial of degree ≤ 2 in dq (inertial terms quadratic, damping linear): a force
 // nonlinear in the velocities (drag, friction) would need its own ∂/∂dq.
@@ -209,7 +210,10 @@ template <class Kernel> class KernelElement final : public Element {
     Eigen::Map<Eigen::Matrix<double, kNv, kNv>> Jv(J + kNv * kNq);
     if constexpr (VelocityTangentKernel<Kernel>) {
       Eigen::Matrix<double, kNv, kNv> M;
-      Jv = kernel_.velocityTangent(q, v, in.t, M);
+      if constexpr (TimeDependentKernel<Kernel>)
+        Jv = kernel_.velocityTangent(q, v, in.t, M, in.rates);
+      else
+        Jv = kernel_.velocityTangent(q, v, in.t, M);
       Jv += (cj + in.mass_damping) * M;
       return;
     }
@@ -228,7 +232,10 @@ template <class Kernel> class KernelElement final : public Element {
     const Vd vd = gatherV(in.v), ad = gatherV(in.a) + in.mass_damping * vd;
     if constexpr (CoordinateTangentKernel<Kernel>) {
       Eigen::Map<Eigen::Matrix<double, kNv, kNq>> Jq(J);
-      Jq = kernel_.coordinateTangent(qd, vd, ad, in.t, in.gravity);
+      if constexpr (TimeDependentKernel<Kernel>)
+        Jq = kernel_.coordinateTangent(qd, vd, ad, in.t, in.gravity, in.rates);
+      else
+        Jq = kernel_.coordinateTangent(qd, vd, ad, in.t, in.gravity);
       return;
     }
     Eigen::Matrix<D, kNq, 1> q;
