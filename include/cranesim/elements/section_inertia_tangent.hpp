@@ -85,7 +85,13 @@ void addStationTangent(const Map& map, const Rate& rate, const Vec3& omega, doub
   P.block<3, 12>(3, 0) = SRcT * Hx + J * Hw;
   P.block<3, 12>(0, 12) = 2.0 * (mass * Hxd - RcS * Hwd) + gyro_f * Hw;
   P.block<3, 12>(3, 12) = 2.0 * (SRcT * Hxd + J * Hwd) + gyro_t * Hw;
-  out.noalias() += Hx.transpose() * P.topRows<3>() + Hw.transpose() * P.bottomRows<3>();
+  // H_xᵀ P_f + H_Ωᵀ P_τ node by node (H_x = [a¹I, X¹, a²I, X²], H_Ω = [0, W¹, 0, W²]): 3 × 3 blocks,
+  // which Eigen multiplies coefficient by coefficient instead of through its blocked GEMM.
+  for (int n = 0; n < 2; ++n) {
+    out.middleRows<3>(6 * n).noalias() += map.a[n] * P.topRows<3>();
+    out.middleRows<3>(6 * n + 3).noalias() += map.X[n].transpose() * P.topRows<3>();
+    out.middleRows<3>(6 * n + 3).noalias() += map.W[n].transpose() * P.bottomRows<3>();
+  }
 }
 
 /// G − M C(dq): C has the blocks ω̃ⁿ (ωⁿ = dq's rotational velocity of node n) on the diagonal of
