@@ -94,3 +94,27 @@ TEST_CASE("exp and T(φ) computed together equal Rodrigues' formula and (B-8)", 
     CHECK((both.T - angularVelocityMap<double>(phi)).cwiseAbs().maxCoeff() < 1e-15);
   }
 }
+
+TEST_CASE("The rates of exp and T(φ) in closed form equal forward AD along φ̇, at every angle", "[rotation]") {
+  using P = Dual<double, 1>;
+  const Vec3 w(0.3, -0.7, 0.4);
+  std::vector<Vec3> phis = samplePhis();
+  // Either side of the series' thresholds (θ² = 1e-4 for the values, 1e-2 for the rates).
+  for (double t2 : {0.99e-4, 1.01e-4, 0.99e-2, 1.01e-2}) phis.push_back(Vec3(1.0, -2.0, 0.5).normalized() * std::sqrt(t2));
+  for (const Vec3& phi : phis) {
+    INFO("φ = " << phi.transpose());
+    Vec3T<P> path;
+    for (int i = 0; i < 3; ++i) path(i) = P(phi(i), Eigen::Matrix<double, 1, 1>(w(i)));
+    const RotationAndRateMap<P> ad = rotationAndRateMap<P>(path);
+    const RotationAndRateMapRates<double> closed = rotationAndRateMapRates<double>(phi, w);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        CHECK(closed.R(i, j) == Approx(ad.R(i, j).value()).margin(1e-15));
+        CHECK(closed.T(i, j) == Approx(ad.T(i, j).value()).margin(1e-15));
+        CHECK(closed.R_dot(i, j) == Approx(ad.R(i, j).derivatives()(0)).margin(1e-14));
+        CHECK(closed.T_dot(i, j) == Approx(ad.T(i, j).derivatives()(0)).margin(1e-14));
+      }
+    // Ṙ = R (T w)~: the body angular velocity of the path.
+    CHECK((closed.R_dot - closed.R * skew<double>(Vec3(closed.T * w))).cwiseAbs().maxCoeff() < 1e-14);
+  }
+}

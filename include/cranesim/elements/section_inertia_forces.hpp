@@ -13,7 +13,8 @@
 // - Section rotation: Ω = E_Rᵀ ω¹ + ξ E_T φ̇ and Ω̇ = Ė_Rᵀ ω¹ + E_Rᵀ ω̇¹ + ξ (Ė_T φ̇ + E_T φ̈), with
 //   E_R = exp(ξφ̃), E_T = T(ξφ) (B-8), φ̇ = T(φ)⁻¹ (ω² − R_relᵀ ω¹) and
 //   φ̈ = (T(φ)⁻¹)˙ (ω² − R_relᵀ ω¹) + T(φ)⁻¹ (ω̇² − R_relᵀ ω̇¹ + ω² × R_relᵀ ω¹) per call. The rates
-//   Ė_R, Ė_T along ξφ̇ take one forward-AD direction through rotationAndRateMap alone.
+//   Ė_R, Ė_T along ξφ̇ in closed form (rotationAndRateMapRates), (T(φ)⁻¹)˙ by one forward-AD
+//   direction through that 3 × 3 map, once per call.
 // - Projection: H_xᵀ f has the rows N₀ f, N₁ e_x × R¹ᵀ f, N₂ f, N₃ e_x × R²ᵀ f and H_Ωᵀ τ the rows
 //   E_R τ − ξ R_rel T(φ)⁻ᵀ E_Tᵀ τ and ξ T(φ)⁻ᵀ E_Tᵀ τ: sums over the stations of f (in the axes of
 //   end 1) weighted by N₀…N₃, of E_R τ and of ξ E_Tᵀ τ, turned once per call.
@@ -118,19 +119,10 @@ template <class S> class SectionInertiaForces {
   }
 
   Section sectionRotation(double xi) const {
-    using P = Dual<S, 1>;
-    Vec3T<P> psi;
-    for (int i = 0; i < 3; ++i) psi(i) = P(S(xi) * phi_(i), Eigen::Matrix<S, 1, 1>(S(xi) * phi_dot_(i)));
-    const RotationAndRateMap<P> E = rotationAndRateMap<P>(psi);
-    Section out;
-    Mat3T<S> R_dot, T_dot;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) {
-        out.R(i, j) = E.R(i, j).value(), R_dot(i, j) = E.R(i, j).derivatives()(0);
-        out.T(i, j) = E.T(i, j).value(), T_dot(i, j) = E.T(i, j).derivatives()(0);
-      }
-    out.omega = out.R.transpose() * omega1_ + S(xi) * (out.T * phi_dot_);
-    out.domega = R_dot.transpose() * omega1_ + out.R.transpose() * domega1_ + S(xi) * (T_dot * phi_dot_ + out.T * phi_ddot_);
+    const RotationAndRateMapRates<S> E = rotationAndRateMapRates<S>(Vec3T<S>(S(xi) * phi_), Vec3T<S>(S(xi) * phi_dot_));
+    Section out{E.R, E.T, Vec3T<S>(), Vec3T<S>()};
+    out.omega = E.R.transpose() * omega1_ + S(xi) * (E.T * phi_dot_);
+    out.domega = E.R_dot.transpose() * omega1_ + E.R.transpose() * domega1_ + S(xi) * (E.T_dot * phi_dot_ + E.T * phi_ddot_);
     return out;
   }
 
