@@ -10,7 +10,7 @@ debian_packages=(
   libyaml-cpp-dev catch2 libcli11-dev libfmt-dev libspdlog-dev libtbb-dev libbenchmark-dev
   python3 python3-pip
   libjs-three            # the replay page's three.js (scripts/view.py)
-  openmpi-bin libopenmpi-dev   # crane-sim study across MPI ranks (optional: the build works without)
+  openmpi-bin libopenmpi-dev   # studies and static maps across MPI ranks (optional: the build works without)
 )
 # The tests also render the replay page in a browser: `install_deps.sh --tests` (scripts/test.sh).
 if [ "${1:-}" = "--tests" ]; then debian_packages+=(chromium); fi
