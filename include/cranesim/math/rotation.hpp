@@ -101,20 +101,18 @@ template <class S> RotationAndRateMapRates<S> rotationAndRateMapRates(const Vec3
   const S t2 = phi.squaredNorm();
   const Mat3T<S> P = skew(phi), P2 = P * P, W = skew(w), WP = W * P + P * W;
   S a, b, c, da, db, dc;
-  const bool small = t2 < detail::kSeriesThreshold;
-  S t, st, ct;
-  if (small) {
+  if (t2 < detail::kSeriesThreshold) {
     a = detail::sinc(t2), b = detail::cosc(t2), c = detail::sinc3(t2);
   } else {
-    t = sqrt(t2), st = sin(t), ct = cos(t);
-    a = st / t, b = (1.0 - ct) / t2, c = (t - st) / (t2 * t);
+    const S t = sqrt(t2), st = sin(t);
+    a = st / t, b = (1.0 - cos(t)) / t2, c = (t - st) / (t2 * t);
   }
   if (t2 < 1e-2) {
     da = -1.0 / 6.0 + t2 * (1.0 / 60.0 + t2 * (-1.0 / 1680.0 + t2 * (1.0 / 90720.0 + t2 * (-1.0 / 7983360.0))));
     db = -1.0 / 24.0 + t2 * (1.0 / 360.0 + t2 * (-1.0 / 13440.0 + t2 * (1.0 / 907200.0 + t2 * (-1.0 / 95800320.0))));
     dc = -1.0 / 120.0 + t2 * (1.0 / 2520.0 + t2 * (-1.0 / 120960.0 + t2 * (1.0 / 9979200.0 + t2 * (-1.0 / 1245404160.0))));
   } else {
-    da = (ct - a) / (2.0 * t2), db = (a - 2.0 * b) / (2.0 * t2), dc = (b - 3.0 * c) / (2.0 * t2);
+    da = (1.0 - b * t2 - a) / (2.0 * t2), db = (a - 2.0 * b) / (2.0 * t2), dc = (b - 3.0 * c) / (2.0 * t2);  // cos θ = 1 − b θ²
   }
   const S t2_dot = 2.0 * phi.dot(w);
   RotationAndRateMapRates<S> out;
