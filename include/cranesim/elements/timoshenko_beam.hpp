@@ -53,6 +53,7 @@
 // direction on top of S, so KernelElement's Jacobian (S itself a dual number) stays at two
 // levels of nesting.
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -591,16 +592,31 @@ struct TimoshenkoBeamKernel {
     return inertialAndGravityForce<S>(q, v, gravity, &a) + elasticForce<S>(q, v);
   }
 
-  /// −∫ H_xᵀ ρA g ds: inertialAndGravityForce at rest (dq = 0, d(dq)/dt = 0).
+  /// −∫ H_xᵀ ρA g ds: inertialAndGravityForce at rest (dq = 0, d(dq)/dt = 0). Gravity acts on
+  /// the centre line alone, x = N₀ r¹ + N₁ R¹e_x + N₂ r² + N₃ R²e_x (sectionMap), whose blocks
+  /// give H_xᵀ g = [N₀ g, N₁ e_x × R¹ᵀ g, N₂ g, N₃ e_x × R²ᵀ g]: the weights ∫ Nᵢ ds times four
+  /// vectors, without the section rotations.
   template <class S> V<S> gravityForce(const EndFrames<S>& e, const Vec3& gravity) const {
+    const std::array<double, 4> n = centreLineWeights();
     const double rhoA = section.properties(material).rhoA;
-    const GaussRule& rule = gaussLegendre(mass_points);
-    V<S> F = V<S>::Zero();
-    for (int gp = 0; gp < rule.points; ++gp) {
-      const SectionMap<S> m = sectionMap<S>(e, rule.xi[gp]);
-      F += m.project(Vec3T<S>(S(-rule.weight[gp] * length * rhoA) * gravity.cast<S>()), Vec3T<S>::Zero());
-    }
+    const Vec3T<S> g = gravity.cast<S>(), ex = Vec3::UnitX().cast<S>();
+    V<S> F;
+    F.template segment<3>(0) = S(-rhoA * n[0]) * g;
+    F.template segment<3>(3) = S(-rhoA * n[1]) * ex.cross(Vec3T<S>(e.R1.transpose() * g));
+    F.template segment<3>(6) = S(-rhoA * n[2]) * g;
+    F.template segment<3>(9) = S(-rhoA * n[3]) * ex.cross(Vec3T<S>(e.R2.transpose() * g));
     return F;
+  }
+
+  /// ∫ Nᵢ ds of the centre line's Hermite functions, by the mass quadrature.
+  std::array<double, 4> centreLineWeights() const {
+    const GaussRule& rule = gaussLegendre(mass_points);
+    std::array<double, 4> n{};
+    for (int gp = 0; gp < rule.points; ++gp) {
+      const HermiteBasis h = hermiteBasis(rule.xi[gp], length);
+      for (int k = 0; k < 4; ++k) n[k] += rule.weight[gp] * length * h.N[k];
+    }
+    return n;
   }
 
   /// F(q, 0, t): elastic forces and gravity (the statics' Jacobian differentiates this).
@@ -617,13 +633,11 @@ struct TimoshenkoBeamKernel {
     return gravityPotential(endFrames<double>(q), gravity);
   }
 
+  /// −∫ ρA g·x ds over the centre line (gravityForce's potential).
   double gravityPotential(const EndFrames<double>& e, const Vec3& gravity) const {
-    const GaussRule& rule = gaussLegendre(mass_points);
+    const std::array<double, 4> n = centreLineWeights();
     const double rhoA = section.properties(material).rhoA;
-    double V = 0.0;
-    for (int g = 0; g < rule.points; ++g)
-      V -= rule.weight[g] * length * rhoA * gravity.dot(sectionMap<double>(e, rule.xi[g]).x);
-    return V;
+    return -rhoA * gravity.dot(n[0] * e.r1 + n[1] * e.R1.col(0) + n[2] * e.r2 + n[3] * e.R2.col(0));
   }
 
   double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const {
