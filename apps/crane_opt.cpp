@@ -25,18 +25,19 @@ namespace {
 
 using namespace cranesim;
 
+/// Whether this process is rank 0 of an MPI job, or runs without one (`mpi` null).
+bool isRankZero(const MpiSession* mpi) {
 #ifdef CRANESIM_WITH_MPI
-using MpiRanks = MpiSession;
+  return !mpi || mpi->rank() == 0;
 #else
-struct MpiRanks {  // without MPI there are never other ranks
-  int rank() const { return 0; }
-};
+  return mpi == nullptr;
 #endif
+}
 
 /// Reads the target on every rank; only rank 0 reports a bad one. Under MPI, a target that rank
 /// 0 read but another rank could not ends the job rather than leave rank 0 waiting for it.
-std::optional<TargetSpec> readTargetOnEveryRank(const std::string& target_path, MpiRanks* mpi, int& verdict) {
-  const bool master = !mpi || mpi->rank() == 0;
+std::optional<TargetSpec> readTargetOnEveryRank(const std::string& target_path, MpiSession* mpi, int& verdict) {
+  const bool master = isRankZero(mpi);
   std::optional<TargetSpec> target;
   try {
     target = readTarget(target_path);
@@ -57,13 +58,13 @@ std::optional<TargetSpec> readTargetOnEveryRank(const std::string& target_path, 
 }
 
 int plan(const std::string& target_path, const std::string& out_arg, int threads, bool quiet, bool map_only,
-         MpiRanks* mpi) {
+         MpiSession* mpi) {
   int verdict = 0;
   std::optional<TargetSpec> target = readTargetOnEveryRank(target_path, mpi, verdict);
   if (verdict != 0) return verdict;
   if (threads > 0) target->map.threads = threads;
 #ifdef CRANESIM_WITH_MPI
-  if (mpi && mpi->rank() > 0) {  // this rank computes rows of the map, then its part is over
+  if (!isRankZero(mpi)) {  // this rank computes rows of the map, then its part is over
     computeStaticMapRowsForRank0(target->scene, target->controls, target->map, *mpi);
     return 0;
   }
@@ -112,7 +113,8 @@ int main(int argc, char** argv) {
   for (CLI::App* cmd : {plan_cmd, map_cmd}) {
     cmd->add_option("target", target_path, "target file (YAML)")->required()->check(CLI::ExistingFile);
     cmd->add_option("-o,--output", out_path, "results file (HDF5)");
-    cmd->add_option("--threads", threads, "threads of the map sweep (default: the target's, else all cores)")
+    cmd->add_option("--threads", threads,
+                    "threads of the map sweep (default: the target's, else all cores; one per rank under mpirun)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("-q,--quiet", quiet, "no progress lines");
   }
@@ -123,19 +125,20 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kExitBadInput;
   }
   // Under mpirun (or srun) the static map's rows are farmed out to every rank; rank 0 does the rest.
-  std::optional<MpiRanks> mpi;
-  if (startedByMpiLauncher()) {
+  MpiSession* mpi = nullptr;
 #ifdef CRANESIM_WITH_MPI
-    mpi.emplace();
+  std::optional<MpiSession> session;
+  if (startedByMpiLauncher()) mpi = &session.emplace();
 #else
+  if (startedByMpiLauncher()) {
     fmt::print(stderr, "error: mpirun: this crane-opt was built without MPI (install libopenmpi-dev and rebuild), so "
                        "its ranks would each compute the whole plan: run it without mpirun, with --threads\n");
     return kExitBadInput;
-#endif
   }
-  const bool master = !mpi || mpi->rank() == 0;
+#endif
+  const bool master = isRankZero(mpi);
   try {
-    return plan(target_path, out_path, threads, quiet, map_cmd->parsed(), mpi ? &*mpi : nullptr);
+    return plan(target_path, out_path, threads, quiet, map_cmd->parsed(), mpi);
   } catch (const SceneError& e) {
     if (master) fmt::print(stderr, "error: {}: {}\n", target_path, e.what());
     return kExitBadInput;
