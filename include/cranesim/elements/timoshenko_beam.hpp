@@ -69,15 +69,6 @@
 
 namespace cranesim {
 
-namespace beam_detail {
-
-/// A scalar of type Dual<S, N> with the given value and derivative vector.
-template <class S, int N> Dual<S, N> withDerivatives(const S& value, const Eigen::Matrix<S, N, 1>& d) {
-  return Dual<S, N>(value, d);
-}
-
-}  // namespace beam_detail
-
 struct TimoshenkoBeamKernel {
   static constexpr int kNodes = 2;
   static constexpr int kNq = 12;
@@ -394,6 +385,14 @@ struct TimoshenkoBeamKernel {
     }
   };
 
+  /// H_x's blocks X[n] = −Nₙ' Rⁿ ẽ_x = [0, −Nₙ' Rⁿ e_z, Nₙ' Rⁿ e_y] (Nₙ' = N₁, N₃), linear in the
+  /// end rotations: with their rates Ṙⁿ instead, the blocks' rates.
+  template <class T> static void slopeBlocks(const HermiteBasis& h, const Mat3T<T>& R1, const Mat3T<T>& R2, Mat3T<T> (&X)[2]) {
+    const T n1(-h.N[1]), n3(-h.N[3]);
+    X[0] << Vec3T<T>::Zero(), n1 * R1.col(2), -n1 * R1.col(1);
+    X[1] << Vec3T<T>::Zero(), n3 * R2.col(2), -n3 * R2.col(1);
+  }
+
   template <class T> SectionMap<T> sectionMap(const EndFrames<T>& e, double xi) const {
     const HermiteBasis h = hermiteBasis(xi, length);
     SectionMap<T> m;
@@ -401,9 +400,7 @@ struct TimoshenkoBeamKernel {
     // where R ẽ_x = [0, R e_z, −R e_y].
     m.x = T(h.N[0]) * e.r1 + T(h.N[1]) * e.R1.col(0) + T(h.N[2]) * e.r2 + T(h.N[3]) * e.R2.col(0);
     m.a[0] = h.N[0], m.a[1] = h.N[2];
-    const T n1(-h.N[1]), n3(-h.N[3]);
-    m.X[0] << Vec3T<T>::Zero(), n1 * e.R1.col(2), -n1 * e.R1.col(1);
-    m.X[1] << Vec3T<T>::Zero(), n3 * e.R2.col(2), -n3 * e.R2.col(1);
+    slopeBlocks<T>(h, e.R1, e.R2, m.X);
     // R_c = R¹ exp(ξφ̃): Ω = exp(ξφ̃)ᵀ ω¹ + ξ T(ξφ) φ̇, φ̇ = T(φ)⁻¹ (ω² − Rrelᵀ ω¹) (2-10, B-8).
     const RotationAndRateMap<T> E = rotationAndRateMap<T>(Vec3T<T>(T(xi) * e.phi));
     const Mat3T<T> xT = T(xi) * E.T;
@@ -513,11 +510,10 @@ struct TimoshenkoBeamKernel {
   template <class Stations>
   Mat12 stationVelocityTangent(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2, const V<double>& v,
                                const Mat12& K, const Stations& stations, Mat12& M) const {
-    const EndFrames<Dual<double, 1>> e = endFramesAlongMotion<double>(r1, R1, r2, R2, v);
-    const Eigen::Matrix<Dual<double, 1>, 12, 1> vp = v.cast<Dual<double, 1>>();
+    const EndFrameRates e = endFrameRates(r1, R1, r2, R2, v);
     SectionInertiaTangent MG = SectionInertiaTangent::Zero();
     stations([&](double xi, double mass, const Vec3& first_moment, const Mat3& inertia) {
-      const SectionMotion<double> m = sectionMotion<double>(e, xi, vp);
+      const SectionMotion m = sectionMotion(e, xi, v);
       addStationTangent(m.map, m.rate, m.omega, mass, first_moment, inertia, MG);
     });
     M = MG.leftCols<12>();
@@ -529,57 +525,66 @@ struct TimoshenkoBeamKernel {
     return G;
   }
 
-  /// The end frames moving along r(τ) = r + τṙ, R(τ) = R (I + τω̃) with dq held constant: the
-  /// derivative parts of anything computed from them are its rates at d(dq)/dt = 0.
-  template <class S>
-  EndFrames<Dual<S, 1>> endFramesAlongMotion(const Vec3T<S>& r1s, const Mat3T<S>& R1, const Vec3T<S>& r2s,
-                                             const Mat3T<S>& R2, const V<S>& v) const {
-    using P = Dual<S, 1>;
-    using beam_detail::withDerivatives;
-    const Mat3T<S> dR1 = R1 * skew<S>(Vec3T<S>(v.template segment<3>(3)));
-    const Mat3T<S> dR2 = R2 * skew<S>(Vec3T<S>(v.template segment<3>(9)));
-    Vec3T<P> r1, r2;
+  /// The end frames and the rates along the motion (dq held constant) of what the section maps
+  /// take from them: Ṙⁿ = Rⁿ ω̃ⁿ, φ̇, and those of T(φ)⁻¹ and T(φ)⁻¹ R_relᵀ (one forward-AD
+  /// direction through the end frames, once per call).
+  struct EndFrameRates {
+    EndFrames<double> frames;
+    Mat3 R1_dot, R2_dot, Tinv_dot, TinvRrelT_dot;
+    Vec3 phi_dot;
+  };
+  EndFrameRates endFrameRates(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2, const V<double>& v) const {
+    using P = Dual<double, 1>;
+    const Mat3 dR1 = R1 * skew<double>(Vec3(v.segment<3>(3))), dR2 = R2 * skew<double>(Vec3(v.segment<3>(9)));
     Mat3T<P> R1p, R2p;
-    for (int i = 0; i < 3; ++i) {
-      r1(i) = withDerivatives<S, 1>(r1s(i), Eigen::Matrix<S, 1, 1>(v(i)));
-      r2(i) = withDerivatives<S, 1>(r2s(i), Eigen::Matrix<S, 1, 1>(v(6 + i)));
+    for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
-        R1p(i, j) = withDerivatives<S, 1>(R1(i, j), Eigen::Matrix<S, 1, 1>(dR1(i, j)));
-        R2p(i, j) = withDerivatives<S, 1>(R2(i, j), Eigen::Matrix<S, 1, 1>(dR2(i, j)));
+        R1p(i, j) = P(R1(i, j), Eigen::Matrix<double, 1, 1>(dR1(i, j)));
+        R2p(i, j) = P(R2(i, j), Eigen::Matrix<double, 1, 1>(dR2(i, j)));
+      }
+    const EndFrames<P> moving = endFrames<P>(r1.cast<P>(), R1p, r2.cast<P>(), R2p);
+    EndFrameRates out{endFrames<double>(r1, R1, r2, R2), dR1, dR2, Mat3(), Mat3(), Vec3()};
+    for (int i = 0; i < 3; ++i) {
+      out.phi_dot(i) = moving.phi(i).derivatives()(0);
+      for (int j = 0; j < 3; ++j) {
+        out.Tinv_dot(i, j) = moving.Tinv(i, j).derivatives()(0);
+        out.TinvRrelT_dot(i, j) = moving.TinvRrelT(i, j).derivatives()(0);
       }
     }
-    return endFrames<P>(r1, R1p, r2, R2p);
+    return out;
   }
 
   /// Ḣ along the motion: the rates of H_x's blocks X[n] and H_Ω's W[n] (its a[n] are constant).
-  template <class S> struct SectionMapRate {
-    Mat3T<S> X[2], W[2];
+  struct SectionMapRate {
+    Mat3 X[2], W[2];
   };
   /// The section at ξ: its map H, the rate Ḣ along the motion and the angular velocity
   /// Ω = H_Ω dq (what section_inertia_tangent.hpp needs).
-  template <class S> struct SectionMotion {
-    SectionMap<S> map;
-    SectionMapRate<S> rate;
-    Vec3T<S> omega;
+  struct SectionMotion {
+    SectionMap<double> map;
+    SectionMapRate rate;
+    Vec3 omega;
   };
 
-  template <class S>
-  SectionMotion<S> sectionMotion(const EndFrames<Dual<S, 1>>& e, double xi, const Eigen::Matrix<Dual<S, 1>, 12, 1>& vp) const {
-    const SectionMap<Dual<S, 1>> m = sectionMap<Dual<S, 1>>(e, xi);
-    const Vec3T<Dual<S, 1>> omega = m.angularVelocity(vp);
-    SectionMotion<S> out;
-    out.map.a[0] = m.a[0], out.map.a[1] = m.a[1];
-    for (int i = 0; i < 3; ++i) {
-      out.map.x(i) = m.x(i).value();
-      out.omega(i) = omega(i).value();
-      for (int j = 0; j < 3; ++j) {
-        out.map.Rc(i, j) = m.Rc(i, j).value();
-        for (int n = 0; n < 2; ++n) {
-          out.map.X[n](i, j) = m.X[n](i, j).value(), out.map.W[n](i, j) = m.W[n](i, j).value();
-          out.rate.X[n](i, j) = m.X[n](i, j).derivatives()(0), out.rate.W[n](i, j) = m.W[n](i, j).derivatives()(0);
-        }
-      }
-    }
+  /// sectionMap and its rate: with E_R = exp(ξφ̃), E_T = T(ξφ) and their rates along ξφ̇ in closed
+  /// form (rotationAndRateMapRates), W¹ = E_Rᵀ − ξ E_T T(φ)⁻¹R_relᵀ and W² = ξ E_T T(φ)⁻¹ differentiate
+  /// as products; X[n] as slopeBlocks of Ṙⁿ.
+  SectionMotion sectionMotion(const EndFrameRates& e, double xi, const V<double>& v) const {
+    const EndFrames<double>& f = e.frames;
+    const HermiteBasis h = hermiteBasis(xi, length);
+    SectionMotion out;
+    SectionMap<double>& m = out.map;
+    m.x = h.N[0] * f.r1 + h.N[1] * f.R1.col(0) + h.N[2] * f.r2 + h.N[3] * f.R2.col(0);
+    m.a[0] = h.N[0], m.a[1] = h.N[2];
+    slopeBlocks<double>(h, f.R1, f.R2, m.X);
+    slopeBlocks<double>(h, e.R1_dot, e.R2_dot, out.rate.X);
+    const RotationAndRateMapRates<double> E = rotationAndRateMapRates<double>(Vec3(xi * f.phi), Vec3(xi * e.phi_dot));
+    m.Rc = f.R1 * E.R;
+    m.W[0] = E.R.transpose() - xi * (E.T * f.TinvRrelT);
+    m.W[1] = xi * (E.T * f.Tinv);
+    out.rate.W[0] = E.R_dot.transpose() - xi * (E.T_dot * f.TinvRrelT + E.T * e.TinvRrelT_dot);
+    out.rate.W[1] = xi * (E.T_dot * f.Tinv + E.T * e.Tinv_dot);
+    out.omega = m.angularVelocity(v);
     return out;
   }
 
