@@ -21,6 +21,7 @@ import pytest
 import yaml
 
 from bad_input import assert_reported, expectations
+from mpi_launch import mpirun
 
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANEOPT_BIN", SOURCE_DIR / "build" / "crane-opt")).resolve()
@@ -206,14 +207,6 @@ CRANE_TARGET = SOURCE_DIR / "configs" / "target.yaml"
 SLEWING_TARGET = SOURCE_DIR / "configs" / "target_slewing.yaml"
 
 
-def mpirun_crane_opt(ranks: int, *arguments, cwd: Path) -> subprocess.CompletedProcess:
-    launcher = ["mpirun", "--oversubscribe", "-n", str(ranks)]
-    if os.geteuid() == 0:
-        launcher.insert(1, "--allow-run-as-root")
-    return subprocess.run(launcher + [str(BINARY), *map(str, arguments)], capture_output=True, text=True, cwd=cwd,
-                          timeout=300)
-
-
 def map_datasets(path: Path) -> dict:
     with h5py.File(path, "r") as f:
         return {name: f["map"][name][...] for name in f["map"]}
@@ -243,7 +236,7 @@ def test_map_is_bitwise_identical_on_threads_and_ranks(tmp_path: Path):
         maps[f"{threads} threads"], logs[f"{threads} threads"] = map_datasets(out), result.stderr
     if shutil.which("mpirun"):
         out = tmp_path / "ranks_2.h5"
-        result = mpirun_crane_opt(2, "map", target, "-o", out, cwd=tmp_path)
+        result = mpirun(BINARY, 2, "map", target, "-o", out, cwd=tmp_path)
         if "built without MPI" in result.stderr:
             pytest.skip("crane-opt built without MPI: threads compared only")
         assert result.returncode == 0, result.stderr
@@ -266,7 +259,7 @@ def test_plan_under_mpirun(tmp_path: Path):
     if not shutil.which("mpirun"):
         pytest.skip("mpirun not installed")
     out = tmp_path / "plan.h5"
-    result = mpirun_crane_opt(2, "plan", JIB_TARGET, "-o", out, cwd=tmp_path)
+    result = mpirun(BINARY, 2, "plan", JIB_TARGET, "-o", out, cwd=tmp_path)
     if "built without MPI" in result.stderr:
         pytest.skip("crane-opt built without MPI")
     assert result.returncode == 0, result.stderr
@@ -282,7 +275,7 @@ def test_plan_under_mpirun(tmp_path: Path):
 
     bad = BAD_TARGETS[0]
     expect, _ = expectations(bad)
-    result = mpirun_crane_opt(2, "plan", bad, "-o", tmp_path / "bad.h5", cwd=tmp_path)
+    result = mpirun(BINARY, 2, "plan", bad, "-o", tmp_path / "bad.h5", cwd=tmp_path)
     assert result.returncode == 2
     assert result.stderr.count(expect) == 1, result.stderr
     assert not (tmp_path / "bad.h5").exists()

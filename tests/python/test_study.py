@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 
 from bad_input import EXIT_BAD_INPUT, assert_collection, assert_reported, expectations
+from mpi_launch import mpirun
 
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
@@ -69,14 +70,6 @@ def computed_study(directory: Path, name: str, text: str) -> Path:
     result = crane_sim("study", study, "-o", table, cwd=directory)
     assert result.returncode == 0, result.stderr
     return table
-
-
-def mpirun(ranks: int, *arguments, cwd: Path) -> subprocess.CompletedProcess:
-    launcher = ["mpirun", "--oversubscribe", "-n", str(ranks)]
-    if os.geteuid() == 0:
-        launcher.insert(1, "--allow-run-as-root")
-    return subprocess.run(launcher + [str(BINARY), *map(str, arguments)], capture_output=True, text=True, cwd=cwd,
-                          timeout=300)
 
 
 def case_table(path: Path) -> dict:
@@ -162,7 +155,7 @@ def run_study(tmp_path_factory) -> dict:
     if shutil.which("mpirun"):
         for ranks in (1, 2):
             out = directory / f"ranks{ranks}.h5"
-            result = mpirun(ranks, "study", RUN_STUDY, "-o", out, cwd=directory)
+            result = mpirun(BINARY, ranks, "study", RUN_STUDY, "-o", out, cwd=directory)
             assert result.returncode == 0, result.stdout + result.stderr
             tables[f"ranks {ranks}"], who[f"ranks {ranks}"] = case_table(out), workers(out)
     return {"tables": tables, "workers": who}
