@@ -11,6 +11,7 @@
 
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/model/kernel_elements.hpp"
+#include "element_differences.hpp"
 
 using namespace cranesim;
 
@@ -89,22 +90,7 @@ void checkTangents(const SplineRopeKernel& k, const Q& q, double t, ParameterRat
   const double cj = 50.0;
   Eigen::Matrix<double, 12, 24> J;
   element->jacobian(in, cj, J.data());
-  const auto residual = [&](const Q& qq, const Q& vv) {
-    ElementInput at = in;
-    at.q = qq.data(), at.v = vv.data();
-    Q r;
-    element->residual(at, r.data());
-    return r;
-  };
-  Eigen::Matrix<double, 12, 24> fd;
-  for (int c = 0; c < 24; ++c) {
-    Q qp = q, qm = q, vp = v, vm = v;
-    const double h = 1e-7;
-    if (c < 12) qp(c) += h, qm(c) -= h;
-    else vp(c - 12) += h, vm(c - 12) -= h;
-    fd.col(c) = (residual(qp, vp) - residual(qm, vm)) / (2.0 * h);
-  }
-  fd.rightCols<12>() += cj * M;
+  const Eigen::Matrix<double, 12, 24> fd = test::centralDifferenceJacobian(*element, in, cj);
   CHECK((J - fd).cwiseAbs().maxCoeff() < 1e-6 * J.cwiseAbs().maxCoeff());
 }
 

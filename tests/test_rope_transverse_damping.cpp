@@ -15,6 +15,7 @@
 
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/model/kernel_elements.hpp"
+#include "element_differences.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -103,24 +104,9 @@ TEST_CASE("Transverse damping: the element Jacobian against central differences"
   const Vec3 g(0, 0, -9.81);
   const double cj = 5.0;
   Eigen::Matrix<double, 12, 24> J;
-  element->jacobian({q.data(), v.data(), a.data(), 0.0, g}, cj, J.data());
-  const auto residual = [&](const Q& qq, const Q& vv) {
-    Q r;
-    element->residual({qq.data(), vv.data(), a.data(), 0.0, g}, r.data());
-    return r;
-  };
-  Eigen::Matrix<double, 12, 24> fd;
-  for (int c = 0; c < 24; ++c) {
-    Q qp = q, qm = q, vp = v, vm = v;
-    const double h = 1e-7;
-    if (c < 12) qp(c) += h, qm(c) -= h;
-    else vp(c - 12) += h, vm(c - 12) -= h;
-    fd.col(c) = (residual(qp, vp) - residual(qm, vm)) / (2.0 * h);
-  }
-  // The mass matrix's cj M on the velocity columns is not part of the residual's dq derivative.
-  Eigen::Matrix<double, 12, 12> M;
-  element->mass({q.data(), v.data(), a.data(), 0.0, g}, M.data());
-  fd.rightCols<12>() += cj * M;
+  const ElementInput in{q.data(), v.data(), a.data(), 0.0, g};
+  element->jacobian(in, cj, J.data());
+  const Eigen::Matrix<double, 12, 24> fd = test::centralDifferenceJacobian(*element, in, cj);
   CHECK((J - fd).cwiseAbs().maxCoeff() < 1e-6 * J.cwiseAbs().maxCoeff());
 }
 
