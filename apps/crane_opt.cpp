@@ -34,26 +34,10 @@ bool isRankZero(const MpiSession* mpi) {
 #endif
 }
 
-/// Reads the target on every rank; only rank 0 reports a bad one. Under MPI, a target that rank
-/// 0 read but another rank could not ends the job rather than leave rank 0 waiting for it.
+/// Reads the target on every rank; only rank 0 reports a bad one (agreeOnVerdict).
 std::optional<TargetSpec> readTargetOnEveryRank(const std::string& target_path, MpiSession* mpi, int& verdict) {
-  const bool master = isRankZero(mpi);
   std::optional<TargetSpec> target;
-  try {
-    target = readTarget(target_path);
-  } catch (const SceneError& e) {
-    if (master) fmt::print(stderr, "error: {}: {}\n", target_path, e.what());
-    verdict = kExitBadInput;
-  } catch (const std::exception& e) {
-    if (master) fmt::print(stderr, "error: {}\n", e.what());
-    verdict = kExitSolverFailure;
-  }
-#ifdef CRANESIM_WITH_MPI
-  if (mpi) {
-    verdict = mpi->broadcast(verdict);
-    if (verdict == 0 && !target) mpi->abort(kExitBadInput);
-  }
-#endif
+  verdict = agreeOnVerdict(mpi, inputVerdict(target_path, isRankZero(mpi), [&] { target = readTarget(target_path); }));
   return target;
 }
 

@@ -36,3 +36,20 @@ std::string outputPath(const std::string& input_path, std::string out, const cha
 }
 
 }  // namespace cranesim
+
+namespace cranesim {
+
+int inputVerdict(const std::string& path, bool report, const std::function<void()>& read) {
+  try {
+    read();
+  } catch (const SceneError& e) {
+    if (report) fmt::print(stderr, "error: {}: {}\n", path, e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    if (report) fmt::print(stderr, "error: {}\n", e.what());
+    return kExitSolverFailure;
+  }
+  return 0;
+}
+
+}  // namespace cranesim

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "cranesim/io/command_line.hpp"
+
 namespace cranesim {
 namespace {
 
@@ -53,6 +55,13 @@ void MpiSession::broadcast(std::string& bytes) const {
 void MpiSession::abort(int code) const {
   MPI_Abort(MPI_COMM_WORLD, code);
   std::abort();
+}
+
+int agreeOnVerdict(const MpiSession* mpi, int verdict) {
+  if (!mpi) return verdict;
+  const int agreed = mpi->broadcast(verdict);
+  if (agreed == 0 && verdict != 0) mpi->abort(kExitBadInput);
+  return agreed;
 }
 
 void serveTasksToRanks(const MpiSession& session, TaskQueue& queue,

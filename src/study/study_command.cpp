@@ -138,37 +138,26 @@ int runStudyCommand(const StudyCommand& command) {
 #ifdef CRANESIM_WITH_MPI
   std::optional<MpiSession> mpi;
   if (startedByMpiLauncher()) mpi.emplace();
+  const MpiSession* ranks = mpi ? &*mpi : nullptr;
   const bool master = !mpi || mpi->rank() == 0;
 #else
   if (startedByMpiLauncher())
     throw SceneError({"mpirun", 0, 0}, "this crane-sim was built without MPI (install libopenmpi-dev and rebuild), "
                                        "so its ranks would each run the whole study: run it without mpirun, with --jobs");
+  const MpiSession* ranks = nullptr;
   const bool master = true;
 #endif
   std::optional<Study> study;
   std::optional<StudyBook> book;
   std::string cases_dir;
-  int verdict = 0;
-  try {
+  const int verdict = agreeOnVerdict(ranks, inputVerdict(command.study_path, master, [&] {
     study = readStudy(command.study_path);
     if (master) {
       const std::string out = outputPath(command.study_path, tablePath(command), ".h5");
       book.emplace(*study, command, out);
       if (study->keep_results) createCasesDirectory(cases_dir = casesDirectory(out));
     }
-  } catch (const SceneError& e) {
-    if (master) fmt::print(stderr, "error: {}: {}\n", command.study_path, e.what());
-    verdict = kExitBadInput;
-  } catch (const std::exception& e) {
-    if (master) fmt::print(stderr, "error: {}\n", e.what());
-    verdict = kExitSolverFailure;
-  }
-#ifdef CRANESIM_WITH_MPI
-  if (mpi) {
-    verdict = mpi->broadcast(verdict);
-    if (verdict == 0 && !study) mpi->abort(kExitBadInput);  // this rank alone could not read it
-  }
-#endif
+  }));
   if (verdict != 0) return verdict;
 
   StudyExecution execution{command.stop, cases_dir};

@@ -1,6 +1,7 @@
 #pragma once
 // What the command-line tools (crane-sim, crane-opt) share: exit codes and result paths.
 
+#include <functional>
 #include <string>
 
 namespace cranesim {
@@ -13,5 +14,10 @@ inline constexpr int kExitBadInput = 2;       // nothing written
 /// written there: its directory does not exist or cannot be written, it is a directory, or it is
 /// the input file itself.
 std::string outputPath(const std::string& input_path, std::string out, const char* suffix);
+
+/// Runs `read` (a command reading its input) and returns its exit code: 0, kExitBadInput for a
+/// SceneError, kExitSolverFailure for another exception; when `report`, the error goes to stderr,
+/// a SceneError naming `path`.
+int inputVerdict(const std::string& path, bool report, const std::function<void()>& read);
 
 }  // namespace cranesim

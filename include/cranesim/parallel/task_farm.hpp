@@ -54,4 +54,11 @@ class LocalWorkers {
 /// Whether an MPI launcher (mpirun, mpiexec, srun) started this process: it names a rank.
 bool startedByMpiLauncher();
 
+class MpiSession;  // mpi_farm.hpp
+
+/// The exit code every rank acts on after each read the command's input: rank 0's (which alone
+/// reports errors). A rank that failed where rank 0 did not ends the job: it cannot take part,
+/// and rank 0 would wait for it. Without MPI (`mpi` null) `verdict` itself.
+int agreeOnVerdict(const MpiSession* mpi, int verdict);
+
 }  // namespace cranesim
