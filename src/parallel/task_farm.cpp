@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
-#include <numeric>
 
 namespace cranesim {
 
@@ -11,12 +10,6 @@ std::optional<long> TaskQueue::next() {
   const std::lock_guard<std::mutex> guard(lock_);
   if (abandoned_ || (stop_ && *stop_) || next_ == pending_.size()) return std::nullopt;
   return pending_[next_++];
-}
-
-std::vector<long> allTasks(long count) {
-  std::vector<long> tasks(static_cast<std::size_t>(std::max(count, 0L)));
-  std::iota(tasks.begin(), tasks.end(), 0L);
-  return tasks;
 }
 
 LocalWorkers::LocalWorkers(TaskQueue& queue, int jobs, const TaskWork& work, const std::string& label) {

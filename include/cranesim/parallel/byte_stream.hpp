@@ -53,7 +53,6 @@ class ByteReader {
     getArrayValues(text.data(), static_cast<long>(text.size()));
     return text;
   }
-  bool atEnd() const { return offset_ == bytes_.size(); }
 
  private:
   const char* take(std::size_t size) {

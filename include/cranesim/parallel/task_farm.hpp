@@ -32,9 +32,6 @@ class TaskQueue {
   std::atomic<bool> abandoned_{false};
 };
 
-/// Task numbers 0 … count−1.
-std::vector<long> allTasks(long count);
-
 /// Computes task `task` on the worker named `worker`; called from several threads at once.
 using TaskWork = std::function<void(long task, const std::string& worker)>;
 
