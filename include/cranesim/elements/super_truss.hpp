@@ -60,6 +60,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
+#include "cranesim/elements/objective_tangent.hpp"
 #include "cranesim/elements/spline_beam.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/autodiff.hpp"
@@ -320,6 +321,22 @@ struct SuperTrussKernel {
   /// (the statics' Jacobian differentiates this).
   template <class S> V<S> staticForce(const Q<S>& q, double, const Vec3& gravity) const {
     return forces<S>(q, V<S>(V<S>::Zero()), nullptr, gravity, Terms::AtRest);
+  }
+
+  /// ∂(M_e a + F_e)/∂q_e in the DAE's Jacobian, beside M_e and the velocity tangent C
+  /// (objective_tangent.hpp): forward AD of the residual in end 2's position and rotation, the
+  /// other six columns by frame indifference.
+  Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
+                          const Mat12& M, const Mat12& C) const {
+    V<double> r;
+    const Eigen::Matrix<double, 12, 6> second_end = segmentDerivative<6>(
+        q, 6,
+        [&]<class S>(const Q<S>& qs) {
+          const V<S> as = a.cast<S>();
+          return forces<S>(qs, v.cast<S>(), &as, gravity, Terms::All);
+        },
+        r);
+    return objectiveCoordinateTangent({q, v, a, gravity, r, M, C, second_end});
   }
 
   /// ∂(M_e a + F_e)/∂dq_e in closed form and M_e beside it (element.hpp). Member k adds

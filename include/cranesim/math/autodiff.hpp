@@ -289,4 +289,21 @@ Eigen::Matrix<double, 12, 12> coordinateDerivative(const Eigen::Matrix<double, 1
   return J;
 }
 
+/// ∂f/∂(q_first … q_first+N−1) of f(q) (12 → 12) by forward AD in those N directions alone, and
+/// f(q) itself into `value`; f is called with Eigen::Matrix<Dual<double, N>, 12, 1>.
+template <int N, class Function>
+Eigen::Matrix<double, 12, N> segmentDerivative(const Eigen::Matrix<double, 12, 1>& q, int first, const Function& f,
+                                               Eigen::Matrix<double, 12, 1>& value) {
+  using D = Dual<double, N>;
+  Eigen::Matrix<D, 12, 1> qd = q.cast<D>();
+  for (int k = 0; k < N; ++k) qd(first + k) = seeded<double, N>(q(first + k), k);
+  const Eigen::Matrix<D, 12, 1> r = f(qd);
+  Eigen::Matrix<double, 12, N> J;
+  for (int i = 0; i < 12; ++i) {
+    value(i) = r(i).value();
+    J.row(i) = r(i).derivatives().transpose();
+  }
+  return J;
+}
+
 }  // namespace cranesim

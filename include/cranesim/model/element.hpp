@@ -41,7 +41,10 @@
 // which KernelElement's jacobian then uses for the velocity columns, and
 //   Matrix<double, kNv, kNq> coordinateTangent(q, dq, a, t, gravity) const;   ∂(M a + F)/∂q
 // which coordinateJacobian then uses instead of forward AD over the whole kernel; a kernel with
-// explicitTimePower takes ElementInput::rates as their last argument too.
+// explicitTimePower takes ElementInput::rates as their last argument too. A kernel with both may
+// also take M and the velocity tangent C (a frame-indifferent element, objective_tangent.hpp):
+//   Matrix<double, kNv, kNq> coordinateTangent(q, dq, a, t, gravity, M, C) const;
+// which the DAE's Jacobian then uses (the statics' keeps the one without).
 // The templated functions must not branch on derivative parts and must not allocate, and F must
 // be a polynomial of degree ≤ 2 in dq (inertial terms quadratic, damping linear): a force
 // nonlinear in the velocities (drag, friction) would need its own ∂/∂dq.
@@ -169,6 +172,14 @@ concept CoordinateTangentKernel = requires(const K& k, const Eigen::Matrix<doubl
   { k.coordinateTangent(q, v, v, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, K::kNq>>;
 };
 
+/// A kernel that computes ∂(M a + F)/∂q from M and its velocity tangent (objective_tangent.hpp).
+template <class K>
+concept ObjectiveTangentKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q,
+                                          const Eigen::Matrix<double, K::kNv, 1>& v, const Vec3& g,
+                                          const Eigen::Matrix<double, K::kNv, K::kNv>& M) {
+  { k.coordinateTangent(q, v, v, 0.0, g, M, M) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, K::kNq>>;
+};
+
 template <class K>
 concept StaticForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q, const Vec3& g) {
   { k.template staticForce<double>(q, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
@@ -204,7 +215,6 @@ template <class Kernel> class KernelElement final : public Element {
   /// (≈ ε‖r‖/s). s is kept small so that a kink in dq (a damped rope's max(ε + η ε̇, 0) at the
   /// verge of slack) lies between the probes only within s of it.
   void jacobian(const ElementInput& in, double cj, double* J) const override {
-    coordinateJacobian(in, J);
     const Qd q = gatherQ(in.q);
     const Vd v = gatherV(in.v), a = gatherV(in.a);
     Eigen::Map<Eigen::Matrix<double, kNv, kNv>> Jv(J + kNv * kNq);
@@ -214,9 +224,17 @@ template <class Kernel> class KernelElement final : public Element {
         Jv = kernel_.velocityTangent(q, v, in.t, M, in.rates);
       else
         Jv = kernel_.velocityTangent(q, v, in.t, M);
+      if constexpr (ObjectiveTangentKernel<Kernel>) {
+        Eigen::Map<Eigen::Matrix<double, kNv, kNq>> Jq(J);
+        Jq = kernel_.coordinateTangent(q, v, Vd(a + in.mass_damping * v), in.t, in.gravity, M,
+                                       Eigen::Matrix<double, kNv, kNv>(Jv));
+      } else {
+        coordinateJacobian(in, J);
+      }
       Jv += (cj + in.mass_damping) * M;
       return;
     }
+    coordinateJacobian(in, J);
     for (int j = 0; j < kNv; ++j) {
       const double s = 1e-3 * (1.0 + std::abs(v(j)));
       Vd vp = v, vm = v;

@@ -1,0 +1,64 @@
+#pragma once
+// The coordinate columns ∂r/∂q of a frame-indifferent element on two frame nodes, from the six
+// of its second end and the tangents the Jacobian computes anyway: forward AD in six directions
+// instead of twelve.
+//
+// q = [r¹, φ¹, r², φ²] (positions, rotation vectors, Rⁿ = exp(φ̃ⁿ)), dq = [ṙ¹, ω¹, ṙ², ω²] (ṙ in
+// inertial axes, ω in body axes, ω = T(φ) φ̇), residual r(q; dq, a, g) = M(q) a + F(q, dq; g).
+// An element whose forces come from co-rotated deformations and from material riding on it is
+// - invariant under a rigid translation: r(r¹ + u, φ¹, r² + u, φ²) = r(q),
+// - covariant under a rigid rotation Q about the origin (rⁿ → Q rⁿ, Rⁿ → Q Rⁿ):
+//     r(Q q; dq, a, g) = P r(q; Pᵀ dq, Pᵀ a, Qᵀ g),   P = diag(Q, I, Q, I),
+// - and gravity acts on the material the mass matrix moves: r depends on g and on the ends'
+//   translational accelerations through M (a − [g, 0, g, 0]) alone.
+// Differentiating the rotation at Q = I + δ̃, where the ends move by δ × rⁿ and twist by
+// θⁿ = Rⁿᵀ δ, with A = ∂r/∂r² and B = ∂r/∂θ² = ∂r/∂φ² T(φ²)⁻¹ and c = r² − r¹:
+//   ∂r/∂θ¹ = (X + A c̃ − B R²ᵀ) R¹,
+//   X = −[r̃₁; 0; r̃₂; 0] + C_ṙ¹ ṙ̃¹ + C_ṙ² ṙ̃² + M_r¹ (a¹ − g)~ + M_r² (a² − g)~,
+// r₁, r₂ the residual's translational rows, C = ∂r/∂dq and M_rⁿ, C_ṙⁿ their columns of end n's
+// translation. Then ∂r/∂r¹ = −A and ∂r/∂φ¹ = ∂r/∂θ¹ T(φ¹).
+
+#include "cranesim/math/autodiff.hpp"
+#include "cranesim/math/rotation.hpp"
+
+namespace cranesim {
+
+/// What objectiveCoordinateTangent needs of the element at (q, dq, a): its residual r, M, the
+/// velocity tangent C = ∂r/∂dq − the mass term, and ∂r/∂[r², φ²] (12 × 6).
+struct ObjectiveTangentInput {
+  using V12 = Eigen::Matrix<double, 12, 1>;
+  using Mat12 = Eigen::Matrix<double, 12, 12>;
+  const V12& q;
+  const V12& v;
+  const V12& a;  // with the mass damping's α dq when the residual has it (M (a + α dq))
+  const Vec3& gravity;
+  const V12& residual;
+  const Mat12& mass;
+  const Mat12& velocity_tangent;
+  const Eigen::Matrix<double, 12, 6>& second_end;
+};
+
+/// ∂r/∂q (12 × 12) of a frame-indifferent element (file comment).
+inline Eigen::Matrix<double, 12, 12> objectiveCoordinateTangent(const ObjectiveTangentInput& in) {
+  using Mat12x3 = Eigen::Matrix<double, 12, 3>;
+  const Vec3 phi1 = in.q.segment<3>(3), phi2 = in.q.segment<3>(9);
+  const Mat3 R1 = rotationMatrix<double>(phi1), R2 = rotationMatrix<double>(phi2);
+  const auto A = in.second_end.leftCols<3>();
+  const Mat12x3 B = in.second_end.rightCols<3>() * angularVelocityMapInverse<double>(phi2);
+  Mat12x3 X = Mat12x3::Zero();
+  for (int n = 0; n < 2; ++n) X.middleRows<3>(6 * n) = -skew<double>(Vec3(in.residual.segment<3>(6 * n)));
+  for (int n = 0; n < 2; ++n) {
+    X.noalias() += in.velocity_tangent.middleCols<3>(6 * n) * skew<double>(Vec3(in.v.segment<3>(6 * n)));
+    X.noalias() += in.mass.middleCols<3>(6 * n) * skew<double>(Vec3(in.a.segment<3>(6 * n) - in.gravity));
+  }
+  X.noalias() += A * skew<double>(Vec3(in.q.segment<3>(6) - in.q.segment<3>(0)));
+  X.noalias() -= B * R2.transpose();
+  Eigen::Matrix<double, 12, 12> J;
+  J.middleCols<3>(0) = -A;
+  J.middleCols<3>(3).noalias() = X * (R1 * angularVelocityMap<double>(phi1));
+  J.middleCols<3>(6) = A;
+  J.middleCols<3>(9) = in.second_end.rightCols<3>();
+  return J;
+}
+
+}  // namespace cranesim
