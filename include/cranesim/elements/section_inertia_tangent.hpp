@@ -64,33 +64,36 @@ using SectionInertiaTangent = Eigen::Matrix<double, 12, 24>;
 template <class Map, class Rate>
 void addStationTangent(const Map& map, const Rate& rate, const Vec3& omega, double mass, const Vec3& first_moment,
                        const Mat3& inertia, SectionInertiaTangent& out) {
-  using Mat3x12 = Eigen::Matrix<double, 3, 12>;
-  Mat3x12 Hx = Mat3x12::Zero(), Hw = Mat3x12::Zero(), Hxd = Mat3x12::Zero(), Hwd = Mat3x12::Zero();
-  for (int n = 0; n < 2; ++n) {
-    Hx.block<3, 3>(0, 6 * n).diagonal().setConstant(map.a[n]);
-    Hx.block<3, 3>(0, 6 * n + 3) = map.X[n];
-    Hw.block<3, 3>(0, 6 * n + 3) = map.W[n];
-    Hxd.block<3, 3>(0, 6 * n + 3) = rate.X[n];
-    Hwd.block<3, 3>(0, 6 * n + 3) = rate.W[n];
-  }
   const Mat3& Rc = map.Rc;
   const Mat3& J = inertia;
   const Mat3 S = skew<double>(first_moment), W = skew<double>(omega);
-  const Mat3 RcS = Rc * S;                  // R_c s̃
-  const Mat3 SRcT = -RcS.transpose();       // s̃ R_cᵀ
+  const Mat3 RcS = Rc * S;             // R_c s̃
+  const Mat3 SRcT = -RcS.transpose();  // s̃ R_cᵀ
   const Mat3 gyro_f = -Rc * (skew<double>(Vec3(omega.cross(first_moment))) + W * S + S * W);
   const Mat3 gyro_t = J * W + W * J - skew<double>(Vec3(J * omega));
-  Eigen::Matrix<double, 6, 24> P;  // [∂f | ∂τ] per column of [M | G]
-  P.block<3, 12>(0, 0) = mass * Hx - RcS * Hw;
-  P.block<3, 12>(3, 0) = SRcT * Hx + J * Hw;
-  P.block<3, 12>(0, 12) = 2.0 * (mass * Hxd - RcS * Hwd) + gyro_f * Hw;
-  P.block<3, 12>(3, 12) = 2.0 * (SRcT * Hxd + J * Hwd) + gyro_t * Hw;
-  // H_xᵀ P_f + H_Ωᵀ P_τ node by node (H_x = [a¹I, X¹, a²I, X²], H_Ω = [0, W¹, 0, W²]): 3 × 3 blocks,
-  // which Eigen multiplies coefficient by coefficient instead of through its blocked GEMM.
+  // H_x = [a⁰I, X⁰, a¹I, X¹] and H_Ω = [0, W⁰, 0, W¹], Ḣ likewise without the a I blocks: every
+  // column block of [M | G] is Hᵀ [P_f; P_τ] for a 3 × 3 force and torque pair, 3 × 3 products
+  // node by node (no products with H's zero blocks).
+  const auto project = [&](const Mat3& Pf, const Mat3& Pt, int column) {
+    for (int n = 0; n < 2; ++n) {
+      out.block<3, 3>(6 * n, column).noalias() += map.a[n] * Pf;
+      out.block<3, 3>(6 * n + 3, column).noalias() += map.X[n].transpose() * Pf;
+      out.block<3, 3>(6 * n + 3, column).noalias() += map.W[n].transpose() * Pt;
+    }
+  };
+  // M's translation columns of end n: aⁿ Hᵀ [m I; s̃ R_cᵀ], one 12 × 3 block for both ends.
+  Eigen::Matrix<double, 12, 3> translation;
   for (int n = 0; n < 2; ++n) {
-    out.middleRows<3>(6 * n).noalias() += map.a[n] * P.topRows<3>();
-    out.middleRows<3>(6 * n + 3).noalias() += map.X[n].transpose() * P.topRows<3>();
-    out.middleRows<3>(6 * n + 3).noalias() += map.W[n].transpose() * P.bottomRows<3>();
+    translation.middleRows<3>(6 * n) = (map.a[n] * mass) * Mat3::Identity();
+    translation.middleRows<3>(6 * n + 3).noalias() = mass * map.X[n].transpose();
+    translation.middleRows<3>(6 * n + 3).noalias() += map.W[n].transpose() * SRcT;
+  }
+  for (int n = 0; n < 2; ++n) {
+    out.middleCols<3>(6 * n).noalias() += map.a[n] * translation;
+    // M's and G's rotation columns (G has no translation columns: Ḣ and H_Ω have none).
+    project(mass * map.X[n] - RcS * map.W[n], SRcT * map.X[n] + J * map.W[n], 6 * n + 3);
+    project(2.0 * (mass * rate.X[n] - RcS * rate.W[n]) + gyro_f * map.W[n],
+            2.0 * (SRcT * rate.X[n] + J * rate.W[n]) + gyro_t * map.W[n], 12 + 6 * n + 3);
   }
 }
 
