@@ -10,11 +10,15 @@
 // - Centre line: ẍ = N₀ r̈¹ + N₂ r̈² − N₁ R¹ k¹ − N₃ R² k² with kⁿ = e_x × ω̇ⁿ + ωⁿ × (e_x × ωⁿ)
 //   (H_x's blocks −N R ẽ_x and their rates −N R ω̃ ẽ_x), evaluated in the axes of end 1, where
 //   R² = R¹ R_rel: every station's ẍ is a combination of four vectors fixed per call.
-// - Section rotation: Ω = E_Rᵀ ω¹ + ξ E_T φ̇ and Ω̇ = Ė_Rᵀ ω¹ + E_Rᵀ ω̇¹ + ξ (Ė_T φ̇ + E_T φ̈), with
-//   E_R = exp(ξφ̃), E_T = T(ξφ) (B-8), φ̇ = T(φ)⁻¹ (ω² − R_relᵀ ω¹) and
-//   φ̈ = (T(φ)⁻¹)˙ (ω² − R_relᵀ ω¹) + T(φ)⁻¹ (ω̇² − R_relᵀ ω̇¹ + ω² × R_relᵀ ω¹) per call. The rates
-//   Ė_R, Ė_T along ξφ̇ in closed form (rotationAndRateMapRates), (T(φ)⁻¹)˙ by one forward-AD
-//   direction through that 3 × 3 map, once per call.
+// - Section rotation: with ψ = ξφ, E_R = exp(ψ̃), E_T = T(ψ) (B-8), ω_E = E_T ψ̇ (the body rate of
+//   E_R(ψ(t))), φ̇ = T(φ)⁻¹ (ω² − R_relᵀ ω¹) and
+//   φ̈ = (T(φ)⁻¹)˙ (ω² − R_relᵀ ω¹) + T(φ)⁻¹ (ω̇² − R_relᵀ ω̇¹ + ω² × R_relᵀ ω¹) per call
+//   ((T(φ)⁻¹)˙ by one forward-AD direction through that 3 × 3 map, once per call),
+//     Ω = E_Rᵀ ω¹ + ω_E,   Ω̇ = (E_Rᵀ ω¹) × ω_E + E_Rᵀ ω̇¹ + Ė_T ψ̇ + E_T ψ̈,
+//   since Ė_R = E_R ω̃_E, and with the coefficients a, b, c of expCoefficients (rotation.hpp)
+//     Ė_T ψ̇ = 2(ψ·ψ̇)(c' ψ × (ψ × ψ̇) − b' ψ × ψ̇) + c ψ̇ × (ψ × ψ̇).
+//   E_R, E_T never become matrices: each product with them is two cross products,
+//   E_R x = x + a ψ × x + b ψ × (ψ × x), E_T x = x − b ψ × x + c ψ × (ψ × x).
 // - Projection: H_xᵀ f has the rows N₀ f, N₁ e_x × R¹ᵀ f, N₂ f, N₃ e_x × R²ᵀ f and H_Ωᵀ τ the rows
 //   E_R τ − ξ R_rel T(φ)⁻ᵀ E_Tᵀ τ and ξ T(φ)⁻ᵀ E_Tᵀ τ: sums over the stations of f (in the axes of
 //   end 1) weighted by N₀…N₃, of E_R τ and of ξ E_Tᵀ τ, turned once per call.
@@ -80,8 +84,8 @@ template <class S> class SectionInertiaForces {
     const Section m = sectionRotation(xi);
     const Vec3T<S> xdd_g = relativeAcceleration(h);
     const Vec3T<S> y = m.domega.cross(s) + m.omega.cross(Vec3T<S>(m.omega.cross(s)));
-    const Vec3T<S> f = S(mass) * xdd_g + m.R * y;  // R¹ᵀ f
-    const Vec3T<S> tau = s.cross(Vec3T<S>(m.R.transpose() * xdd_g)) + J * m.domega + m.omega.cross(Vec3T<S>(J * m.omega));
+    const Vec3T<S> f = S(mass) * xdd_g + m.rotate(y);  // R¹ᵀ f
+    const Vec3T<S> tau = s.cross(m.rotateBack(xdd_g)) + J * m.domega + m.omega.cross(Vec3T<S>(J * m.omega));
     accumulate(xi, h, f, m, tau);
   }
 
@@ -108,9 +112,28 @@ template <class S> class SectionInertiaForces {
   }
 
  private:
+  /// The section at ξ: E_R = exp(ψ̃) with ψ = ξφ, applied through its coefficients, and Ω, Ω̇.
   struct Section {
-    Mat3T<S> R, T;           // E_R = exp(ξφ̃): the section's rotation in the axes of end 1; E_T = T(ξφ)
+    Vec3T<S> psi;
+    S a, b, c;
     Vec3T<S> omega, domega;  // Ω, Ω̇ (section axes)
+
+    Vec3T<S> rotate(const Vec3T<S>& x) const {  // E_R x
+      const Vec3T<S> px = psi.cross(x);
+      return x + a * px + b * Vec3T<S>(psi.cross(px));
+    }
+    Vec3T<S> rotateBack(const Vec3T<S>& x) const {  // E_Rᵀ x
+      const Vec3T<S> px = psi.cross(x);
+      return x - a * px + b * Vec3T<S>(psi.cross(px));
+    }
+    Vec3T<S> rateMap(const Vec3T<S>& x) const {  // E_T x
+      const Vec3T<S> px = psi.cross(x);
+      return x - b * px + c * Vec3T<S>(psi.cross(px));
+    }
+    Vec3T<S> rateMapTransposed(const Vec3T<S>& x) const {  // E_Tᵀ x
+      const Vec3T<S> px = psi.cross(x);
+      return x + b * px + c * Vec3T<S>(psi.cross(px));
+    }
   };
 
   /// R¹ᵀ (ẍ − g) of the centre line at the station with Hermite basis h.
@@ -119,10 +142,15 @@ template <class S> class SectionInertiaForces {
   }
 
   Section sectionRotation(double xi) const {
-    const RotationAndRateMapRates<S> E = rotationAndRateMapRates<S>(Vec3T<S>(S(xi) * phi_), Vec3T<S>(S(xi) * phi_dot_));
-    Section out{E.R, E.T, Vec3T<S>(), Vec3T<S>()};
-    out.omega = E.R.transpose() * omega1_ + S(xi) * (E.T * phi_dot_);
-    out.domega = E.R_dot.transpose() * omega1_ + E.R.transpose() * domega1_ + S(xi) * (E.T_dot * phi_dot_ + E.T * phi_ddot_);
+    const Vec3T<S> psi = S(xi) * phi_, psi_dot = S(xi) * phi_dot_;
+    const ExpCoefficients<S> k = expCoefficients<S>(S(psi.squaredNorm()));
+    Section out{psi, k.a, k.b, k.c, Vec3T<S>(), Vec3T<S>()};
+    const Vec3T<S> pd = psi.cross(psi_dot), ppd = psi.cross(pd);
+    const Vec3T<S> omega_E = psi_dot - k.b * pd + k.c * ppd;
+    const Vec3T<S> Tdot_psi_dot = S(2.0 * psi.dot(psi_dot)) * Vec3T<S>(k.dc * ppd - k.db * pd) + k.c * Vec3T<S>(psi_dot.cross(pd));
+    const Vec3T<S> turned = out.rotateBack(omega1_);
+    out.omega = turned + omega_E;
+    out.domega = turned.cross(omega_E) + out.rotateBack(domega1_) + Tdot_psi_dot + out.rateMap(Vec3T<S>(S(xi) * phi_ddot_));
     return out;
   }
 
@@ -131,8 +159,8 @@ template <class S> class SectionInertiaForces {
     f1_ += S(h.N[1]) * f;
     f2_ += S(h.N[2]) * f;
     f3_ += S(h.N[3]) * f;
-    turned_ += m.R * tau;
-    twisted_ += S(xi) * (m.T.transpose() * tau);
+    turned_ += m.rotate(tau);
+    twisted_ += S(xi) * m.rateMapTransposed(tau);
   }
 
   double length_;

@@ -86,40 +86,50 @@ template <class S> RotationAndRateMap<S> rotationAndRateMap(const Vec3T<S>& phi)
   return {Mat3T<S>::Identity() + sinc * P + cosc * P2, Mat3T<S>::Identity() - cosc * P + sinc3 * P2};
 }
 
-/// R = exp(φ̃), T(φ) and their rates along φ̇ = w, in closed form (instead of a forward-AD
-/// direction through rotationAndRateMap): with P = φ̃, W = w̃ and the coefficients a = sin θ/θ,
-/// b = (1 − cos θ)/θ², c = (θ − sin θ)/θ³ as functions of θ² (derivatives a', b', c'),
-///   Ṙ = 2(φ·w)(a' P + b' P²) + a W + b (W P + P W),
-///   Ṫ = 2(φ·w)(−b' P + c' P²) − b W + c (W P + P W),
+/// The coefficients of exp(φ̃) = I + a P + b P² and T(φ) = I − b P + c P² (P = φ̃) as functions
+/// of θ² = |φ|²: a = sin θ/θ, b = (1 − cos θ)/θ², c = (θ − sin θ)/θ³, and their derivatives
+/// with respect to θ²,
 ///   a' = (cos θ − a)/(2θ²),  b' = (a − 2b)/(2θ²),  c' = (b − 3c)/(2θ²),
 /// with Taylor series of a', b', c' below θ² = 0.01, where those quotients lose digits.
+template <class S> struct ExpCoefficients {
+  S a, b, c, da, db, dc;
+};
+template <class S> ExpCoefficients<S> expCoefficients(const S& t2) {
+  using std::cos, std::sin, std::sqrt;
+  ExpCoefficients<S> k;
+  if (t2 < detail::kSeriesThreshold) {
+    k.a = detail::sinc(t2), k.b = detail::cosc(t2), k.c = detail::sinc3(t2);
+  } else {
+    const S t = sqrt(t2), st = sin(t);
+    k.a = st / t, k.b = (1.0 - cos(t)) / t2, k.c = (t - st) / (t2 * t);
+  }
+  if (t2 < 1e-2) {
+    k.da = -1.0 / 6.0 + t2 * (1.0 / 60.0 + t2 * (-1.0 / 1680.0 + t2 * (1.0 / 90720.0 + t2 * (-1.0 / 7983360.0))));
+    k.db = -1.0 / 24.0 + t2 * (1.0 / 360.0 + t2 * (-1.0 / 13440.0 + t2 * (1.0 / 907200.0 + t2 * (-1.0 / 95800320.0))));
+    k.dc = -1.0 / 120.0 + t2 * (1.0 / 2520.0 + t2 * (-1.0 / 120960.0 + t2 * (1.0 / 9979200.0 + t2 * (-1.0 / 1245404160.0))));
+  } else {
+    k.da = (1.0 - k.b * t2 - k.a) / (2.0 * t2), k.db = (k.a - 2.0 * k.b) / (2.0 * t2), k.dc = (k.b - 3.0 * k.c) / (2.0 * t2);  // cos θ = 1 − b θ²
+  }
+  return k;
+}
+
+/// R = exp(φ̃), T(φ) and their rates along φ̇ = w, in closed form (instead of a forward-AD
+/// direction through rotationAndRateMap): with P = φ̃, W = w̃ and the coefficients of
+/// expCoefficients,
+///   Ṙ = 2(φ·w)(a' P + b' P²) + a W + b (W P + P W),
+///   Ṫ = 2(φ·w)(−b' P + c' P²) − b W + c (W P + P W).
 template <class S> struct RotationAndRateMapRates {
   Mat3T<S> R, T, R_dot, T_dot;
 };
 template <class S> RotationAndRateMapRates<S> rotationAndRateMapRates(const Vec3T<S>& phi, const Vec3T<S>& w) {
-  using std::cos, std::sin, std::sqrt;
-  const S t2 = phi.squaredNorm();
+  const ExpCoefficients<S> k = expCoefficients<S>(S(phi.squaredNorm()));
   const Mat3T<S> P = skew(phi), P2 = P * P, W = skew(w), WP = W * P + P * W;
-  S a, b, c, da, db, dc;
-  if (t2 < detail::kSeriesThreshold) {
-    a = detail::sinc(t2), b = detail::cosc(t2), c = detail::sinc3(t2);
-  } else {
-    const S t = sqrt(t2), st = sin(t);
-    a = st / t, b = (1.0 - cos(t)) / t2, c = (t - st) / (t2 * t);
-  }
-  if (t2 < 1e-2) {
-    da = -1.0 / 6.0 + t2 * (1.0 / 60.0 + t2 * (-1.0 / 1680.0 + t2 * (1.0 / 90720.0 + t2 * (-1.0 / 7983360.0))));
-    db = -1.0 / 24.0 + t2 * (1.0 / 360.0 + t2 * (-1.0 / 13440.0 + t2 * (1.0 / 907200.0 + t2 * (-1.0 / 95800320.0))));
-    dc = -1.0 / 120.0 + t2 * (1.0 / 2520.0 + t2 * (-1.0 / 120960.0 + t2 * (1.0 / 9979200.0 + t2 * (-1.0 / 1245404160.0))));
-  } else {
-    da = (1.0 - b * t2 - a) / (2.0 * t2), db = (a - 2.0 * b) / (2.0 * t2), dc = (b - 3.0 * c) / (2.0 * t2);  // cos θ = 1 − b θ²
-  }
   const S t2_dot = 2.0 * phi.dot(w);
   RotationAndRateMapRates<S> out;
-  out.R = Mat3T<S>::Identity() + a * P + b * P2;
-  out.T = Mat3T<S>::Identity() - b * P + c * P2;
-  out.R_dot = t2_dot * (da * P + db * P2) + a * W + b * WP;
-  out.T_dot = t2_dot * (dc * P2 - db * P) - b * W + c * WP;
+  out.R = Mat3T<S>::Identity() + k.a * P + k.b * P2;
+  out.T = Mat3T<S>::Identity() - k.b * P + k.c * P2;
+  out.R_dot = t2_dot * (k.da * P + k.db * P2) + k.a * W + k.b * WP;
+  out.T_dot = t2_dot * (k.dc * P2 - k.db * P) - k.b * W + k.c * WP;
   return out;
 }
 
