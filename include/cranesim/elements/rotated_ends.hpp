@@ -5,9 +5,10 @@
 // share one frame node, as every joint of a truss does in the full-member model.
 //
 // With T = diag(I, O₁ᵀ, I, O₂ᵀ) the beam's velocities are dq_b = T dq (the body angular velocity
-// of the section frame is O_eᵀ ω_e), so by virtual power M = Tᵀ M_b T and F = Tᵀ F_b. The beam is
-// evaluated from its end frames as matrices, so no rotation vector of the section frames is
-// ever formed.
+// of the section frame is O_eᵀ ω_e), so by virtual power M = Tᵀ M_b T and F = Tᵀ F_b, and the
+// velocity tangent is Tᵀ C_b T. The beam is evaluated from its end frames as matrices, so no
+// rotation vector of the section frames is ever formed. The offsets turn with the nodes, so the element stays frame-indifferent: its
+// coordinate columns come from end 2's six (objective_tangent.hpp), as the beam's own.
 
 #include <array>
 
@@ -67,6 +68,37 @@ struct RotatedEndsBeamKernel {
                              beam_.elasticForce<S>(r1, R1, r2, R2, vb, stiffness_)));
   }
 
+  /// M a + F in one pass over the beam's Gauss points (element.hpp: fused residual).
+  template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
+    return inertialAndGravityForce<S>(q, v, a, gravity) + elasticForce<S>(q, v);
+  }
+
+  /// ∂(M a + F)/∂dq = Tᵀ C_b T in closed form (timoshenko_beam.hpp) and M = Tᵀ M_b T beside it.
+  Mat12 velocityTangent(const Q<double>& q, const V<double>& v, double, Mat12& M) const {
+    Mat12 T = Mat12::Identity();
+    for (int e = 0; e < 2; ++e) T.block<3, 3>(6 * e + 3, 6 * e + 3) = offset_[e].transpose();
+    Mat12 Mb;
+    const Mat12 Cb = beam_.velocityTangent(q.segment<3>(0), sectionRotation<double>(q, 0), q.segment<3>(6),
+                                           sectionRotation<double>(q, 1), beamVelocities<double>(v), stiffness_, Mb);
+    M.noalias() = T.transpose() * Mb * T;
+    return T.transpose() * Cb * T;
+  }
+
+  /// ∂(M a + F)/∂q in the DAE's Jacobian, beside M and the velocity tangent C (objective_tangent.hpp):
+  /// the elastic and damping forces by forward AD in end 2's position and rotation, the inertial
+  /// and gravity forces in its rotation alone, the other six columns by frame indifference.
+  Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
+                          const Mat12& M, const Mat12& C) const {
+    V<double> elastic, inertial;
+    Eigen::Matrix<double, 12, 6> second_end = segmentDerivative<6>(
+        q, 6, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }, elastic);
+    second_end.rightCols<3>() += segmentDerivative<3>(
+        q, 9, [&]<class S>(const Q<S>& qs) { return inertialAndGravityForce<S>(qs, v.cast<S>(), a.cast<S>(), gravity); },
+        inertial);
+    const V<double> r = elastic + inertial;
+    return objectiveCoordinateTangent({q, v, a, gravity, r, M, C, second_end});
+  }
+
   /// The beam's damping forces alone (timoshenko_beam.hpp).
   template <class S> V<S> dampingForce(const Q<S>& q, const V<S>& v) const {
     return nodeForce<S>(V<S>(beam_.dampingForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0), q.template segment<3>(6),
@@ -91,6 +123,20 @@ struct RotatedEndsBeamKernel {
   }
 
  private:
+  /// Tᵀ (M_b T a + F_ine,b + F_g,b): the inertial and gravity forces, M a among them.
+  template <class S> V<S> inertialAndGravityForce(const Q<S>& q, const V<S>& v, const V<S>& a, const Vec3& gravity) const {
+    const V<S> ab = beamVelocities<S>(a);
+    return nodeForce<S>(V<S>(beam_.inertialAndGravityForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0),
+                                                              q.template segment<3>(6), sectionRotation<S>(q, 1),
+                                                              beamVelocities<S>(v), gravity, &ab)));
+  }
+
+  /// Tᵀ F_el,b: the elastic and damping forces.
+  template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
+    return nodeForce<S>(V<S>(beam_.elasticForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0), q.template segment<3>(6),
+                                                   sectionRotation<S>(q, 1), beamVelocities<S>(v), stiffness_)));
+  }
+
   TimoshenkoBeamKernel beam_;
   std::array<Mat3, 2> offset_;
   Mat12 stiffness_;
