@@ -260,12 +260,17 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     scatter(load_blocks_[block++], J.data());
   }
 
+  // The constraints' second derivatives (nested forward AD) in parallel, their blocks in order.
+  constraint_scratch_.resize(model_.constraints.size());
+  constraint_jacobian_loop_.run(model_.constraints.size(), [&](std::size_t ci) {
+    constraint_scratch_[ci] = evaluateConstraint<ConstraintQDual>(model_, model_.constraints[ci], q, t);
+  });
   const SolverSpec& sv = model_.solver;
   for (std::size_t ci = 0; ci < model_.constraints.size(); ++ci) {
     const Constraint& c = model_.constraints[ci];
     const ConstraintBlocks& b = constraint_blocks_[ci];
     const ConstraintSides s = sidesOf(model_, c);
-    const auto C = evaluateConstraint<ConstraintQDual>(model_, c, q, t);
+    const ConstraintDerivatives<ConstraintQDual>& C = constraint_scratch_[ci];
     const auto vloc = localExtended(model_, s, v, false);
     const int nd = static_cast<int>(s.directions.size());
     const int m = c.rows;

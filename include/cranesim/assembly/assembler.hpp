@@ -11,6 +11,7 @@
 
 #include <Eigen/Sparse>
 
+#include "cranesim/assembly/constraint_evaluation.hpp"
 #include "cranesim/assembly/element_loop.hpp"
 #include "cranesim/assembly/sparsity.hpp"
 #include "cranesim/model/model.hpp"
@@ -126,9 +127,10 @@ class Assembler {
   std::vector<int> element_blocks_;
   std::vector<int> load_blocks_;
   std::vector<ConstraintBlocks> constraint_blocks_;
-  // Per-element scratch written in parallel and reduced in a fixed order.
+  // Per-element and per-constraint scratch written in parallel and reduced in a fixed order.
   mutable std::vector<std::vector<double>> element_scratch_;
-  mutable ElementLoop residual_loop_, jacobian_loop_;
+  mutable std::vector<ConstraintDerivatives<ConstraintQDual>> constraint_scratch_;
+  mutable ElementLoop residual_loop_, jacobian_loop_, constraint_jacobian_loop_;
 };
 
 }  // namespace cranesim
