@@ -123,23 +123,15 @@ struct CondensedTrussKernel {
            });
   }
 
-  /// The same in the DAE's Jacobian, beside M and the velocity tangent C (objective_tangent.hpp):
-  /// the elastic and damping forces by forward AD in end 2's position and rotation, the inertial
-  /// and gravity forces in its rotation alone, the other six columns by frame indifference.
+  /// The same in the DAE's Jacobian, beside M and the velocity tangent C (objective_tangent.hpp).
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
-    V<double> elastic, inertial;
-    Eigen::Matrix<double, 12, 6> second_end = segmentDerivative<6>(
-        q, 6, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }, elastic);
-    second_end.rightCols<3>() += segmentDerivative<3>(
-        q, 9,
+    return objectiveCoordinateTangent(
+        {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); },
         [&]<class S>(const Q<S>& qs) {
           const V<S> as = a.cast<S>();
           return inertiaAndGravity<S>(qs, v.cast<S>(), &as, gravity);
-        },
-        inertial);
-    const V<double> r = elastic + inertial;
-    return objectiveCoordinateTangent({q, v, a, gravity, r, M, C, second_end});
+        });
   }
 
   /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp) and M beside it (element.hpp).

@@ -23,8 +23,8 @@
 
 namespace cranesim {
 
-/// What objectiveCoordinateTangent needs of the element at (q, dq, a): its residual r, M, the
-/// velocity tangent C = ∂r/∂dq − the mass term, and ∂r/∂[r², φ²] (12 × 6).
+/// The element's state and what its Jacobian has computed there: M and the velocity tangent
+/// C = ∂(M a + F)/∂dq (without the mass term's cj M).
 struct ObjectiveTangentInput {
   using V12 = Eigen::Matrix<double, 12, 1>;
   using Mat12 = Eigen::Matrix<double, 12, 12>;
@@ -32,21 +32,21 @@ struct ObjectiveTangentInput {
   const V12& v;
   const V12& a;  // with the mass damping's α dq when the residual has it (M (a + α dq))
   const Vec3& gravity;
-  const V12& residual;
   const Mat12& mass;
   const Mat12& velocity_tangent;
-  const Eigen::Matrix<double, 12, 6>& second_end;
 };
 
-/// ∂r/∂q (12 × 12) of a frame-indifferent element (file comment).
-inline Eigen::Matrix<double, 12, 12> objectiveCoordinateTangent(const ObjectiveTangentInput& in) {
+namespace objective_detail {
+/// ∂r/∂q (12 × 12) from the residual r and its columns of end 2, ∂r/∂[r², φ²] (file comment).
+inline Eigen::Matrix<double, 12, 12> fromSecondEnd(const ObjectiveTangentInput& in, const Eigen::Matrix<double, 12, 1>& residual,
+                                                   const Eigen::Matrix<double, 12, 6>& second_end) {
   using Mat12x3 = Eigen::Matrix<double, 12, 3>;
   const Vec3 phi1 = in.q.segment<3>(3), phi2 = in.q.segment<3>(9);
   const Mat3 R1 = rotationMatrix<double>(phi1), R2 = rotationMatrix<double>(phi2);
-  const auto A = in.second_end.leftCols<3>();
-  const Mat12x3 B = in.second_end.rightCols<3>() * angularVelocityMapInverse<double>(phi2);
+  const auto A = second_end.leftCols<3>();
+  const Mat12x3 B = second_end.rightCols<3>() * angularVelocityMapInverse<double>(phi2);
   Mat12x3 X = Mat12x3::Zero();
-  for (int n = 0; n < 2; ++n) X.middleRows<3>(6 * n) = -skew<double>(Vec3(in.residual.segment<3>(6 * n)));
+  for (int n = 0; n < 2; ++n) X.middleRows<3>(6 * n) = -skew<double>(Vec3(residual.segment<3>(6 * n)));
   for (int n = 0; n < 2; ++n) {
     X.noalias() += in.velocity_tangent.middleCols<3>(6 * n) * skew<double>(Vec3(in.v.segment<3>(6 * n)));
     X.noalias() += in.mass.middleCols<3>(6 * n) * skew<double>(Vec3(in.a.segment<3>(6 * n) - in.gravity));
@@ -57,8 +57,30 @@ inline Eigen::Matrix<double, 12, 12> objectiveCoordinateTangent(const ObjectiveT
   J.middleCols<3>(0) = -A;
   J.middleCols<3>(3).noalias() = X * (R1 * angularVelocityMap<double>(phi1));
   J.middleCols<3>(6) = A;
-  J.middleCols<3>(9) = in.second_end.rightCols<3>();
+  J.middleCols<3>(9) = second_end.rightCols<3>();
   return J;
+}
+}  // namespace objective_detail
+
+/// ∂r/∂q of a frame-indifferent element whose residual r(q) is given templated on the scalar:
+/// forward AD in end 2's six directions.
+template <class Residual>
+Eigen::Matrix<double, 12, 12> objectiveCoordinateTangent(const ObjectiveTangentInput& in, const Residual& residual) {
+  Eigen::Matrix<double, 12, 1> r;
+  const Eigen::Matrix<double, 12, 6> second_end = segmentDerivative<6>(in.q, 6, residual, r);
+  return objective_detail::fromSecondEnd(in, r, second_end);
+}
+
+/// The same for a residual split into elastic forces and inertial and gravity forces that do not
+/// depend on the end positions (material riding on an interpolation driven by the end rotations):
+/// the first by forward AD in end 2's six directions, the second in its three rotation directions.
+template <class Elastic, class Inertial>
+Eigen::Matrix<double, 12, 12> objectiveCoordinateTangent(const ObjectiveTangentInput& in, const Elastic& elastic,
+                                                         const Inertial& inertial) {
+  Eigen::Matrix<double, 12, 1> r_elastic, r_inertial;
+  Eigen::Matrix<double, 12, 6> second_end = segmentDerivative<6>(in.q, 6, elastic, r_elastic);
+  second_end.rightCols<3>() += segmentDerivative<3>(in.q, 9, inertial, r_inertial);
+  return objective_detail::fromSecondEnd(in, r_elastic + r_inertial, second_end);
 }
 
 }  // namespace cranesim

@@ -7,8 +7,9 @@
 // With T = diag(I, O₁ᵀ, I, O₂ᵀ) the beam's velocities are dq_b = T dq (the body angular velocity
 // of the section frame is O_eᵀ ω_e), so by virtual power M = Tᵀ M_b T and F = Tᵀ F_b, and the
 // velocity tangent is Tᵀ C_b T. The beam is evaluated from its end frames as matrices, so no
-// rotation vector of the section frames is ever formed. The offsets turn with the nodes, so the element stays frame-indifferent: its
-// coordinate columns come from end 2's six (objective_tangent.hpp), as the beam's own.
+// rotation vector of the section frames is ever formed. The offsets turn with the nodes, so the
+// element stays frame-indifferent: its coordinate columns come from end 2's six
+// (objective_tangent.hpp), as the beam's own.
 
 #include <array>
 
@@ -84,19 +85,12 @@ struct RotatedEndsBeamKernel {
     return T.transpose() * Cb * T;
   }
 
-  /// ∂(M a + F)/∂q in the DAE's Jacobian, beside M and the velocity tangent C (objective_tangent.hpp):
-  /// the elastic and damping forces by forward AD in end 2's position and rotation, the inertial
-  /// and gravity forces in its rotation alone, the other six columns by frame indifference.
+  /// ∂(M a + F)/∂q in the DAE's Jacobian, beside M and the velocity tangent C (objective_tangent.hpp).
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
-    V<double> elastic, inertial;
-    Eigen::Matrix<double, 12, 6> second_end = segmentDerivative<6>(
-        q, 6, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }, elastic);
-    second_end.rightCols<3>() += segmentDerivative<3>(
-        q, 9, [&]<class S>(const Q<S>& qs) { return inertialAndGravityForce<S>(qs, v.cast<S>(), a.cast<S>(), gravity); },
-        inertial);
-    const V<double> r = elastic + inertial;
-    return objectiveCoordinateTangent({q, v, a, gravity, r, M, C, second_end});
+    return objectiveCoordinateTangent(
+        {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); },
+        [&]<class S>(const Q<S>& qs) { return inertialAndGravityForce<S>(qs, v.cast<S>(), a.cast<S>(), gravity); });
   }
 
   /// The beam's damping forces alone (timoshenko_beam.hpp).

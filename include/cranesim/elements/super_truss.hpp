@@ -324,19 +324,13 @@ struct SuperTrussKernel {
   }
 
   /// ∂(M_e a + F_e)/∂q_e in the DAE's Jacobian, beside M_e and the velocity tangent C
-  /// (objective_tangent.hpp): forward AD of the residual in end 2's position and rotation, the
-  /// other six columns by frame indifference.
+  /// (objective_tangent.hpp): forward AD of the whole residual in end 2's six directions.
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
-    V<double> r;
-    const Eigen::Matrix<double, 12, 6> second_end = segmentDerivative<6>(
-        q, 6,
-        [&]<class S>(const Q<S>& qs) {
-          const V<S> as = a.cast<S>();
-          return forces<S>(qs, v.cast<S>(), &as, gravity, Terms::All);
-        },
-        r);
-    return objectiveCoordinateTangent({q, v, a, gravity, r, M, C, second_end});
+    return objectiveCoordinateTangent({q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) {
+      const V<S> as = a.cast<S>();
+      return forces<S>(qs, v.cast<S>(), &as, gravity, Terms::All);
+    });
   }
 
   /// ∂(M_e a + F_e)/∂dq_e in closed form and M_e beside it (element.hpp). Member k adds
