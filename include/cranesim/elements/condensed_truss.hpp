@@ -112,18 +112,9 @@ struct CondensedTrussKernel {
     return inertiaAndGravity<S>(q, v, &a, gravity) + elasticForce<S>(q, v);
   }
 
-  /// ∂(M a + F)/∂q (element.hpp): the elastic and damping forces by forward AD in all twelve
-  /// directions, the inertial and gravity forces in the six rotation directions
-  /// (section_inertia_tangent.hpp).
-  Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity) const {
-    return coordinateDerivative(q, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }) +
-           rotationDerivative(q, [&]<class S>(const Q<S>& qs) {
-             const V<S> as = a.cast<S>();
-             return inertiaAndGravity<S>(qs, v.cast<S>(), &as, gravity);
-           });
-  }
-
-  /// The same in the DAE's Jacobian, beside M and the velocity tangent C (objective_tangent.hpp).
+  /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp): the
+  /// elastic and damping forces by forward AD in end 2's six directions, the inertial and gravity
+  /// forces in its three rotation directions, the other columns by frame indifference.
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
     return objectiveCoordinateTangent(

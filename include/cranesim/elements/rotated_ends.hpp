@@ -85,7 +85,8 @@ struct RotatedEndsBeamKernel {
     return T.transpose() * Cb * T;
   }
 
-  /// ∂(M a + F)/∂q in the DAE's Jacobian, beside M and the velocity tangent C (objective_tangent.hpp).
+  /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp), as the
+  /// beam's.
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
     return objectiveCoordinateTangent(

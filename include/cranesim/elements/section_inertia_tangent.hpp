@@ -22,11 +22,11 @@
 // Both sums are accumulated station by station into [M | ∂r/∂dq + M C] (addStationTangent);
 // the kernel then subtracts M C once (subtractTwistBracket).
 //
-// The coordinate columns ∂r/∂q stay forward AD (coordinateDerivative in autodiff.hpp), but the
-// inertial and gravity forces of an interpolation whose centre-line tangents and section
+// The coordinate columns ∂r/∂q come from end 2's by frame indifference (objective_tangent.hpp);
+// the inertial and gravity forces of an interpolation whose centre-line tangents and section
 // rotations follow the end rotations alone (x = Σ Nᵢ rⁱ + N' Rⁱ e_x, R_c = R¹ exp(ξ φ̃)) do not
-// depend on the end positions: H, Ḣ, R_c and Ω are functions of φ¹, φ² only, so their
-// derivatives need the six rotation directions (rotationDerivative), not twelve.
+// depend on the end positions, so of those only end 2's three rotation directions are
+// differentiated.
 
 #include <Eigen/Dense>
 
@@ -34,26 +34,6 @@
 #include "cranesim/math/rotation.hpp"
 
 namespace cranesim {
-
-using Coordinates12 = Eigen::Matrix<double, 12, 1>;
-
-/// ∂f/∂q of f(q) for q = [r¹, φ¹, r², φ²] and an f that does not depend on r¹, r²: forward AD
-/// in the six rotation directions, zero columns for the positions.
-template <class Function> Eigen::Matrix<double, 12, 12> rotationDerivative(const Coordinates12& q, const Function& f) {
-  using D = Dual<double, 6>;
-  Eigen::Matrix<D, 12, 1> qd;
-  for (int k = 0; k < 12; ++k) {
-    const int rotation = k % 6 < 3 ? -1 : 3 * (k / 6) + k % 3;
-    qd(k) = rotation < 0 ? D(q(k)) : seeded<double, 6>(q(k), rotation);
-  }
-  const Eigen::Matrix<D, 12, 1> r = f(qd);
-  Eigen::Matrix<double, 12, 12> J = Eigen::Matrix<double, 12, 12>::Zero();
-  for (int i = 0; i < 12; ++i) {
-    J.block<1, 3>(i, 3) = r(i).derivatives().template head<3>().transpose();
-    J.block<1, 3>(i, 9) = r(i).derivatives().template tail<3>().transpose();
-  }
-  return J;
-}
 
 /// [M | G] of one element, 12 × 24: the mass matrix and Σ Hᵀ(…) of the file comment.
 using SectionInertiaTangent = Eigen::Matrix<double, 12, 24>;

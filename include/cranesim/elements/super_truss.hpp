@@ -318,15 +318,19 @@ struct SuperTrussKernel {
   }
 
   /// F(q, 0, t): elastic forces and gravity, without the velocity path of the inertial terms
-  /// (the statics' Jacobian differentiates this).
+  /// (the statics' Jacobian differentiates this, coordinateTangent).
   template <class S> V<S> staticForce(const Q<S>& q, double, const Vec3& gravity) const {
     return forces<S>(q, V<S>(V<S>::Zero()), nullptr, gravity, Terms::AtRest);
   }
 
-  /// ∂(M_e a + F_e)/∂q_e in the DAE's Jacobian, beside M_e and the velocity tangent C
-  /// (objective_tangent.hpp): forward AD of the whole residual in end 2's six directions.
+  /// ∂(M_e a + F_e)/∂q_e (element.hpp) from M_e and the velocity tangent C (objective_tangent.hpp):
+  /// forward AD of the residual in end 2's six directions — at rest (the statics) of the force at
+  /// rest alone, without the velocity path of the inertial terms.
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
+    if (v.isZero(0.0) && a.isZero(0.0))
+      return objectiveCoordinateTangent({q, v, a, gravity, M, C},
+                                        [&]<class S>(const Q<S>& qs) { return staticForce<S>(qs, 0.0, gravity); });
     return objectiveCoordinateTangent({q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) {
       const V<S> as = a.cast<S>();
       return forces<S>(qs, v.cast<S>(), &as, gravity, Terms::All);

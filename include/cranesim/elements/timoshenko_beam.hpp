@@ -472,18 +472,9 @@ struct TimoshenkoBeamKernel {
     return inertia.forces();
   }
 
-  /// ∂(M a + F)/∂q (element.hpp): the elastic and damping forces by forward AD in all twelve
-  /// directions, the inertial and gravity forces in the six rotation directions
-  /// (section_inertia_tangent.hpp).
-  Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity) const {
-    return coordinateDerivative(q, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }) +
-           rotationDerivative(q, [&]<class S>(const Q<S>& qs) {
-             const V<S> as = a.cast<S>();
-             return inertialAndGravityForce<S>(qs, v.cast<S>(), gravity, &as);
-           });
-  }
-
-  /// The same in the DAE's Jacobian, beside M and the velocity tangent C (objective_tangent.hpp).
+  /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp): the
+  /// elastic and damping forces by forward AD in end 2's six directions, the inertial and gravity
+  /// forces in its three rotation directions, the other columns by frame indifference.
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
     return objectiveCoordinateTangent(
@@ -634,11 +625,6 @@ struct TimoshenkoBeamKernel {
       for (int k = 0; k < 4; ++k) n[k] += rule.weight[gp] * length * h.N[k];
     }
     return n;
-  }
-
-  /// F(q, 0, t): elastic forces and gravity (the statics' Jacobian differentiates this).
-  template <class S> V<S> staticForce(const Q<S>& q, double, const Vec3& gravity) const {
-    return gravityForce<S>(endFrames<S>(q), gravity) + elasticForce<S>(q, V<S>(V<S>::Zero()));
   }
 
   double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {

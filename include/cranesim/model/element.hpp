@@ -31,20 +31,17 @@
 // rates of its parameters it is to use.
 // Optionally, a kernel whose mass matrix is costly provides the fused residual
 //   template <class S> Matrix<S, kNv, 1> residual(q, dq, a, t, gravity) const;   M(q) a + F
-// which KernelElement then uses for the residual and its Jacobian, and a kernel whose inertial
-// terms are costly provides the force at rest
-//   template <class S> Matrix<S, kNv, 1> staticForce(q, t, gravity) const;       F(q, 0, t)
-// which the statics' Jacobian (coordinateJacobian at dq = 0, d(dq)/dt = 0) then differentiates.
+// which KernelElement then uses for the residual and its Jacobian.
 // A kernel with a closed form of its velocity derivative provides the velocity tangent
 //   Matrix<double, kNv, kNv> velocityTangent(q, dq, t, Matrix<double, kNv, kNv>& M) const;
 //   ∂(M(q) a + F)/∂dq in closed form, and M(q)
 // which KernelElement's jacobian then uses for the velocity columns, and
 //   Matrix<double, kNv, kNq> coordinateTangent(q, dq, a, t, gravity) const;   ∂(M a + F)/∂q
 // which coordinateJacobian then uses instead of forward AD over the whole kernel; a kernel with
-// explicitTimePower takes ElementInput::rates as their last argument too. A kernel with both may
-// also take M and the velocity tangent C (a frame-indifferent element, objective_tangent.hpp):
+// explicitTimePower takes ElementInput::rates as their last argument too. A frame-indifferent
+// kernel with a velocity tangent takes M and the velocity tangent C instead
+// (objective_tangent.hpp):
 //   Matrix<double, kNv, kNq> coordinateTangent(q, dq, a, t, gravity, M, C) const;
-// which the DAE's Jacobian then uses (the statics' keeps the one without).
 // The templated functions must not branch on derivative parts and must not allocate, and F must
 // be a polynomial of degree ≤ 2 in dq (inertial terms quadratic, damping linear): a force
 // nonlinear in the velocities (drag, friction) would need its own ∂/∂dq.
@@ -120,7 +117,6 @@ concept FusedResidualKernel = requires(const K& k, const Eigen::Matrix<double, K
   { k.template residual<double>(q, v, v, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
 };
 
-/// A kernel that computes F(q, 0, t) without the inertial terms' velocity machinery.
 /// A kernel whose parameters follow time (explicitTimePower), or whose damping is not linear
 /// in dq (dissipatedPower).
 template <class K>
@@ -178,11 +174,6 @@ concept ObjectiveTangentKernel = requires(const K& k, const Eigen::Matrix<double
                                           const Eigen::Matrix<double, K::kNv, 1>& v, const Vec3& g,
                                           const Eigen::Matrix<double, K::kNv, K::kNv>& M) {
   { k.coordinateTangent(q, v, v, 0.0, g, M, M) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, K::kNq>>;
-};
-
-template <class K>
-concept StaticForceKernel = requires(const K& k, const Eigen::Matrix<double, K::kNq, 1>& q, const Vec3& g) {
-  { k.template staticForce<double>(q, 0.0, g) } -> std::convertible_to<Eigen::Matrix<double, K::kNv, 1>>;
 };
 
 template <class Kernel> class KernelElement final : public Element {
@@ -248,30 +239,30 @@ template <class Kernel> class KernelElement final : public Element {
     using D = Dual<double, kNq>;
     const Qd qd = gatherQ(in.q);
     const Vd vd = gatherV(in.v), ad = gatherV(in.a) + in.mass_damping * vd;
-    if constexpr (CoordinateTangentKernel<Kernel>) {
+    if constexpr (ObjectiveTangentKernel<Kernel>) {
+      Eigen::Matrix<double, kNv, kNv> M;
+      const Eigen::Matrix<double, kNv, kNv> C = kernel_.velocityTangent(qd, vd, in.t, M);
+      Eigen::Map<Eigen::Matrix<double, kNv, kNq>> Jq(J);
+      Jq = kernel_.coordinateTangent(qd, vd, ad, in.t, in.gravity, M, C);
+      return;
+    } else if constexpr (CoordinateTangentKernel<Kernel>) {
       Eigen::Map<Eigen::Matrix<double, kNv, kNq>> Jq(J);
       if constexpr (TimeDependentKernel<Kernel>)
         Jq = kernel_.coordinateTangent(qd, vd, ad, in.t, in.gravity, in.rates);
       else
         Jq = kernel_.coordinateTangent(qd, vd, ad, in.t, in.gravity);
       return;
+    } else {
+      Eigen::Matrix<D, kNq, 1> q;
+      for (int k = 0; k < kNq; ++k) q(k) = seeded<double, kNq>(qd(k), k);
+      const Eigen::Matrix<D, kNv, 1> v = vd.template cast<D>(), a = ad.template cast<D>();
+      Eigen::Matrix<D, kNv, 1> r;
+      if constexpr (FusedResidualKernel<Kernel>)
+        r = kernel_.template residual<D>(q, v, a, in.t, in.gravity);
+      else
+        r = kernel_.template massMatrix<D>(q, in.t) * a + forceAt<D>(q, v, in);
+      storeDerivatives(r, J);
     }
-    Eigen::Matrix<D, kNq, 1> q;
-    for (int k = 0; k < kNq; ++k) q(k) = seeded<double, kNq>(qd(k), k);
-    Eigen::Matrix<D, kNv, 1> r;
-    if constexpr (StaticForceKernel<Kernel>) {
-      if (vd.isZero(0.0) && ad.isZero(0.0)) {
-        r = kernel_.template staticForce<D>(q, in.t, in.gravity);
-        storeDerivatives(r, J);
-        return;
-      }
-    }
-    const Eigen::Matrix<D, kNv, 1> v = vd.template cast<D>(), a = ad.template cast<D>();
-    if constexpr (FusedResidualKernel<Kernel>)
-      r = kernel_.template residual<D>(q, v, a, in.t, in.gravity);
-    else
-      r = kernel_.template massMatrix<D>(q, in.t) * a + forceAt<D>(q, v, in);
-    storeDerivatives(r, J);
   }
 
   void mass(const ElementInput& in, double* M) const override {
