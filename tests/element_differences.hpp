@@ -1,7 +1,9 @@
 #pragma once
 // An element's DAE Jacobian by central differences of its residual, for kernels whose 12
 // coordinates add (positions and slopes, no rotation vectors): the reference the closed-form and
-// AD Jacobians are checked against.
+// AD Jacobians are checked against; and the blockwise comparison of two Jacobians.
+
+#include <algorithm>
 
 #include <Eigen/Dense>
 
@@ -32,6 +34,16 @@ inline Eigen::Matrix<double, 12, 24> centralDifferenceJacobian(const Element& el
   element.mass(in, M.data());
   fd.rightCols<12>() += cj * M;
   return fd;
+}
+
+/// The largest relative difference between J and `reference` over their 3-column blocks, each
+/// block against its own norm (so that a block of small terms is not measured against a large one).
+template <class Computed, class Reference> double worstColumnBlockError(const Computed& J, const Reference& reference) {
+  double worst = 0.0;
+  for (int block = 0; block < J.cols() / 3; ++block)
+    worst = std::max(worst, (J.middleCols(3 * block, 3) - reference.middleCols(3 * block, 3)).norm() /
+                                reference.middleCols(3 * block, 3).norm());
+  return worst;
 }
 
 }  // namespace cranesim::test

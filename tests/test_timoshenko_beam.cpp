@@ -13,6 +13,7 @@
 #include "cranesim/model/kernel_elements.hpp"
 #include "random_states.hpp"
 #include "cantilever_theory.hpp"
+#include "element_differences.hpp"
 
 using namespace cranesim;
 
@@ -360,7 +361,6 @@ TEST_CASE("Timoshenko beam: the coordinate columns by frame indifference equal f
   k.damping = 0.05;
   const std::unique_ptr<Element> el = beamElement(k);
   const Vec3 g(1.5, -2.0, -9.81);
-  using D = Dual<double, 12>;
   Rng rng(17);
   double worst = 0.0;
   for (int trial = 0; trial < 6; ++trial) {
@@ -372,17 +372,13 @@ TEST_CASE("Timoshenko beam: the coordinate columns by frame indifference equal f
     in.mass_damping = alpha;
     Eigen::Matrix<double, 12, 24> J;
     el->jacobian(in, 3.0, J.data());
-    Eigen::Matrix<D, 12, 1> qd;
-    for (int i = 0; i < 12; ++i) qd(i) = seeded<double, 12>(q(i), i);
-    const Eigen::Matrix<D, 12, 1> r = k.residual<D>(qd, v.cast<D>(), Eigen::Matrix<D, 12, 1>((a + alpha * v).cast<D>()), 0.0, g);
-    M12 Jad;
-    for (int i = 0; i < 12; ++i) Jad.row(i) = r(i).derivatives().transpose();
-    for (int block = 0; block < 4; ++block) {
-      INFO("column block " << block << ", trial " << trial);
-      const double error = (J.middleCols<3>(3 * block) - Jad.middleCols<3>(3 * block)).norm() / Jad.middleCols<3>(3 * block).norm();
-      CHECK(error < 1e-10);
-      worst = std::max(worst, error);
-    }
+    const M12 Jad = coordinateDerivative(q, [&]<class S>(const Eigen::Matrix<S, 12, 1>& qs) {
+      return k.residual<S>(qs, v.cast<S>(), Eigen::Matrix<S, 12, 1>((a + alpha * v).cast<S>()), 0.0, g);
+    });
+    INFO("trial " << trial);
+    const double error = test::worstColumnBlockError(J.leftCols<12>(), Jad);
+    CHECK(error < 1e-10);
+    worst = std::max(worst, error);
   }
   std::printf("[timoshenko] frame-indifferent ∂r/∂q vs forward AD (soft beam): rel. err %.3g\n", worst);
 }
@@ -393,7 +389,6 @@ TEST_CASE("Rotated-ends beam: the Jacobian (closed-form velocity columns, frame-
   // from end 2's six against forward AD of the whole residual in all twelve directions, column
   // block by column block, stiff (steel) and a million times softer (inertia, gravity and
   // damping not hidden under the stiffness), with mass damping.
-  using D = Dual<double, 12>;
   const Vec3 g(1.5, -2.0, -9.81);
   Rng rng(29);
   double worst = 0.0;
@@ -413,21 +408,17 @@ TEST_CASE("Rotated-ends beam: the Jacobian (closed-form velocity columns, frame-
       in.mass_damping = alpha;
       Eigen::Matrix<double, 12, 24> J;
       el->jacobian(in, cj, J.data());
-      Eigen::Matrix<D, 12, 1> qd, vd;
-      for (int i = 0; i < 12; ++i) qd(i) = seeded<double, 12>(q(i), i), vd(i) = seeded<double, 12>(v(i), i);
-      const auto residual = [&](const Eigen::Matrix<D, 12, 1>& qq, const Eigen::Matrix<D, 12, 1>& vv) {
-        return Eigen::Matrix<D, 12, 1>(k.massMatrix<D>(qq) * Eigen::Matrix<D, 12, 1>((a.cast<D>() + D(alpha) * vv)) + k.force<D>(qq, vv, 0.0, g));
+      const auto residual = [&]<class S>(const Eigen::Matrix<S, 12, 1>& qq, const Eigen::Matrix<S, 12, 1>& vv) {
+        return Eigen::Matrix<S, 12, 1>(k.massMatrix<S>(qq) * Eigen::Matrix<S, 12, 1>(a.cast<S>() + S(alpha) * vv) + k.force<S>(qq, vv, 0.0, g));
       };
-      const Eigen::Matrix<D, 12, 1> rq = residual(qd, v.cast<D>()), rv = residual(q.cast<D>(), vd);
       Eigen::Matrix<double, 12, 24> Jad;
-      for (int i = 0; i < 12; ++i) Jad.row(i) << rq(i).derivatives().transpose(), rv(i).derivatives().transpose();
+      Jad << coordinateDerivative(q, [&]<class S>(const Eigen::Matrix<S, 12, 1>& qs) { return residual(qs, Eigen::Matrix<S, 12, 1>(v.cast<S>())); }),
+          coordinateDerivative(v, [&]<class S>(const Eigen::Matrix<S, 12, 1>& vs) { return residual(Eigen::Matrix<S, 12, 1>(q.cast<S>()), vs); });
       Jad.rightCols<12>() += cj * k.massMatrix<double>(q);
-      for (int block = 0; block < 8; ++block) {
-        INFO("softness " << softness << ", column block " << block << ", trial " << trial);
-        const double error = (J.middleCols<3>(3 * block) - Jad.middleCols<3>(3 * block)).norm() / Jad.middleCols<3>(3 * block).norm();
-        CHECK(error < 1e-10);
-        worst = std::max(worst, error);
-      }
+      INFO("softness " << softness << ", trial " << trial);
+      const double error = test::worstColumnBlockError(J, Jad);
+      CHECK(error < 1e-10);
+      worst = std::max(worst, error);
     }
   }
   std::printf("[rotated ends] Jacobian vs forward AD: rel. err %.3g\n", worst);
