@@ -29,6 +29,7 @@
 
 #include "chain_scene.hpp"
 #include "cranesim/assembly/assembler.hpp"
+#include "cranesim/assembly/constraint_second_derivatives.hpp"
 #include "cranesim/math/sparse_lu.hpp"
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/model/compile.hpp"
@@ -177,6 +178,27 @@ void BM_CraneStaticJacobian(benchmark::State& state) {
   state.SetLabel(fidelity(state));
 }
 
+/// The crane's joint constraints alone, serially: their equations and velocity Jacobian G
+/// (residual) or their second derivatives too (jacobian), as the DAE Jacobian needs them.
+void BM_CraneConstraints(benchmark::State& state) {
+  CraneFixture& f = crane(state.range(0) != 0);
+  const bool second = state.range(1) != 0;
+  for (auto _ : state) {
+    for (const cranesim::Constraint& c : f.model.constraints) {
+      if (second) {
+        auto C = cranesim::constraintSecondDerivatives(f.model, c, f.y.data(), 0.0);
+        benchmark::DoNotOptimize(C);
+      } else {
+        auto C = cranesim::evaluateConstraint<double>(f.model, c, f.y.data(), 0.0);
+        benchmark::DoNotOptimize(C);
+      }
+    }
+    benchmark::ClobberMemory();
+  }
+  state.counters["constraints"] = static_cast<double>(f.model.constraints.size());
+  state.SetLabel(fidelity(state));
+}
+
 /// The element's kernel type, e.g. "CondensedTrussKernel" (or the element class's name).
 std::string elementKind(const cranesim::Element& e) {
   int status = 0;
@@ -275,6 +297,7 @@ void registerScalingBenchmarks() {
 BENCHMARK(BM_CraneResidual)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CraneJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CraneStaticJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CraneConstraints)->ArgsProduct({{1}, {0, 1}})->ArgNames({"condensed", "second"})->Unit(benchmark::kMillisecond);
 
 // Args: {links, ggl (1) or baumgarte (0)}.
 BENCHMARK(BM_Residual)->ArgsProduct({{8, 64}, {1, 0}})->ArgNames({"N", "ggl"})->Unit(benchmark::kMicrosecond);

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "cranesim/assembly/assembler.hpp"
+#include "cranesim/assembly/constraint_second_derivatives.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -146,3 +147,36 @@ TEST_CASE("Constraint quantities Φ_q, Φ̇ and Γ equal finite differences", "[
   }
 }
 
+
+TEST_CASE("Closed-form constraint second derivatives equal nested forward AD of the equations", "[jacobian][constraints]") {
+  std::string yaml = kScene;
+  yaml.replace(yaml.find("FORM"), 4, "ggl");
+  const Model model = test::loadYaml(yaml);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 4; ++trial) {
+    VecX q(model.nq);
+    for (int k = 0; k < model.nq; ++k) q(k) = 2.0 * u(rng);
+    const double t = 0.3 + 0.4 * trial;  // inside and after the drives' transitions
+    for (const Constraint& c : model.constraints) {
+      const ConstraintSecondDerivatives closed = constraintSecondDerivatives(model, c, q.data(), t);
+      const ConstraintDerivatives<ConstraintQDual> nested = evaluateConstraint<ConstraintQDual>(model, c, q.data(), t);
+      double worst = 0.0, scale = 0.0;
+      const auto compare = [&](double x, double reference) {
+        worst = std::max(worst, std::abs(x - reference));
+        scale = std::max(scale, std::abs(reference));
+      };
+      for (int i = 0; i < c.rows; ++i) {
+        compare(closed.phi(i), nested.phi(i).value());
+        for (int k = 0; k < 12; ++k) compare(closed.phi_q(i, k), nested.phi(i).derivatives()(k));
+        for (int j = 0; j < kConstraintDirections; ++j) {
+          compare(closed.G(i, j), nested.G(i, j).value());
+          for (int k = 0; k < kConstraintDirections; ++k) compare(closed.dG[i](j, k), nested.G(i, j).derivatives()(k));
+        }
+      }
+      INFO(c.name << ": worst deviation " << worst << " at scale " << scale);
+      CHECK(scale > 0.1);
+      CHECK(worst < 1e-13 * scale);
+    }
+  }
+}

@@ -4,6 +4,7 @@
 #include <array>
 
 #include "cranesim/assembly/constraint_evaluation.hpp"
+#include "cranesim/assembly/constraint_second_derivatives.hpp"
 #include "cranesim/math/rotation.hpp"
 
 namespace cranesim {
@@ -186,16 +187,16 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
         }
       }
     } else {
-      const auto C = evaluateConstraint<ConstraintQDual>(model_, c, q, t);
-      const auto aloc = localExtended(model_, s, a, false);
       const auto qdloc = localExtended(model_, s, qdot, true);
+      const auto C = evaluateConstraint<ConstraintRateDual>(model_, c, q, t, Limit::Left, qdloc.data());
+      const auto aloc = localExtended(model_, s, a, false);
       const double alpha = sv.baumgarte_alpha, beta = sv.baumgarte_beta;
       for (int i = 0; i < c.rows; ++i) {
         double phidot = 0.0, g_a = 0.0, gamma = 0.0;
         for (int j = 0; j < kConstraintDirections; ++j) {
           phidot += C.G(i, j).value() * vloc(j);
           if (j != kTimeDirection) g_a += C.G(i, j).value() * aloc(j);
-          gamma += C.G(i, j).derivatives().dot(qdloc) * vloc(j);  // (4-27): Γ = Ġ dq + Φ̇_t
+          gamma += C.G(i, j).derivatives()(0) * vloc(j);  // (4-27): Γ = Ġ dq + Φ̇_t
         }
         res_l[i] = g_a + gamma + 2.0 * alpha * beta * phidot + alpha * alpha * C.phi(i).value();
         for (int d : s.directions) res_v[vIndex(model_, s, d)] += C.G(i, d).value() * lambda[c.row + i];
@@ -238,17 +239,26 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     scatter(node_blocks_[n].qq, J.data());
   }
 
+  // The elements' tangents and the constraints' second derivatives in one loop, each into its
+  // own scratch; their blocks are added in order below.
   const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left)};
-  jacobian_loop_.run(model_.elements.size(), [&](std::size_t e) {
-    const auto& el = *model_.elements[e];
-    const std::size_t coordinates = el.size() * el.coordinateIndices().size();
-    element_scratch_[e].resize(coordinates + el.size() * el.size());
-    if (!coordinate_jacobian_only_) {
-      el.jacobian(in, cj, element_scratch_[e].data());
+  const std::size_t elements = model_.elements.size();
+  constraint_scratch_.resize(model_.constraints.size());
+  jacobian_loop_.run(elements + model_.constraints.size(), [&](std::size_t item) {
+    if (item >= elements) {
+      constraint_scratch_[item - elements] = constraintSecondDerivatives(model_, model_.constraints[item - elements], q, t);
       return;
     }
-    el.coordinateJacobian(in, element_scratch_[e].data());
-    std::fill(element_scratch_[e].begin() + coordinates, element_scratch_[e].end(), 0.0);
+    const auto& el = *model_.elements[item];
+    const std::size_t coordinates = el.size() * el.coordinateIndices().size();
+    std::vector<double>& out = element_scratch_[item];
+    out.resize(coordinates + el.size() * el.size());
+    if (!coordinate_jacobian_only_) {
+      el.jacobian(in, cj, out.data());
+      return;
+    }
+    el.coordinateJacobian(in, out.data());
+    std::fill(out.begin() + coordinates, out.end(), 0.0);
   });
   for (std::size_t e = 0; e < model_.elements.size(); ++e) scatter(element_blocks_[e], element_scratch_[e].data());
 
@@ -260,63 +270,55 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     scatter(load_blocks_[block++], J.data());
   }
 
-  // The constraints' second derivatives (nested forward AD) in parallel, their blocks in order.
-  constraint_scratch_.resize(model_.constraints.size());
-  constraint_jacobian_loop_.run(model_.constraints.size(), [&](std::size_t ci) {
-    constraint_scratch_[ci] = evaluateConstraint<ConstraintQDual>(model_, model_.constraints[ci], q, t);
-  });
   const SolverSpec& sv = model_.solver;
+  const double alpha = sv.baumgarte_alpha, beta = sv.baumgarte_beta;
+  using Rows12 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraintRows, 12>;
+  using Square12 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 12, 12>;
+  using Columns12 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 12, kMaxConstraintRows>;
   for (std::size_t ci = 0; ci < model_.constraints.size(); ++ci) {
     const Constraint& c = model_.constraints[ci];
     const ConstraintBlocks& b = constraint_blocks_[ci];
     const ConstraintSides s = sidesOf(model_, c);
-    const ConstraintDerivatives<ConstraintQDual>& C = constraint_scratch_[ci];
+    const ConstraintSecondDerivatives& C = constraint_scratch_[ci];
     const auto vloc = localExtended(model_, s, v, false);
     const int nd = static_cast<int>(s.directions.size());
     const int m = c.rows;
-    MatX vq = MatX::Zero(nd, nd), vl(nd, m), lq = MatX::Zero(m, nd), lv(m, nd);
-    // dGv(i, k) = ∂(G dq + Φ_t)_i/∂q_k
-    MatX dGv = MatX::Zero(m, nd), phi_q(m, nd);
+    // Over the constraint's directions: G (vl = Gᵀ, lv), λᵀ∂G/∂q (vq), ∂(G dq + Φ_t)/∂q (dGv), Φ_q.
+    Square12 vq = Square12::Zero(nd, nd);
+    Columns12 vl(nd, m);
+    Rows12 lq(m, nd), lv(m, nd), dGv(m, nd), phi_q(m, nd);
     for (int i = 0; i < m; ++i) {
+      const Eigen::Matrix<double, 1, kConstraintDirections> dG_v = vloc.transpose() * C.dG[i];
       for (int jj = 0; jj < nd; ++jj) {
         const int j = s.directions[jj];
-        vl(jj, i) = C.G(i, j).value();
-        lv(i, jj) = C.G(i, j).value();
-        phi_q(i, jj) = C.phi(i).derivatives()(j);
-        for (int kk = 0; kk < nd; ++kk) {
-          const int k = s.directions[kk];
-          vq(jj, kk) += lambda[c.row + i] * C.G(i, j).derivatives()(k);
-        }
+        vl(jj, i) = lv(i, jj) = C.G(i, j);
+        phi_q(i, jj) = C.phi_q(i, j);
+        dGv(i, jj) = dG_v(j);
+        for (int kk = 0; kk < nd; ++kk) vq(jj, kk) += lambda[c.row + i] * C.dG[i](j, s.directions[kk]);
       }
-      for (int kk = 0; kk < nd; ++kk)
-        for (int j = 0; j < kConstraintDirections; ++j)
-          dGv(i, kk) += C.G(i, j).derivatives()(s.directions[kk]) * vloc(j);
     }
     if (ggl()) {
       lq = dGv;
       const double* mu = y + muOffset() + c.row;
-      MatX qq = MatX::Zero(nd, nd);
+      Square12 qq = Square12::Zero(nd, nd);
       for (int i = 0; i < m; ++i)
         for (int jj = 0; jj < nd; ++jj)
-          for (int kk = 0; kk < nd; ++kk)
-            qq(jj, kk) += mu[i] * C.G(i, s.directions[jj]).derivatives()(s.directions[kk]);
+          for (int kk = 0; kk < nd; ++kk) qq(jj, kk) += mu[i] * C.dG[i](s.directions[jj], s.directions[kk]);
       scatter(b.qm, vl.data());
       scatter(b.qq, qq.data());
       scatter(b.mq, phi_q.data());
     } else {
       // Exact except for ∂Γ/∂q, which needs third derivatives and only slows Newton slightly.
       const auto qdloc = localExtended(model_, s, qdot, true);
-      const auto aloc = localExtended(model_, s, a, false);
-      const double alpha = sv.baumgarte_alpha, beta = sv.baumgarte_beta;
+      auto aloc = localExtended(model_, s, a, false);
+      aloc(kTimeDirection) = 0.0;
       for (int i = 0; i < m; ++i) {
+        const Eigen::Matrix<double, 1, kConstraintDirections> dG_a = aloc.transpose() * C.dG[i];
+        const Eigen::Matrix<double, kConstraintDirections, 1> G_rate = C.dG[i] * qdloc;
         for (int kk = 0; kk < nd; ++kk) {
-          double dGa = 0.0;
-          for (int j = 0; j < kTimeDirection; ++j) dGa += C.G(i, j).derivatives()(s.directions[kk]) * aloc(j);
-          lq(i, kk) = dGa + (2.0 * alpha * beta + cj) * dGv(i, kk) + alpha * alpha * phi_q(i, kk);
-        }
-        for (int jj = 0; jj < nd; ++jj) {
-          const int j = s.directions[jj];
-          lv(i, jj) = (cj + 2.0 * alpha * beta) * C.G(i, j).value() + C.G(i, j).derivatives().dot(qdloc);
+          const int k = s.directions[kk];
+          lq(i, kk) = dG_a(k) + (2.0 * alpha * beta + cj) * dGv(i, kk) + alpha * alpha * phi_q(i, kk);
+          lv(i, kk) = (cj + 2.0 * alpha * beta) * C.G(i, k) + G_rate(k);
         }
       }
     }

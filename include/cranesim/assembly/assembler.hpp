@@ -12,6 +12,7 @@
 #include <Eigen/Sparse>
 
 #include "cranesim/assembly/constraint_evaluation.hpp"
+#include "cranesim/assembly/constraint_second_derivatives.hpp"
 #include "cranesim/assembly/element_loop.hpp"
 #include "cranesim/assembly/sparsity.hpp"
 #include "cranesim/model/model.hpp"
@@ -129,8 +130,8 @@ class Assembler {
   std::vector<ConstraintBlocks> constraint_blocks_;
   // Per-element and per-constraint scratch written in parallel and reduced in a fixed order.
   mutable std::vector<std::vector<double>> element_scratch_;
-  mutable std::vector<ConstraintDerivatives<ConstraintQDual>> constraint_scratch_;
-  mutable ElementLoop residual_loop_, jacobian_loop_, constraint_jacobian_loop_;
+  mutable std::vector<ConstraintSecondDerivatives> constraint_scratch_;
+  mutable ElementLoop residual_loop_, jacobian_loop_;
 };
 
 }  // namespace cranesim
