@@ -6,11 +6,12 @@
 // r + δr, R (I + δθ̃). Differentiating with respect to δ at δ = 0 gives the velocity Jacobian
 // G = Bᵀ with Φ̇ = G dq + Φ_t (4-11), because dq holds [ṙ, ω_body]. Direction 12 is time.
 //
-// With Q = double this yields Φ, G and Φ_t. With Q = Dual<double, 13> the node coordinates
-// [r, φ] of both nodes and time are seeded once more, so every entry of G also carries its
-// derivatives with respect to q and t: the exact Jacobians of Gᵀλ and G dq. With
-// Q = Dual<double, 1> they are seeded along given rates (q̇, 1) instead: every entry of G
-// carries its rate along the motion, Ġ, which is all Γ (4-27) needs, at a thirteenth the work.
+// With Q = double this yields Φ, G and Φ_t. With Q = Dual<double, 1> the node coordinates
+// [r, φ] of both nodes and time are seeded along given rates (q̇, 1): every entry of G carries
+// its rate along the motion, Ġ, which is all Γ (4-27) needs. With Q = Dual<double, 13> they are
+// seeded in their own directions, so every entry of G carries its derivatives with respect to q
+// and t: the reference the DAE Jacobian's closed form (constraint_second_derivatives.hpp) is
+// tested against.
 
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/rotation.hpp"

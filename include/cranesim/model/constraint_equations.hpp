@@ -128,10 +128,11 @@ template <class S> void constraintFromPrimitives(const ConstraintLaw& law, const
   }
 }
 
-/// A vector of the equations (ConstraintVector) at the joint frames j1, j2.
-template <class S> Vec3T<S> constraintVector(ConstraintVectorRef ref, const FrameT<S>& j1, const FrameT<S>& j2) {
+/// A vector of the equations (ConstraintVector) at the joint frames j1, j2 with d = r_J¹ − r_J².
+template <class S>
+Vec3T<S> constraintVector(ConstraintVectorRef ref, const Vec3T<S>& d, const FrameT<S>& j1, const FrameT<S>& j2) {
   switch (ref.kind) {
-    case ConstraintVector::Separation: return j1.r - j2.r;
+    case ConstraintVector::Separation: return d;
     case ConstraintVector::Axis1: return j1.R.col(ref.index);
     case ConstraintVector::Axis2: return j2.R.col(ref.index);
     case ConstraintVector::Inertial: break;
@@ -142,9 +143,13 @@ template <class S> Vec3T<S> constraintVector(ConstraintVectorRef ref, const Fram
 template <class S>
 void constraintEquations(const ConstraintLaw& law, const FrameT<S>& j1, const FrameT<S>& j2, const S& t, S* phi) {
   const ConstraintPrimitives primitives = constraintPrimitives(law);
+  const Vec3T<S> d = j1.r - j2.r;
   S prim[kMaxConstraintPrimitives];
-  for (int a = 0; a < primitives.count; ++a)
-    prim[a] = constraintVector(primitives.x[a], j1, j2).dot(constraintVector(primitives.y[a], j1, j2));
+  for (int a = 0; a < primitives.count; ++a) {
+    const ConstraintVectorRef y = primitives.y[a];
+    const Vec3T<S> x = constraintVector(primitives.x[a], d, j1, j2);
+    prim[a] = y.kind == ConstraintVector::Inertial ? x(y.index) : x.dot(constraintVector(y, d, j1, j2));  // x · g_k = x_k
+  }
   constraintFromPrimitives(law, prim, t, phi);
 }
 
