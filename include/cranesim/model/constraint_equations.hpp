@@ -128,27 +128,29 @@ template <class S> void constraintFromPrimitives(const ConstraintLaw& law, const
   }
 }
 
-/// A vector of the equations (ConstraintVector) at the joint frames j1, j2 with d = r_J¹ − r_J².
-template <class S>
-Vec3T<S> constraintVector(ConstraintVectorRef ref, const Vec3T<S>& d, const FrameT<S>& j1, const FrameT<S>& j2) {
-  switch (ref.kind) {
-    case ConstraintVector::Separation: return d;
-    case ConstraintVector::Axis1: return j1.R.col(ref.index);
-    case ConstraintVector::Axis2: return j2.R.col(ref.index);
-    case ConstraintVector::Inertial: break;
-  }
-  return Vec3::Unit(ref.index).cast<S>();
-}
-
 template <class S>
 void constraintEquations(const ConstraintLaw& law, const FrameT<S>& j1, const FrameT<S>& j2, const S& t, S* phi) {
   const ConstraintPrimitives primitives = constraintPrimitives(law);
   const Vec3T<S> d = j1.r - j2.r;
+  // The three components of a vector of the equations (not Inertial), in place: d or a column
+  // of a joint frame (column-major, contiguous).
+  const auto components = [&](ConstraintVectorRef ref) -> const S* {
+    switch (ref.kind) {
+      case ConstraintVector::Axis1: return j1.R.col(ref.index).data();
+      case ConstraintVector::Axis2: return j2.R.col(ref.index).data();
+      default: return d.data();
+    }
+  };
   S prim[kMaxConstraintPrimitives];
   for (int a = 0; a < primitives.count; ++a) {
     const ConstraintVectorRef y = primitives.y[a];
-    const Vec3T<S> x = constraintVector(primitives.x[a], d, j1, j2);
-    prim[a] = y.kind == ConstraintVector::Inertial ? x(y.index) : x.dot(constraintVector(y, d, j1, j2));  // x · g_k = x_k
+    const S* x = components(primitives.x[a]);
+    if (y.kind == ConstraintVector::Inertial) {
+      prim[a] = x[y.index];  // x · g_k = x_k
+    } else {
+      const S* z = components(y);
+      prim[a] = x[0] * z[0] + x[1] * z[1] + x[2] * z[2];
+    }
   }
   constraintFromPrimitives(law, prim, t, phi);
 }
