@@ -19,7 +19,10 @@ std::vector<int> range(int first, int count) {
 /// The node of each side of a constraint (−1 for the ground) and the active twist directions.
 struct ConstraintSides {
   int node[2] = {-1, -1};
-  std::vector<int> directions;  // subset of 0..11
+  int direction[12];  // subset of 0..11, the first `count`
+  int count = 0;
+  const int* begin() const { return direction; }
+  const int* end() const { return direction + count; }
 };
 
 ConstraintSides sidesOf(const Model& model, const Constraint& c) {
@@ -29,7 +32,7 @@ ConstraintSides sidesOf(const Model& model, const Constraint& c) {
   for (int side = 0; side < 2; ++side) {
     if (s.node[side] < 0) continue;
     const int count = model.nodes[s.node[side]].hasRotation() ? 6 : 3;
-    for (int k = 0; k < count; ++k) s.directions.push_back(6 * side + k);
+    for (int k = 0; k < count; ++k) s.direction[s.count++] = 6 * side + k;
   }
   return s;
 }
@@ -46,7 +49,7 @@ Eigen::Matrix<double, kConstraintDirections, 1> localExtended(const Model& model
                                                                const ConstraintSides& s,
                                                                const double* x, bool q_layout) {
   Eigen::Matrix<double, kConstraintDirections, 1> out = Eigen::Matrix<double, kConstraintDirections, 1>::Zero();
-  for (int d : s.directions) out(d) = x[q_layout ? qIndex(model, s, d) : vIndex(model, s, d)];
+  for (int d : s) out(d) = x[q_layout ? qIndex(model, s, d) : vIndex(model, s, d)];
   out(kTimeDirection) = 1.0;
   return out;
 }
@@ -82,7 +85,7 @@ void Assembler::buildPattern() {
     const ConstraintSides s = sidesOf(model_, c);
     ConstraintBlocks b;
     std::vector<int> q_rows;
-    for (int d : s.directions) {
+    for (int d : s) {
       b.v_rows.push_back(nq + vIndex(model_, s, d));
       b.q_cols.push_back(qIndex(model_, s, d));
       b.v_cols.push_back(nq + vIndex(model_, s, d));
@@ -181,7 +184,7 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
       for (int i = 0; i < c.rows; ++i) {
         res_l[i] = (C.G.row(i) * vloc).value();
         res[muOffset() + c.row + i] = C.phi(i);
-        for (int d : s.directions) {
+        for (int d : s) {
           res_v[vIndex(model_, s, d)] += C.G(i, d) * lambda[c.row + i];
           res[qIndex(model_, s, d)] += C.G(i, d) * mu[i];
         }
@@ -199,7 +202,7 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
           gamma += C.G(i, j).derivatives()(0) * vloc(j);  // (4-27): Γ = Ġ dq + Φ̇_t
         }
         res_l[i] = g_a + gamma + 2.0 * alpha * beta * phidot + alpha * alpha * C.phi(i).value();
-        for (int d : s.directions) res_v[vIndex(model_, s, d)] += C.G(i, d).value() * lambda[c.row + i];
+        for (int d : s) res_v[vIndex(model_, s, d)] += C.G(i, d).value() * lambda[c.row + i];
       }
     }
   }
@@ -219,7 +222,10 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     for (std::size_t k = 0; k < slots.size(); ++k) values[slots[k]] += local[k];
   };
 
-  const std::vector<double> minus_one(kMaxNodeSize, -1.0), cj_diagonal(kMaxNodeSize, cj);
+  std::array<double, kMaxNodeSize> minus_one, cj_diagonal;
+  minus_one.fill(-1.0);
+  cj_diagonal.fill(cj);
+  using NodeBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxNodeSize, kMaxNodeSize>;
   for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
     const Node& node = model_.nodes[n];
     scatter(node_blocks_[n].qv, minus_one.data());
@@ -233,7 +239,7 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     for (int k = 0; k < 3; ++k) phi(k) = seeded<double, 3>(q[node.q + 3 + k], k);
     const Vec3T<D> w = angularVelocityMap<D>(phi) * Vec3(qdot + node.q + 3).cast<D>();
     const int size = node.size();
-    MatX J = cj * MatX::Identity(size, size);
+    NodeBlock J = cj * NodeBlock::Identity(size, size);
     J.block<3, 3>(3, 3) = cj * angularVelocityMap<double>(Vec3(q + node.q + 3));
     for (int k = 0; k < 3; ++k) J.block<1, 3>(3 + k, 3) += w(k).derivatives().transpose();
     scatter(node_blocks_[n].qq, J.data());
@@ -281,7 +287,7 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     const ConstraintSides s = sidesOf(model_, c);
     const ConstraintSecondDerivatives& C = constraint_scratch_[ci];
     const auto vloc = localExtended(model_, s, v, false);
-    const int nd = static_cast<int>(s.directions.size());
+    const int nd = s.count;
     const int m = c.rows;
     // Over the constraint's directions: G (vl = Gᵀ, lv), λᵀ∂G/∂q (vq), ∂(G dq + Φ_t)/∂q (dGv), Φ_q.
     Square12 vq = Square12::Zero(nd, nd);
@@ -290,11 +296,11 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     for (int i = 0; i < m; ++i) {
       const Eigen::Matrix<double, 1, kConstraintDirections> dG_v = vloc.transpose() * C.dG[i];
       for (int jj = 0; jj < nd; ++jj) {
-        const int j = s.directions[jj];
+        const int j = s.direction[jj];
         vl(jj, i) = lv(i, jj) = C.G(i, j);
         phi_q(i, jj) = C.phi_q(i, j);
         dGv(i, jj) = dG_v(j);
-        for (int kk = 0; kk < nd; ++kk) vq(jj, kk) += lambda[c.row + i] * C.dG[i](j, s.directions[kk]);
+        for (int kk = 0; kk < nd; ++kk) vq(jj, kk) += lambda[c.row + i] * C.dG[i](j, s.direction[kk]);
       }
     }
     if (ggl()) {
@@ -303,7 +309,7 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
       Square12 qq = Square12::Zero(nd, nd);
       for (int i = 0; i < m; ++i)
         for (int jj = 0; jj < nd; ++jj)
-          for (int kk = 0; kk < nd; ++kk) qq(jj, kk) += mu[i] * C.dG[i](s.directions[jj], s.directions[kk]);
+          for (int kk = 0; kk < nd; ++kk) qq(jj, kk) += mu[i] * C.dG[i](s.direction[jj], s.direction[kk]);
       scatter(b.qm, vl.data());
       scatter(b.qq, qq.data());
       scatter(b.mq, phi_q.data());
@@ -316,7 +322,7 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
         const Eigen::Matrix<double, 1, kConstraintDirections> dG_a = aloc.transpose() * C.dG[i];
         const Eigen::Matrix<double, kConstraintDirections, 1> G_rate = C.dG[i] * qdloc;
         for (int kk = 0; kk < nd; ++kk) {
-          const int k = s.directions[kk];
+          const int k = s.direction[kk];
           lq(i, kk) = dG_a(k) + (2.0 * alpha * beta + cj) * dGv(i, kk) + alpha * alpha * phi_q(i, kk);
           lv(i, kk) = (cj + 2.0 * alpha * beta) * C.G(i, k) + G_rate(k);
         }
@@ -383,7 +389,7 @@ ConstraintState Assembler::constraints(double t, const double* q, const double* 
     std::array<Mat3, 2> twist_per_phi;
     for (int side = 0; side < 2; ++side) {
       const int first = 6 * side + 3;
-      if (std::find(s.directions.begin(), s.directions.end(), first) != s.directions.end())
+      if (std::find(s.begin(), s.end(), first) != s.end())
         twist_per_phi[side] = angularVelocityMap<double>(Vec3(q + qIndex(model_, s, first)));
     }
     for (int i = 0; i < c.rows; ++i) {
@@ -394,7 +400,7 @@ ConstraintState Assembler::constraints(double t, const double* q, const double* 
         out.phi_dot(row) += C.G(i, j).value() * vloc(j);
         out.gamma(row) += C.G(i, j).derivatives()(0) * vloc(j);
       }
-      for (int d : s.directions) {
+      for (int d : s) {
         g.emplace_back(row, vIndex(model_, s, d), C.G(i, d).value());
         const int side = d / 6, k = d % 6;
         double dphi = C.G(i, d).value();  // ∂Φ/∂r = ∂Φ/∂δr
