@@ -1,7 +1,8 @@
 #pragma once
 // Forward-mode automatic differentiation: Dual<T, N> carries a value and its derivatives in N
 // directions, a fixed-size vector (no heap allocation). Nesting Dual<Dual<double, N>, M> gives
-// second derivatives, which the constraint kernels use for exact Jacobians of B(q)ᵀλ and for Γ.
+// second derivatives: the constraints' small function of their dot products and time
+// (assembly/constraint_second_derivatives.hpp) and the tests' reference for their closed form.
 //
 // Every operation evaluates at once into a plain Dual: no expression templates. Eigen's
 // AutoDiffScalar, which this replaces with the same interface (value(), derivatives()), builds
