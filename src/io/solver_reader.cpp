@@ -18,7 +18,7 @@ double readRelativeTolerance(const YamlField& f) {
 }
 
 SolverSpec readSolver(const YamlField& f) {
-  f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_order", "initial_step",
+  f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_step_growth", "max_order", "initial_step",
                "integrator", "rho_inf", "fixed_step",
                "baumgarte", "assembly_tolerance", "initial_state", "statics"});
   SolverSpec s;
@@ -47,6 +47,13 @@ SolverSpec readSolver(const YamlField& f) {
     if (s.integrator != Integrator::GeneralizedAlpha)
       fixed->fail("fixed_step is the generalized-α method's (BDF steps are always chosen by its error test): add integrator: generalized_alpha");
     s.fixed_step = fixed->positive();
+  }
+  if (const auto growth = f.find("max_step_growth")) {
+    if (s.integrator != Integrator::Bdf)
+      growth->fail("max_step_growth bounds IDAS' BDF step control: the generalized-α method has its own");
+    s.max_step_growth = growth->number();
+    if (!(s.max_step_growth > 1.0 && s.max_step_growth <= 10.0))
+      growth->fail(fmt::format("max_step_growth must lie in (1, 10], found {}", s.max_step_growth));
   }
   if (const auto mo = f.find("max_order")) {
     s.max_order = mo->integer();
