@@ -289,8 +289,16 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     const auto vloc = localExtended(model_, s, v, false);
     const int nd = s.count;
     const int m = c.rows;
+    // Σ wᵢ ∂Gᵢ/∂q over the constraint's directions: the Jacobian of Gᵀw for w = λ or μ.
+    const auto weightedSecondDerivative = [&](const double* w) {
+      Square12 out = Square12::Zero(nd, nd);
+      for (int i = 0; i < m; ++i)
+        for (int jj = 0; jj < nd; ++jj)
+          for (int kk = 0; kk < nd; ++kk) out(jj, kk) += w[i] * C.dG[i](s.direction[jj], s.direction[kk]);
+      return out;
+    };
     // Over the constraint's directions: G (vl = Gᵀ, lv), λᵀ∂G/∂q (vq), ∂(G dq + Φ_t)/∂q (dGv), Φ_q.
-    Square12 vq = Square12::Zero(nd, nd);
+    const Square12 vq = weightedSecondDerivative(lambda + c.row);
     Columns12 vl(nd, m);
     Rows12 lq(m, nd), lv(m, nd), dGv(m, nd), phi_q(m, nd);
     for (int i = 0; i < m; ++i) {
@@ -300,16 +308,11 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
         vl(jj, i) = lv(i, jj) = C.G(i, j);
         phi_q(i, jj) = C.phi_q(i, j);
         dGv(i, jj) = dG_v(j);
-        for (int kk = 0; kk < nd; ++kk) vq(jj, kk) += lambda[c.row + i] * C.dG[i](j, s.direction[kk]);
       }
     }
     if (ggl()) {
       lq = dGv;
-      const double* mu = y + muOffset() + c.row;
-      Square12 qq = Square12::Zero(nd, nd);
-      for (int i = 0; i < m; ++i)
-        for (int jj = 0; jj < nd; ++jj)
-          for (int kk = 0; kk < nd; ++kk) qq(jj, kk) += mu[i] * C.dG[i](s.direction[jj], s.direction[kk]);
+      const Square12 qq = weightedSecondDerivative(y + muOffset() + c.row);
       scatter(b.qm, vl.data());
       scatter(b.qq, qq.data());
       scatter(b.mq, phi_q.data());
