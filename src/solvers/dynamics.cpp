@@ -91,7 +91,7 @@ class IdasStepper final : public TimeStepper {
     check(IDASetSuppressAlg(mem_, SUNTRUE), "IDASetSuppressAlg");
     check(IDASetMaxOrd(mem_, model.solver.max_order), "IDASetMaxOrd");
     if (model.solver.max_step > 0.0) check(IDASetMaxStep(mem_, model.solver.max_step), "IDASetMaxStep");
-    if (model.solver.max_step_growth > 0.0) check(IDASetEtaMax(mem_, model.solver.max_step_growth), "IDASetEtaMax");
+    check(IDASetEtaMax(mem_, model.solver.max_step_growth), "IDASetEtaMax");
     if (model.solver.initial_step > 0.0) check(IDASetInitStep(mem_, model.solver.initial_step), "IDASetInitStep");
     check(IDASetMaxNumSteps(mem_, 100000), "IDASetMaxNumSteps");
     check(IDASetNonlinConvCoef(mem_, model.solver.newton_coefficient), "IDASetNonlinConvCoef");

@@ -141,9 +141,9 @@ struct SolverSpec {
   bool work_error_control = false;
   double max_step = 0.0;  // 0: unlimited
   /// BDF only: the largest factor by which IDAS may grow the step after a successful one
-  /// (IDASetEtaMax); 0: IDAS' own, 2. 1.5 ends a chatter at order 1 in which every doubled step
-  /// fails its error test (README, Known limits).
-  double max_step_growth = 0.0;
+  /// (IDASetEtaMax; IDAS' own bound is 2). 1.5 ends a chatter at order 1 in which every doubled
+  /// step fails its error test (README, Integrators: step growth).
+  double max_step_growth = 1.5;
   /// IDAS' variable-order BDF, or the generalized-α method (solvers/generalized_alpha.hpp).
   Integrator integrator = Integrator::Bdf;
   int max_order = 5;  // BDF only
