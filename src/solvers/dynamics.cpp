@@ -13,6 +13,7 @@
 
 #include "cranesim/math/rotation.hpp"
 #include "cranesim/solvers/generalized_alpha.hpp"
+#include "cranesim/solvers/serial_vector_ops.hpp"
 
 namespace cranesim {
 namespace {
@@ -66,6 +67,7 @@ class IdasStepper final : public TimeStepper {
     dense_ = N_VNew_Serial(n, ctx_);
     yq_ = N_VNew_Serial(WorkTerms::kCount, ctx_);
     dense_q_ = N_VNew_Serial(WorkTerms::kCount, ctx_);
+    for (N_Vector v : {y_, yp_, id_, dense_, yq_, dense_q_}) useCompiledSerialOps(v);
     N_VConst(0.0, yq_);
     load(assembler, s);
     mem_ = IDACreate(ctx_);
