@@ -270,7 +270,11 @@ TEST_CASE("Timoshenko beam: closed-form J_d equals central differences of the lo
         Jfd.col(j) = (k.localDeformation<double>(twisted(q, h * Q12::Unit(j))) -
                       k.localDeformation<double>(twisted(q, -h * Q12::Unit(j)))) / (2 * h);
       }
-      worst = std::max(worst, (c.Jd - Jfd).norm() / Jfd.norm());
+      worst = std::max(worst, (c.matrix() - Jfd).norm() / Jfd.norm());
+      // The forces apply J_d and J_dᵀ through its factors: the matrix's products to rounding.
+      const Q12 x = Q12::Random();
+      CHECK((c.apply(x) - c.matrix() * x).norm() <= 1e-13 * (c.matrix().norm() * x.norm()));
+      CHECK((c.applyTransposed(x) - c.matrix().transpose() * x).norm() <= 1e-13 * (c.matrix().norm() * x.norm()));
     }
   }
   std::printf("[timoshenko] closed-form J_d vs central differences: rel. err %.3g\n", worst);

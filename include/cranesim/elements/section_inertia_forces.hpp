@@ -12,8 +12,8 @@
 //   R² = R¹ R_rel: every station's ẍ is a combination of four vectors fixed per call.
 // - Section rotation: with ψ = ξφ, E_R = exp(ψ̃), E_T = T(ψ) (B-8), ω_E = E_T ψ̇ (the body rate of
 //   E_R(ψ(t))), φ̇ = T(φ)⁻¹ (ω² − R_relᵀ ω¹) and
-//   φ̈ = (T(φ)⁻¹)˙ (ω² − R_relᵀ ω¹) + T(φ)⁻¹ (ω̇² − R_relᵀ ω̇¹ + ω² × R_relᵀ ω¹) per call
-//   ((T(φ)⁻¹)˙ by one forward-AD direction through that 3 × 3 map, once per call),
+//   φ̈ = (T(φ)⁻¹)˙ (ω² − R_relᵀ ω¹) + T(φ)⁻¹ (ω̇² − R_relᵀ ω̇¹ + ω² × R_relᵀ ω¹) per call, where
+//   (T(φ)⁻¹)˙ (ω² − R_relᵀ ω¹) = −T(φ)⁻¹ Ṫ φ̇ with Ṫ φ̇ as Ė_T ψ̇ below (ψ = φ),
 //     Ω = E_Rᵀ ω¹ + ω_E,   Ω̇ = (E_Rᵀ ω¹) × ω_E + E_Rᵀ ω̇¹ + Ė_T ψ̇ + E_T ψ̈,
 //   since Ė_R = E_R ω̃_E, and with the coefficients a, b, c of expCoefficients (rotation.hpp)
 //     Ė_T ψ̇ = 2(ψ·ψ̇)(c' ψ × (ψ × ψ̇) − b' ψ × ψ̇) + c ψ̇ × (ψ × ψ̇).
@@ -41,7 +41,6 @@ template <class S> class SectionInertiaForces {
   SectionInertiaForces(const Mat3T<S>& R1, const Mat3T<S>& R2, const V12& v, const V12* a, const Vec3& gravity,
                        double length)
       : length_(length), R1_(R1), Rrel_(R1.transpose() * R2) {
-    using P = Dual<S, 1>;
     const Vec3T<S> w1 = v.template segment<3>(3), w2 = v.template segment<3>(9);
     Vec3T<S> dw1 = Vec3T<S>::Zero(), dw2 = Vec3T<S>::Zero(), acc1 = Vec3T<S>::Zero(), acc2 = Vec3T<S>::Zero();
     if (a) {
@@ -52,15 +51,12 @@ template <class S> class SectionInertiaForces {
     domega1_ = dw1;
     phi_ = rotationLog<S>(Rrel_);
     const Vec3T<S> relative = w2 - Rrel_.transpose() * w1;  // ω² − R_relᵀ ω¹
-    // T(φ)⁻¹ and its rate along φ̇ (one direction through the 3 × 3 map).
-    Vec3T<P> phi_path;
     const Mat3T<S> Tinv = angularVelocityMapInverse<S>(phi_);
     phi_dot_ = Tinv * relative;
-    for (int i = 0; i < 3; ++i) phi_path(i) = P(phi_(i), Eigen::Matrix<S, 1, 1>(phi_dot_(i)));
-    const Vec3T<P> rate = angularVelocityMapInverse<P>(phi_path) * relative.template cast<P>();
-    Vec3T<S> Tinv_dot_relative;
-    for (int i = 0; i < 3; ++i) Tinv_dot_relative(i) = rate(i).derivatives()(0);
-    phi_ddot_ = Tinv_dot_relative + Tinv * Vec3T<S>(dw2 - Rrel_.transpose() * dw1 + w2.cross(Vec3T<S>(Rrel_.transpose() * w1)));
+    const Vec3T<S> pd = phi_.cross(phi_dot_);
+    const Vec3T<S> T_dot_phi_dot = rateMapRate(phi_dot_, pd, Vec3T<S>(phi_.cross(pd)), S(phi_.dot(phi_dot_)),
+                                               expCoefficients<S>(S(phi_.squaredNorm())));
+    phi_ddot_ = Tinv * Vec3T<S>(dw2 - Rrel_.transpose() * dw1 + w2.cross(Vec3T<S>(Rrel_.transpose() * w1)) - T_dot_phi_dot);
     TinvT_ = Tinv.transpose();
     // ẍ in the axes of end 1: N₀ A¹ + N₂ A² − N₁ k¹ − N₃ R_rel k².
     const Vec3 ex = Vec3::UnitX();
@@ -147,11 +143,18 @@ template <class S> class SectionInertiaForces {
     Section out{psi, k.a, k.b, k.c, Vec3T<S>(), Vec3T<S>()};
     const Vec3T<S> pd = psi.cross(psi_dot), ppd = psi.cross(pd);
     const Vec3T<S> omega_E = psi_dot - k.b * pd + k.c * ppd;
-    const Vec3T<S> Tdot_psi_dot = S(2.0 * psi.dot(psi_dot)) * Vec3T<S>(k.dc * ppd - k.db * pd) + k.c * Vec3T<S>(psi_dot.cross(pd));
+    const Vec3T<S> Tdot_psi_dot = rateMapRate(psi_dot, pd, ppd, S(psi.dot(psi_dot)), k);
     const Vec3T<S> turned = out.rotateBack(omega1_);
     out.omega = turned + omega_E;
     out.domega = turned.cross(omega_E) + out.rotateBack(domega1_) + Tdot_psi_dot + out.rateMap(Vec3T<S>(S(xi) * phi_ddot_));
     return out;
+  }
+
+  /// Ė_T ψ̇, the rate of T(ψ) along ψ̇ applied to ψ̇ (file comment), from pd = ψ × ψ̇,
+  /// ppd = ψ × pd, ψ·ψ̇ and the coefficients k at |ψ|².
+  static Vec3T<S> rateMapRate(const Vec3T<S>& psi_dot, const Vec3T<S>& pd, const Vec3T<S>& ppd, const S& psi_dot_psi,
+                              const ExpCoefficients<S>& k) {
+    return S(2.0 * psi_dot_psi) * Vec3T<S>(k.dc * ppd - k.db * pd) + k.c * Vec3T<S>(psi_dot.cross(pd));
   }
 
   void accumulate(double xi, const HermiteBasis& h, const Vec3T<S>& f, const Section& m, const Vec3T<S>& tau) {

@@ -49,9 +49,9 @@
 // linear rotations. Quadrature: `mass_points` = 4 (exact for the cubic centre line at rest),
 // `stiffness_points` = 2 (exact strain energy; no reduced integration is needed).
 //
-// The elastic forces need no AD (J_d in closed form); the inertial forces use one forward-AD
-// direction on top of S, so KernelElement's Jacobian (S itself a dual number) stays at two
-// levels of nesting.
+// Neither the elastic forces (J_d in closed form, applied through its factors) nor the inertial
+// forces (section_inertia_forces.hpp) use AD, so the Jacobian's forward AD (S a dual number) is
+// one level deep.
 
 #include <array>
 #include <cmath>
@@ -190,9 +190,51 @@ struct TimoshenkoBeamKernel {
     Mat3T<S> R;               // R_B, body → inertial; x axis along the chord
     Eigen::Matrix<S, 12, 1> d;  // [u¹, ψ¹, u², ψ²] in R_B axes
   };
-  /// The same with J_d = ∂d/∂(twist): d's derivatives along r + δr, R (I + δθ̃) of both ends.
+  /// The same with J_d = ∂d/∂(twist), d's derivatives along r + δr, R (I + δθ̃) of both ends, in
+  /// its factors (coRotation): the rows of ψᵉ are T(ψᵉ)⁻¹ (E_θᵉ − Qᵉᵀ W), Qᵉ = R_BᵀRᵉ and W the
+  /// 3 × 12 map to δω_B, the row of u²_x is b·(δr² − δr¹), the others are zero. The forces apply
+  /// J_d and J_dᵀ through them (a few 3 × 3 products) instead of forming the 12 × 12 matrix.
   template <class S> struct CoRotatedTangent : CoRotated<S> {
-    Eigen::Matrix<S, 12, 12> Jd;
+    using V12 = Eigen::Matrix<S, 12, 1>;
+    Eigen::Matrix<S, 3, 12> W;
+    Mat3T<S> Tinv[2], Q[2];
+    Vec3T<S> b;
+
+    /// J_d x.
+    V12 apply(const V12& x) const {
+      const Vec3T<S> w = W * x;
+      V12 out = V12::Zero();
+      for (int e = 0; e < 2; ++e)
+        out.template segment<3>(3 + 6 * e) = Tinv[e] * Vec3T<S>(x.template segment<3>(3 + 6 * e) - Q[e].transpose() * w);
+      out(6) = b.dot(Vec3T<S>(x.template segment<3>(6) - x.template segment<3>(0)));
+      return out;
+    }
+    /// J_dᵀ y.
+    V12 applyTransposed(const V12& y) const {
+      V12 out = V12::Zero();
+      Vec3T<S> turned = Vec3T<S>::Zero();
+      for (int e = 0; e < 2; ++e) {
+        const Vec3T<S> z = Tinv[e].transpose() * y.template segment<3>(3 + 6 * e);
+        out.template segment<3>(3 + 6 * e) = z;
+        turned.noalias() += Q[e] * z;
+      }
+      out.noalias() -= W.transpose() * turned;
+      out.template segment<3>(0) -= y(6) * b;
+      out.template segment<3>(6) += y(6) * b;
+      return out;
+    }
+    /// J_d as a matrix.
+    Eigen::Matrix<S, 12, 12> matrix() const {
+      Eigen::Matrix<S, 12, 12> Jd = Eigen::Matrix<S, 12, 12>::Zero();
+      for (int e = 0; e < 2; ++e) {
+        Eigen::Matrix<S, 3, 12> dtheta = -(Q[e].transpose() * W);
+        dtheta.template block<3, 3>(0, 3 + 6 * e) += Mat3T<S>::Identity();
+        Jd.template middleRows<3>(3 + 6 * e) = Tinv[e] * dtheta;
+      }
+      Jd.template block<1, 3>(6, 0) = -b.transpose();
+      Jd.template block<1, 3>(6, 6) = b.transpose();
+      return Jd;
+    }
   };
 
   template <class S>
@@ -236,8 +278,8 @@ struct TimoshenkoBeamKernel {
   /// The same from a co-rotation already made.
   template <class S> V<S> elasticForce(const CoRotatedTangent<S>& c, const V<S>& v, const Mat12& K) const {
     Eigen::Matrix<S, 12, 1> strain = c.d;
-    if (damping > 0.0) strain.noalias() += S(damping) * (c.Jd * v);
-    return c.Jd.transpose() * (K.template cast<S>() * strain);
+    if (damping > 0.0) strain.noalias() += S(damping) * c.apply(v);
+    return c.applyTransposed(K.template cast<S>() * strain);
   }
 
   /// Section forces at the two ends, [N, V_y, V_z, T, M_y, M_z] at end 1 and then at end 2, in
@@ -273,7 +315,7 @@ struct TimoshenkoBeamKernel {
   V<S> dampingForce(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2, const Mat3T<S>& R2, const V<S>& v,
                     const Mat12& K) const {
     const CoRotatedTangent<S> c = coRotateWithTangent<S>(r1, R1, r2, R2);
-    return S(damping) * (c.Jd.transpose() * (K.template cast<S>() * (c.Jd * v)));
+    return S(damping) * c.applyTransposed(K.template cast<S>() * c.apply(v));
   }
 
  private:
@@ -314,28 +356,24 @@ struct TimoshenkoBeamKernel {
     c.d(6) -= length;
     c.d.template segment<3>(9) = rotationLog<S>(Q2);
     if constexpr (kTangent) {
-      // δω_B = W [δr¹, δθ¹, δr², δθ²].
-      Eigen::Matrix<S, 3, 12> W = Eigen::Matrix<S, 3, 12>::Zero();
-      const Mat3T<S> G = S(0.5) * angularVelocityMap<S>(Vec3T<S>(S(0.5) * phi)) * angularVelocityMapInverse<S>(phi);
+      // δω_B = W [δr¹, δθ¹, δr², δθ²]; the twist row's δθ² block (a + b)ᵀR_m G / (1 + a·b) as
+      // row-vector products.
+      auto& W = c.W;
+      W.setZero();
       const Eigen::Matrix<S, 1, 3> twist_of_mid = ((a + b).transpose() * Rm) / one_plus_ab;
+      const Eigen::Matrix<S, 1, 3> twist_of_mid_G =
+          (S(0.5) * (twist_of_mid * angularVelocityMap<S>(Vec3T<S>(S(0.5) * phi)))) * angularVelocityMapInverse<S>(phi);
       const Eigen::Matrix<S, 1, 3> twist_of_chord = k.transpose() / (ell * one_plus_ab);
       W.template block<1, 3>(0, 0) = twist_of_chord;
-      W.template block<1, 3>(0, 3) = twist_of_mid * (E.transpose() - G * Rrel.transpose());
+      W.template block<1, 3>(0, 3) = twist_of_mid * E.transpose() - twist_of_mid_G * Rrel.transpose();
       W.template block<1, 3>(0, 6) = -twist_of_chord;
-      W.template block<1, 3>(0, 9) = twist_of_mid * G;
+      W.template block<1, 3>(0, 9) = twist_of_mid_G;
       const Eigen::Matrix<S, 1, 3> ey = c.R.col(1).transpose() / ell, ez = c.R.col(2).transpose() / ell;
       W.template block<1, 3>(1, 0) = ez, W.template block<1, 3>(1, 6) = -ez;
       W.template block<1, 3>(2, 0) = -ey, W.template block<1, 3>(2, 6) = ey;
-      c.Jd.setZero();
-      for (int e = 0; e < 2; ++e) {
-        const Mat3T<S>& Qe = e == 0 ? Q1 : Q2;
-        const Mat3T<S> Tinv = angularVelocityMapInverse<S>(Vec3T<S>(c.d.template segment<3>(3 + 6 * e)));
-        Eigen::Matrix<S, 3, 12> dtheta = -(Qe.transpose() * W);
-        dtheta.template block<3, 3>(0, 3 + 6 * e) += Mat3T<S>::Identity();
-        c.Jd.template middleRows<3>(3 + 6 * e) = Tinv * dtheta;
-      }
-      c.Jd.template block<1, 3>(6, 0) = -b.transpose();
-      c.Jd.template block<1, 3>(6, 6) = b.transpose();
+      c.Q[0] = Q1, c.Q[1] = Q2;
+      for (int e = 0; e < 2; ++e) c.Tinv[e] = angularVelocityMapInverse<S>(Vec3T<S>(c.d.template segment<3>(3 + 6 * e)));
+      c.b = b;
     }
     return c;
   }
@@ -522,7 +560,7 @@ struct TimoshenkoBeamKernel {
     M = MG.leftCols<12>();
     Mat12 G = subtractTwistBracket(MG, v);
     if (damped()) {
-      const Mat12 Jd = coRotateWithTangent<double>(r1, R1, r2, R2).Jd;
+      const Mat12 Jd = coRotateWithTangent<double>(r1, R1, r2, R2).matrix();
       G.noalias() += damping * (Jd.transpose() * K * Jd);
     }
     return G;
