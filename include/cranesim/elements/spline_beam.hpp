@@ -430,6 +430,12 @@ struct SplineBeamKernel {
     return forces(q, v, gravity, true, true, true);
   }
 
+  /// M a + F in one pass over the Gauss points (element.hpp: fused residual): G_r a and G_ω a
+  /// join the section's accelerations, so M is never formed.
+  template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
+    return forces(q, v, gravity, true, true, true, &a);
+  }
+
   /// Elastic and damping forces alone (zero for rigid placements and rigid velocities).
   template <class S> V<S> internalForce(const Q<S>& q, const V<S>& v) const {
     return forces(q, v, Vec3::Zero(), false, true, false);
@@ -498,6 +504,20 @@ struct SplineBeamKernel {
     return G;
   }
 
+  /// G_r a, column by column as translationJacobian.
+  template <class S> static Vec3T<S> centreLineAcceleration(const Ends<S>& e, const HermiteBasis& b, const V<S>& a) {
+    const Mat3T<S>* R[2] = {&e.R1, &e.R2};
+    const S* s[2] = {&e.s1, &e.s2};
+    Vec3T<S> out = Vec3T<S>::Zero();
+    for (int n = 0; n < 2; ++n) {
+      const int o = kNodeSize * n;
+      const double N0 = b.N[2 * n], N1 = b.N[2 * n + 1];
+      out += S(N0) * a.template segment<3>(o);
+      out += S(N1) * Vec3T<S>(*s[n] * Vec3T<S>(R[n]->col(1) * a(o + 5) - R[n]->col(2) * a(o + 4)) + R[n]->col(0) * a(o + 6));
+    }
+    return out;
+  }
+
   /// G_ω = Cᵀ [ω¹ selector] + T_C(α) (∂α/∂δ_local) Λ (3-69, C-119), with Λ's blocks written out.
   template <class S>
   static Eigen::Matrix<S, 3, kNv> rotationJacobian(const Vec3T<S>& alpha, const Eigen::Matrix<S, 3, kLocal>& dalpha,
@@ -524,12 +544,16 @@ struct SplineBeamKernel {
     return y;
   }
 
+  /// With accelerations `acc` (and `inertia`), M a is added: the centre line's G_r a (translationJacobian)
+  /// to ρA r̈, the section's G_ω a = Cᵀ a_ω¹ + T_C(α) (∂α/∂δ_local) Λ a (rotationJacobian) to ω̇.
   template <class S>
-  V<S> forces(const Q<S>& q, const V<S>& v, const Vec3& gravity, bool inertia, bool internal, bool weight) const {
+  V<S> forces(const Q<S>& q, const V<S>& v, const Vec3& gravity, bool inertia, bool internal, bool weight,
+              const V<S>* acc = nullptr) const {
     using Jet = spline_beam_detail::Jet2<S>;
     const Ends<S> e = ends(q);
     const Relative<S> rel = relative(e);
     const Eigen::Matrix<S, kLocal, 1> vl = localRates(e, rel, v);  // Λ dq
+    const Eigen::Matrix<S, kLocal, 1> al = acc ? localRates(e, rel, *acc) : Eigen::Matrix<S, kLocal, 1>::Zero();  // Λ a
     const Eigen::Vector4d K = stiffness();
     const SectionProperties p = section.properties(material);
     const double rhoA = p.rhoA;
@@ -582,6 +606,7 @@ struct SplineBeamKernel {
         const Vec3T<S> a1 = e.R1 * ((2.0 * v(6)) * w1.cross(ex) + e.s1 * w1.cross(w1.cross(ex)));
         const Vec3T<S> a2 = e.R2 * ((2.0 * v(13)) * w2.cross(ex) + e.s2 * w2.cross(w2.cross(ex)));
         fr += rhoA * (b.N[1] * a1 + b.N[3] * a2);
+        if (acc) fr += rhoA * centreLineAcceleration(e, b, *acc);
         // ω = Cᵀω¹ + ω_rel, ω̇ at d(dq)/dt = 0: −ω_rel × Cᵀω¹ + d/dt(T_C(α) α̇)
         Jet a[3], c[3];  // R¹ᵀ r', R¹ᵀ r'' along the path (as in sectionState)
         for (int i = 0; i < 3; ++i) {
@@ -606,7 +631,12 @@ struct SplineBeamKernel {
         const Mat3T<S> C = cardanMatrix<S>(alpha0);
         const Vec3T<S> w1c = C.transpose() * w1;
         const Vec3T<S> w = w1c + wr;
-        const Vec3T<S> wDot = wrDot - wr.cross(w1c);
+        Vec3T<S> wDot = wrDot - wr.cross(w1c);
+        if (acc) {  // G_ω a
+          const Vec3T<S> x = sd.dalpha * al;
+          wDot += C.transpose() * acc->template segment<3>(3);
+          wDot += Vec3T<S>(x(0) + t02.v * x(2), cf.v * x(1) + t12.v * x(2), t21.v * x(1) + t22.v * x(2));
+        }
         // G_ωᵀ h = [C h on ω¹] + Λᵀ (∂α/∂δ_local)ᵀ T_Cᵀ h,  h = J_c ω̇ + ω × J_c ω
         const Vec3T<S> h = wL * (sectionInertia<S, 1>(rhoJ, wDot) + w.cross(sectionInertia<S, 1>(rhoJ, w)));
         const Vec3T<S> y(h(0), cf.v * h(1) + t21.v * h(2), t02.v * h(0) + t12.v * h(1) + t22.v * h(2));  // T_Cᵀ h
