@@ -109,7 +109,10 @@ struct CondensedTrussKernel {
 
   /// M a + F in one pass over the stations (element.hpp: fused residual).
   template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
-    return inertiaAndGravity<S>(q, v, &a, gravity) + elasticForce<S>(q, v);
+    const Mat3T<S> R1 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3)));
+    const Mat3T<S> R2 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)));
+    return inertiaAndGravity<S>(R1, R2, v, &a, gravity) +
+           frame.elasticForce<S>(q.template segment<3>(0), R1, q.template segment<3>(6), R2, v, stiffness);
   }
 
   /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp): the
@@ -177,8 +180,13 @@ struct CondensedTrussKernel {
  private:
   /// Inertial (and, with `a`, M a) and gravity forces of the mass stations.
   template <class S> V<S> inertiaAndGravity(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity) const {
-    SectionInertiaForces<S> inertia(rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
-                                    rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v, a, gravity, length);
+    return inertiaAndGravity<S>(rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
+                                rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v, a, gravity);
+  }
+  /// The same from the end rotations (the forces do not depend on the end positions).
+  template <class S>
+  V<S> inertiaAndGravity(const Mat3T<S>& R1, const Mat3T<S>& R2, const V<S>& v, const V<S>* a, const Vec3& gravity) const {
+    SectionInertiaForces<S> inertia(R1, R2, v, a, gravity, length);
     for (const MassStation& st : stations) inertia.add(st.xi, st.mass, st.first_moment, st.inertia);
     return inertia.forces();
   }

@@ -635,7 +635,10 @@ struct TimoshenkoBeamKernel {
 
   /// M a + F in one pass over the Gauss points (element.hpp: fused residual).
   template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
-    return inertialAndGravityForce<S>(q, v, gravity, &a) + elasticForce<S>(q, v);
+    const Vec3T<S> r1 = q.template segment<3>(0), r2 = q.template segment<3>(6);
+    const Mat3T<S> R1 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3)));
+    const Mat3T<S> R2 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)));
+    return inertialAndGravityForce<S>(r1, R1, r2, R2, v, gravity, &a) + elasticForce<S>(r1, R1, r2, R2, v, stiffness());
   }
 
   /// −∫ H_xᵀ ρA g ds: inertialAndGravityForce at rest (dq = 0, d(dq)/dt = 0). Gravity acts on
