@@ -106,15 +106,14 @@ template <class S> Jet2<S> sqrt(const Jet2<S>& a) {
   const S dr = a.d / (2.0 * r);
   return {r, dr, (a.dd - 2.0 * (dr * dr)) / (2.0 * r)};  // from r² = a
 }
-template <class S> Jet2<S> sin(const Jet2<S>& a) {
+/// sin and cos of a jet from one sine and cosine of its value.
+template <class S> struct JetSinCos {
+  Jet2<S> sin, cos;
+};
+template <class S> JetSinCos<S> sinCos(const Jet2<S>& a) {
   using std::cos, std::sin;
   const S s = sin(a.v), c = cos(a.v);
-  return {s, c * a.d, c * a.dd - s * (a.d * a.d)};
-}
-template <class S> Jet2<S> cos(const Jet2<S>& a) {
-  using std::cos, std::sin;
-  const S s = sin(a.v), c = cos(a.v);
-  return {c, -(s * a.d), -(s * a.dd) - c * (a.d * a.d)};
+  return {{s, c * a.d, c * a.dd - s * (a.d * a.d)}, {c, -(s * a.d), -(s * a.dd) - c * (a.d * a.d)}};
 }
 template <class S> Jet2<S> atan2(const Jet2<S>& y, const Jet2<S>& x) {
   using std::atan2;
@@ -221,7 +220,11 @@ struct SplineBeamKernel {
   /// C(α) = R_z(θ) R_y(ψ) R_x(φ) (B-16).
   template <class T> static Mat3T<T> cardanMatrix(const Vec3T<T>& a) {
     using std::cos, std::sin;
-    const T cf = cos(a(0)), sf = sin(a(0)), cp = cos(a(1)), sp = sin(a(1)), ct = cos(a(2)), st = sin(a(2));
+    return cardanMatrix<T>(sin(a(0)), cos(a(0)), sin(a(1)), cos(a(1)), sin(a(2)), cos(a(2)));
+  }
+  /// The same from the angles' sines and cosines.
+  template <class T>
+  static Mat3T<T> cardanMatrix(const T& sf, const T& cf, const T& sp, const T& cp, const T& st, const T& ct) {
     Mat3T<T> C;
     C << cp * ct, sf * sp * ct - cf * st, cf * sp * ct + sf * st,  //
         cp * st, sf * sp * st + cf * ct, cf * sp * st - sf * ct,   //
@@ -617,18 +620,19 @@ struct SplineBeamKernel {
         c[0] = c[0] + ps1 * b.ddN[1];
         const Angles<Jet> ang = sectionAngles<Jet>(a, c, pphi12, xi);  // α, α̇, α̈
         // ω_rel = T_C(α) α̇ (B-17), ω̇_rel = Ṫ_C α̇ + T_C α̈ (B-19)
-        using spline_beam_detail::cos, spline_beam_detail::sin;
-        const Jet sf = sin(ang.phi), cf = cos(ang.phi), sp = sin(ang.psi), cp = cos(ang.psi);
+        const spline_beam_detail::JetSinCos<S> of_phi = spline_beam_detail::sinCos(ang.phi);
+        const spline_beam_detail::JetSinCos<S> of_psi = spline_beam_detail::sinCos(ang.psi);
+        const Jet &sf = of_phi.sin, &cf = of_phi.cos, &sp = of_psi.sin, &cp = of_psi.cos;
         const Jet t02 = -sp, t12 = sf * cp, t21 = -sf, t22 = cf * cp;  // t00 = 1, t11 = cφ
         const S r0 = ang.phi.d, r1 = ang.psi.d, r2 = ang.theta.d;
         const S a0 = ang.phi.dd, a1r = ang.psi.dd, a2r = ang.theta.dd;
-        Vec3T<S> alpha0, wr, wrDot;
-        alpha0 << ang.phi.v, ang.psi.v, ang.theta.v;
+        Vec3T<S> wr, wrDot;
         wr << r0 + t02.v * r2, cf.v * r1 + t12.v * r2, t21.v * r1 + t22.v * r2;
         wrDot << a0 + t02.v * a2r + t02.d * r2,                              //
             cf.v * a1r + cf.d * r1 + t12.v * a2r + t12.d * r2,               //
             t21.v * a1r + t21.d * r1 + t22.v * a2r + t22.d * r2;
-        const Mat3T<S> C = cardanMatrix<S>(alpha0);
+        using std::cos, std::sin;
+        const Mat3T<S> C = cardanMatrix<S>(sf.v, cf.v, sp.v, cp.v, sin(ang.theta.v), cos(ang.theta.v));
         const Vec3T<S> w1c = C.transpose() * w1;
         const Vec3T<S> w = w1c + wr;
         Vec3T<S> wDot = wrDot - wr.cross(w1c);
