@@ -104,15 +104,12 @@ struct CondensedTrussKernel {
   }
 
   template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
-    return inertiaAndGravity<S>(q, v, nullptr, gravity) + elasticForce<S>(q, v);
+    return forcesAndInertia<S>(q, v, nullptr, gravity);
   }
 
   /// M a + F in one pass over the stations (element.hpp: fused residual).
   template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
-    const Mat3T<S> R1 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3)));
-    const Mat3T<S> R2 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)));
-    return inertiaAndGravity<S>(R1, R2, v, &a, gravity) +
-           frame.elasticForce<S>(q.template segment<3>(0), R1, q.template segment<3>(6), R2, v, stiffness);
+    return forcesAndInertia<S>(q, v, &a, gravity);
   }
 
   /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp): the
@@ -178,6 +175,14 @@ struct CondensedTrussKernel {
   }
 
  private:
+  /// F, and with accelerations `a` M a + F: the end rotations formed once for both parts.
+  template <class S> V<S> forcesAndInertia(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity) const {
+    const Mat3T<S> R1 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3)));
+    const Mat3T<S> R2 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)));
+    return inertiaAndGravity<S>(R1, R2, v, a, gravity) +
+           frame.elasticForce<S>(q.template segment<3>(0), R1, q.template segment<3>(6), R2, v, stiffness);
+  }
+
   /// Inertial (and, with `a`, M a) and gravity forces of the mass stations.
   template <class S> V<S> inertiaAndGravity(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity) const {
     return inertiaAndGravity<S>(rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),

@@ -507,7 +507,8 @@ struct SplineBeamKernel {
     return G;
   }
 
-  /// G_r a, column by column as translationJacobian.
+  /// G_r a, column by column as translationJacobian (forming that 3 × 14 matrix and multiplying
+  /// made the 8-segment cantilever's step 4 % slower, 21.5 → 22.4 µs).
   template <class S> static Vec3T<S> centreLineAcceleration(const Ends<S>& e, const HermiteBasis& b, const V<S>& a) {
     const Mat3T<S>* R[2] = {&e.R1, &e.R2};
     const S* s[2] = {&e.s1, &e.s2};

@@ -630,15 +630,21 @@ struct TimoshenkoBeamKernel {
   }
 
   template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
-    return inertialAndGravityForce<S>(q, v, gravity) + elasticForce<S>(q, v);
+    return forcesAndInertia<S>(q, v, nullptr, gravity);
   }
 
   /// M a + F in one pass over the Gauss points (element.hpp: fused residual).
   template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
+    return forcesAndInertia<S>(q, v, &a, gravity);
+  }
+
+  /// F, and with accelerations `a` M a + F: the end rotations formed once for the inertial,
+  /// gravity and elastic forces.
+  template <class S> V<S> forcesAndInertia(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity) const {
     const Vec3T<S> r1 = q.template segment<3>(0), r2 = q.template segment<3>(6);
     const Mat3T<S> R1 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3)));
     const Mat3T<S> R2 = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)));
-    return inertialAndGravityForce<S>(r1, R1, r2, R2, v, gravity, &a) + elasticForce<S>(r1, R1, r2, R2, v, stiffness());
+    return inertialAndGravityForce<S>(r1, R1, r2, R2, v, gravity, a) + elasticForce<S>(r1, R1, r2, R2, v, stiffness());
   }
 
   /// −∫ H_xᵀ ρA g ds: inertialAndGravityForce at rest (dq = 0, d(dq)/dt = 0). Gravity acts on
