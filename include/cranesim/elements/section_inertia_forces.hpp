@@ -73,7 +73,7 @@ template <class S> class SectionInertiaForces {
 
   /// Adds a mass station: mass m, first moment s and inertia J about the axis point (section
   /// axes) on the section at ξ.
-  void add(double xi, double mass, const Vec3& first_moment, const Mat3& inertia) {
+  [[gnu::flatten]] void add(double xi, double mass, const Vec3& first_moment, const Mat3& inertia) {
     const HermiteBasis h = hermiteBasis(xi, length_);
     const Vec3T<S> s = first_moment.cast<S>();
     const Mat3T<S> J = inertia.cast<S>();
@@ -86,7 +86,7 @@ template <class S> class SectionInertiaForces {
   }
 
   /// A station without first moment and with principal inertia J = diag(j) (a beam's section).
-  void add(double xi, double mass, const Vec3& j) {
+  [[gnu::flatten]] void add(double xi, double mass, const Vec3& j) {
     const HermiteBasis h = hermiteBasis(xi, length_);
     const Section m = sectionRotation(xi);
     const Vec3T<S> xdd_g = relativeAcceleration(h);

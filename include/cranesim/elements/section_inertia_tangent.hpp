@@ -42,7 +42,7 @@ using SectionInertiaTangent = Eigen::Matrix<double, 12, 24>;
 /// X[n] of H_x and W[n] of H_Ω, section rotation Rc); `rate`: Ḣ along the motion (blocks X[n],
 /// W[n]); `omega`: Ω = H_Ω dq.
 template <class Map, class Rate>
-void addStationTangent(const Map& map, const Rate& rate, const Vec3& omega, double mass, const Vec3& first_moment,
+[[gnu::flatten]] void addStationTangent(const Map& map, const Rate& rate, const Vec3& omega, double mass, const Vec3& first_moment,
                        const Mat3& inertia, SectionInertiaTangent& out) {
   const Mat3& Rc = map.Rc;
   const Mat3& J = inertia;

@@ -302,7 +302,7 @@ struct SplineBeamKernel {
     Eigen::Matrix<S, 4, kLocal> dstrain;  // ∂[ε, κ]/∂δ_local
   };
   template <class S>
-  SectionDerivatives<S> sectionDerivatives(const Relative<S>& rel, double xi, bool strains = true) const {
+  [[gnu::flatten]] SectionDerivatives<S> sectionDerivatives(const Relative<S>& rel, double xi, bool strains = true) const {
     using std::atan2, std::cos, std::sin, std::sqrt;
     const HermiteBasis b = hermiteBasis(xi, length);
     Vec3T<S> a, c;
@@ -551,8 +551,8 @@ struct SplineBeamKernel {
   /// With accelerations `acc` (and `inertia`), M a is added: the centre line's G_r a (translationJacobian)
   /// to ρA r̈, the section's G_ω a = Cᵀ a_ω¹ + T_C(α) (∂α/∂δ_local) Λ a (rotationJacobian) to ω̇.
   template <class S>
-  V<S> forces(const Q<S>& q, const V<S>& v, const Vec3& gravity, bool inertia, bool internal, bool weight,
-              const V<S>* acc = nullptr) const {
+  [[gnu::flatten]] V<S> forces(const Q<S>& q, const V<S>& v, const Vec3& gravity, bool inertia, bool internal, bool weight,
+                               const V<S>* acc = nullptr) const {
     using Jet = spline_beam_detail::Jet2<S>;
     const Ends<S> e = ends(q);
     const Relative<S> rel = relative(e);

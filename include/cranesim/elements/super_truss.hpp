@@ -205,7 +205,7 @@ struct SuperTrussKernel {
             {rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)))}};
   }
 
-  template <class T> NodeState<T> nodeState(const SectionFrames<T>& s, const NodeModel& n) const {
+  template <class T> [[gnu::flatten]] NodeState<T> nodeState(const SectionFrames<T>& s, const NodeModel& n) const {
     NodeState<T> out;
     out.map.setZero();
     if (n.section >= 0) {  // (3-87..3-89)

@@ -331,7 +331,7 @@ struct TimoshenkoBeamKernel {
   /// - ψᵉ = log(R_Bᵀ Rᵉ): δψᵉ = T(ψᵉ)⁻¹ (δθᵉ − (R_BᵀRᵉ)ᵀ δω_B);
   /// - u² = R_Bᵀ c − L e_x: δu² = (b·δc, 0, 0), since R_B e_x = b exactly.
   template <class S, bool kTangent>
-  std::conditional_t<kTangent, CoRotatedTangent<S>, CoRotated<S>> coRotation(const Vec3T<S>& r1, const Mat3T<S>& R1,
+  [[gnu::flatten]] std::conditional_t<kTangent, CoRotatedTangent<S>, CoRotated<S>> coRotation(const Vec3T<S>& r1, const Mat3T<S>& R1,
                                                                               const Vec3T<S>& r2, const Mat3T<S>& R2) const {
     using std::sqrt;
     const Mat3T<S> Rrel = R1.transpose() * R2;
@@ -610,7 +610,7 @@ struct TimoshenkoBeamKernel {
   /// sectionMap and its rate: with E_R = exp(ξφ̃), E_T = T(ξφ) and their rates along ξφ̇ in closed
   /// form (rotationAndRateMapRates), W¹ = E_Rᵀ − ξ E_T T(φ)⁻¹R_relᵀ and W² = ξ E_T T(φ)⁻¹ differentiate
   /// as products; X[n] as slopeBlocks of Ṙⁿ.
-  SectionMotion sectionMotion(const EndFrameRates& e, double xi, const V<double>& v) const {
+  [[gnu::flatten]] SectionMotion sectionMotion(const EndFrameRates& e, double xi, const V<double>& v) const {
     const EndFrames<double>& f = e.frames;
     const HermiteBasis h = hermiteBasis(xi, length);
     SectionMotion out;
