@@ -10,6 +10,7 @@
 #include <random>
 
 #include "cranesim/elements/cable.hpp"
+#include "cranesim/elements/quadratic_velocity.hpp"
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/elements/strut_tie.hpp"
 #include "cranesim/model/kernel_elements.hpp"
@@ -120,6 +121,56 @@ TEST_CASE("Strut tie: mass, rigid motion, energy gradient and Jacobians", "[elem
   q << 0.1, 0.2, -0.3, 1.3, 1.2, 0.9;
   for (int i = 0; i < 6; ++i) v(i) = u(rng), a(i) = u(rng);
   CHECK(jacobianDeviation(smoothed, q, v, a) < 1e-6);
+}
+
+TEST_CASE("Strut tie: closed-form rotary inertia forces and velocity tangent", "[elements][strut]") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  using V6 = Vq<StrutTieKernel>;
+  using Mat6 = Eigen::Matrix<double, 6, 6>;
+  const Vec3 zero = Vec3::Zero();
+  // ∂F/∂dq by forward AD in the six velocity directions.
+  const auto velocityAD = [&](const StrutTieKernel& k, const V6& q, const V6& v) {
+    using D = Dual<double, 6>;
+    Eigen::Matrix<D, 6, 1> vd;
+    for (int i = 0; i < 6; ++i) vd(i) = seeded<double, 6>(v(i), i);
+    const Eigen::Matrix<D, 6, 1> F = k.force<D>(q.cast<D>(), vd, 0.0, zero);
+    Mat6 C;
+    for (int i = 0; i < 6; ++i) C.row(i) = F(i).derivatives().transpose();
+    return C;
+  };
+  for (int trial = 0; trial < 5; ++trial) {
+    V6 q, v;
+    for (int i = 0; i < 6; ++i) q(i) = u(rng), v(i) = 3.0 * u(rng);
+    q.tail<3>() += Vec3(2.0, 0.0, 0.0);
+    // Undamped: the velocity terms are the rotary inertia's alone, against Lagrange by AD on its
+    // mass matrix (quadratic_velocity.hpp) and against AD of the closed form. Without stiffness,
+    // so that F(dq) − F(0) is not the difference of two large elastic forces.
+    StrutTieKernel k = strut(true, 0.0);
+    k.material.youngs_modulus = 0.0;
+    const V6 quadratic = k.force<double>(q, v, 0.0, zero) - k.force<double>(q, V6::Zero(), 0.0, zero);
+    const V6 lagrange = quadraticVelocityForces<6, double>([&](const auto& x) { return k.massMatrix(x); }, q, v);
+    CHECK((quadratic - lagrange).cwiseAbs().maxCoeff() < 1e-12 * lagrange.cwiseAbs().maxCoeff());
+    // Its power is ½ dqᵀ Ṁ dq (Ṁ by central differences along dq, a step large enough that the
+    // translational mass' rounding does not swamp the rotary part's change).
+    const double h = 1e-4;
+    const Mat6 Mdot = (k.massMatrix<double>(V6(q + h * v)) - k.massMatrix<double>(V6(q - h * v))) / (2.0 * h);
+    CHECK(quadratic.dot(v) == Approx(0.5 * v.dot(Mdot * v)).epsilon(1e-6));
+    Mat6 M;
+    Mat6 C = k.velocityTangent(q, v, 0.0, M);
+    Mat6 ad = velocityAD(k, q, v);
+    CHECK((C - ad).cwiseAbs().maxCoeff() < 1e-12 * ad.cwiseAbs().maxCoeff());
+    CHECK((M - k.massMatrix<double>(q)).cwiseAbs().maxCoeff() == 0.0);
+    // Smoothed and damped: the axial force's ε̇ and ε̈ terms too, on a soft rod so that they do
+    // not hide the rotary terms.
+    StrutTieKernel soft = strut(true, 2e-3);
+    soft.damping = 1e-3;
+    soft.material.youngs_modulus = 1e3;
+    C = soft.velocityTangent(q, v, 0.0, M);
+    ad = velocityAD(soft, q, v);
+    CHECK((C - ad).cwiseAbs().maxCoeff() < 1e-12 * ad.cwiseAbs().maxCoeff());
+    CHECK((C - velocityAD(k, q, v)).cwiseAbs().maxCoeff() > 1e-3 * ad.cwiseAbs().maxCoeff());
+  }
 }
 
 TEST_CASE("Spline rope: constant mass, tension only, energy gradient and Jacobians", "[elements][rope]") {

@@ -568,7 +568,8 @@ struct SplineBeamKernel {
     // R₁₂(τ) = exp(−τW¹) R₁₂ exp(τW²):
     //   d' = u − W¹d,  d'' = W¹²d − 2W¹u,  R₁₂' = R₁₂W² − W¹R₁₂,  R₁₂'' = W¹²R₁₂ − 2W¹R₁₂W² + R₁₂W²².
     const Vec3T<S> w1 = v.template segment<3>(3), w2 = v.template segment<3>(10);
-    Jet pd[3], pt[3], pphi12{}, ps1{}, ps2{};  // d(τ), R₁₂(τ) e_x, φ₁₂(τ), s(τ)
+    const Jet zero{S(0.0), S(0.0), S(0.0)};
+    Jet pd[3], pt[3], pphi12 = zero, ps1 = zero, ps2 = zero;  // d(τ), R₁₂(τ) e_x, φ₁₂(τ), s(τ)
     if (inertia) {
       const Mat3T<S> W1 = skew<S>(w1), W2 = skew<S>(w2);
       const Vec3T<S> u = e.R1.transpose() * (v.template segment<3>(7) - v.template head<3>());

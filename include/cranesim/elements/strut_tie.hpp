@@ -3,8 +3,12 @@
 // end points (3-17, 3-18). q = [r¹, r²], dq = q̇ (3-7).
 //
 // - Mass: ρA L/6 [[2I, I], [I, 2I]] plus the rotary inertia of the section about the two
-//   axes across the rod (3-21): T_rot = ½ ρ L I_y |ω⊥|², ω⊥ = d × ḋ / |d|², d = r² − r¹.
-//   The quadratic-velocity terms follow from M by Lagrange (quadratic_velocity.hpp).
+//   axes across the rod (3-21): T_rot = ½ ρ L I_y |ω⊥|², ω⊥ = d × ḋ / |d|², d = r² − r¹, i.e.
+//   T_rot = ½ ḋᵀ A(d) ḋ with A = (c/n) P, c = ρ L I_y, n = |d|², P = I − d dᵀ/n. Its
+//   quadratic-velocity force by Lagrange, F_d = Ȧ ḋ − ∂T_rot/∂d, with s = d·ḋ:
+//     Ȧ ḋ = −3cs ḋ/n² + 4cs² d/n³ − c|ḋ|² d/n²,   ∂T_rot/∂d = −cs ḋ/n² + 2cs² d/n³ − c|ḋ|² d/n²,
+//     F_d = −(2cs/n²) P ḋ   (node 1 takes −F_d, node 2 F_d; its power is ½ ḋᵀ Ȧ ḋ),
+//   and its velocity tangent ∂F_d/∂ḋ = −(2c/n²)(P ḋ dᵀ + s P).
 // - Axial force N = E A(ℓ) ε with ε = ℓ/L − 1. With `constant_volume` the section shrinks as
 //   the rod stretches so that ρ and the mass stay constant (3-27): A(ℓ) = A L/ℓ; the strain
 //   energy is then E A (ℓ − L − L ln(ℓ/L)), otherwise ½ E A L ε².
@@ -14,7 +18,6 @@
 
 #include <cmath>
 
-#include "cranesim/elements/quadratic_velocity.hpp"
 #include "cranesim/elements/section.hpp"
 #include "cranesim/math/types.hpp"
 
@@ -57,13 +60,35 @@ struct StrutTieKernel {
       const double EA = material.youngs_modulus * section.area;
       N += EA * ((0.5 * smoothing + damping) * ldot + smoothing * smoothing / 6.0 * ldd_quadratic) / length;
     }
-    Q<S> F = quadraticVelocityForces<6, S>([this](const auto& x) { return rotaryMass(x); }, q, v);
-    F.template head<3>() -= N * e;
-    F.template tail<3>() += N * e;
+    const Vec3T<S> rotary = rotaryForce<S>(d, Vec3T<S>(v.template tail<3>() - v.template head<3>()));
+    Q<S> F;
+    F.template head<3>() = -rotary - N * e;
+    F.template tail<3>() = rotary + N * e;
     const double half_weight = 0.5 * material.density * section.area * length;
     F.template head<3>() -= (half_weight * gravity).cast<S>();
     F.template tail<3>() -= (half_weight * gravity).cast<S>();
     return F;
+  }
+
+  /// ∂(M a + F)/∂dq in closed form (file comment; the damping's and smoothing's axial force
+  /// through ε̇ and ε̈'s quadratic part) and M beside it (element.hpp).
+  Eigen::Matrix<double, 6, 6> velocityTangent(const Q<double>& q, const Q<double>& v, double, Eigen::Matrix<double, 6, 6>& M) const {
+    M = massMatrix<double>(q);
+    const Vec3 d = q.tail<3>() - q.head<3>(), dd = v.tail<3>() - v.head<3>();
+    const double n = d.squaredNorm(), s = d.dot(dd);
+    const Mat3 P = Mat3::Identity() - d * d.transpose() / n;
+    Mat3 B = (-2.0 * rotaryCoefficient() / (n * n)) * (P * dd * d.transpose() + s * P);  // ∂F_d/∂ḋ
+    if (smoothing > 0.0 || damping > 0.0) {
+      const double l = std::sqrt(n);
+      const Vec3 e = d / l;
+      const double ldot = e.dot(dd);
+      const double EA = material.youngs_modulus * section.area;
+      const Vec3 dN = (EA / length) * ((0.5 * smoothing + damping) * e + (smoothing * smoothing / 3.0) * (dd - ldot * e) / l);
+      B.noalias() += e * dN.transpose();
+    }
+    Eigen::Matrix<double, 6, 6> C;
+    C << B, -B, -B, B;
+    return C;
   }
 
   double kineticEnergy(const Q<double>& q, const Q<double>& v, double = 0.0) const {
@@ -97,15 +122,23 @@ struct StrutTieKernel {
     return M;
   }
 
-  /// ρ L I_y P/|d|² on the relative velocity ḋ, with P = I − d̂ d̂ᵀ (section symmetric, I_y = I_z).
+  /// c = ρ L I_y (section symmetric, I_y = I_z: their mean).
+  double rotaryCoefficient() const { return material.density * length * 0.5 * (section.Iy + section.Iz); }
+
+  /// A = (c/n) P on the relative velocity ḋ (file comment).
   template <class S> Eigen::Matrix<S, 6, 6> rotaryMass(const Q<S>& q) const {
     const Vec3T<S> d = q.template tail<3>() - q.template head<3>();
     const S n = d.squaredNorm();
-    const double c = material.density * length * 0.5 * (section.Iy + section.Iz);
-    const Mat3T<S> A = (c / n) * (Mat3T<S>::Identity() - d * d.transpose() / n);
+    const Mat3T<S> A = (rotaryCoefficient() / n) * (Mat3T<S>::Identity() - d * d.transpose() / n);
     Eigen::Matrix<S, 6, 6> M;
     M << A, -A, -A, A;
     return M;
+  }
+
+  /// F_d = −(2cs/n²) P ḋ: the rotary inertia's quadratic-velocity force on d (file comment).
+  template <class S> Vec3T<S> rotaryForce(const Vec3T<S>& d, const Vec3T<S>& dd) const {
+    const S n = d.squaredNorm(), s = d.dot(dd);
+    return (-2.0 * rotaryCoefficient() * s / (n * n)) * Vec3T<S>(dd - (s / n) * d);
   }
 
   /// T_ε = ∂ε/∂q (3-15).
