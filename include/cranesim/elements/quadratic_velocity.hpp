@@ -3,7 +3,8 @@
 // time derivatives of its coordinates (dq = q̇), from its mass matrix alone. Lagrange's
 // equations with T = ½ q̇ᵀ M(q) q̇ give M q̈ + F with
 //   F_i = Σ_jk (∂M_ij/∂q_k − ½ ∂M_jk/∂q_i) q̇_j q̇_k,
-// so F is exactly consistent with M (energy conserving); ∂M/∂q by forward AD.
+// so F is exactly consistent with M (energy conserving); ∂M/∂q by forward AD. The tests' reference
+// for kernels whose quadratic-velocity forces are written in closed form (strut_tie.hpp).
 
 #include "cranesim/math/autodiff.hpp"
 
