@@ -31,6 +31,7 @@
 #include "cranesim/assembly/assembler.hpp"
 #include "cranesim/assembly/constraint_second_derivatives.hpp"
 #include "cranesim/math/sparse_lu.hpp"
+#include "cranesim/io/results_writer.hpp"
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/solvers/equilibrium_system.hpp"
@@ -178,6 +179,15 @@ void BM_CraneStaticJacobian(benchmark::State& state) {
   state.SetLabel(fidelity(state));
 }
 
+/// One output sample of a run (ResultsRecorder::sample): the consistent accelerations and
+/// multipliers by a saddle-point LU on the mass matrix, energies, frames, constraint residuals.
+void BM_CraneSample(benchmark::State& state) {
+  CraneFixture& f = crane(state.range(0) != 0);
+  cranesim::ResultsRecorder recorder(*f.assembler);
+  for (auto _ : state) recorder.sample(0.0, f.y.data(), cranesim::WorkTerms{});
+  state.SetLabel(fidelity(state));
+}
+
 /// The crane's joint constraints alone, serially: their equations and velocity Jacobian G
 /// (residual) or their second derivatives too (jacobian), as the DAE Jacobian needs them.
 void BM_CraneConstraints(benchmark::State& state) {
@@ -296,6 +306,7 @@ void registerScalingBenchmarks() {
 
 BENCHMARK(BM_CraneResidual)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CraneJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CraneSample)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CraneStaticJacobian)->Arg(0)->Arg(1)->ArgName("condensed")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CraneConstraints)->ArgsProduct({{1}, {0, 1}})->ArgNames({"condensed", "second"})->Unit(benchmark::kMillisecond);
 

@@ -84,22 +84,13 @@ struct CondensedTrussKernel {
   // ---------------------------------------------------------------------------------------------
   // Kernel contract (element.hpp)
 
+  /// M = Σ H_xᵀ (m H_x − R_c s̃ H_Ω) + H_Ωᵀ (s̃ R_cᵀ H_x + J H_Ω) over the mass stations, in 3 × 3
+  /// blocks (section_inertia_tangent.hpp).
   template <class S> Eigen::Matrix<S, kNv, kNv> massMatrix(const Q<S>& q, double = 0.0) const {
     const auto e = frame.endFrames<S>(q);
     Eigen::Matrix<S, kNv, kNv> M = Eigen::Matrix<S, kNv, kNv>::Zero();
-    for (const MassStation& st : stations) {
-      const auto m = frame.sectionMap<S>(e, st.xi);
-      Eigen::Matrix<S, 3, kNv> Hx = Eigen::Matrix<S, 3, kNv>::Zero(), Hw = Eigen::Matrix<S, 3, kNv>::Zero();
-      for (int n = 0; n < 2; ++n) {
-        Hx.template block<3, 3>(0, 6 * n).diagonal().setConstant(S(m.a[n]));
-        Hx.template block<3, 3>(0, 6 * n + 3) = m.X[n];
-        Hw.template block<3, 3>(0, 6 * n + 3) = m.W[n];
-      }
-      // Σ dm H_pᵀ H_p with H_p = H_x − R_c õ H_Ω.
-      const Eigen::Matrix<S, kNv, kNv> coupling = Hx.transpose() * (m.Rc * skew<S>(Vec3T<S>(st.first_moment.cast<S>()))) * Hw;
-      M.noalias() += S(st.mass) * (Hx.transpose() * Hx) - coupling - coupling.transpose() +
-                     Hw.transpose() * (st.inertia.cast<S>() * Hw);
-    }
+    for (const MassStation& st : stations)
+      addStationMass<S>(frame.sectionMap<S>(e, st.xi), st.mass, st.first_moment, st.inertia, M);
     return M;
   }
 

@@ -38,12 +38,41 @@ namespace cranesim {
 /// [M | G] of one element, 12 × 24: the mass matrix and Σ Hᵀ(…) of the file comment.
 using SectionInertiaTangent = Eigen::Matrix<double, 12, 24>;
 
-/// Adds one station's share to [M | G]. `map`: the section map H at the station (blocks a[n] I,
-/// X[n] of H_x and W[n] of H_Ω, section rotation Rc); `rate`: Ḣ along the motion (blocks X[n],
-/// W[n]); `omega`: Ω = H_Ω dq.
+/// Adds one station's share of M = Σ H_xᵀ (m H_x − R_c s̃ H_Ω) + H_Ωᵀ (s̃ R_cᵀ H_x + J H_Ω) to the
+/// 12 × 12 block `out`. `map`: the section map H at the station (blocks a[n] I, X[n] of H_x and
+/// W[n] of H_Ω, section rotation Rc), in scalars T. H_x = [a⁰I, X⁰, a¹I, X¹] and
+/// H_Ω = [0, W⁰, 0, W¹]: every column block is Hᵀ [P_f; P_τ] for a 3 × 3 force and torque pair,
+/// 3 × 3 products node by node (no products with H's zero blocks).
+template <class T, class Map, class Out>
+[[gnu::flatten]] void addStationMass(const Map& map, double mass, const Vec3& first_moment, const Mat3& inertia, Out&& out) {
+  const Mat3T<T> RcS = map.Rc * skew<T>(Vec3T<T>(first_moment.cast<T>()));  // R_c s̃
+  const Mat3T<T> SRcT = -RcS.transpose();                                   // s̃ R_cᵀ
+  const Mat3T<T> J = inertia.cast<T>();
+  // The translation columns of end n: aⁿ Hᵀ [m I; s̃ R_cᵀ], one 12 × 3 block for both ends.
+  Eigen::Matrix<T, 12, 3> translation;
+  for (int n = 0; n < 2; ++n) {
+    translation.template middleRows<3>(6 * n) = T(map.a[n] * mass) * Mat3T<T>::Identity();
+    translation.template middleRows<3>(6 * n + 3).noalias() = T(mass) * map.X[n].transpose();
+    translation.template middleRows<3>(6 * n + 3).noalias() += map.W[n].transpose() * SRcT;
+  }
+  for (int n = 0; n < 2; ++n) {
+    out.template middleCols<3>(6 * n).noalias() += T(map.a[n]) * translation;
+    const Mat3T<T> Pf = T(mass) * map.X[n] - RcS * map.W[n], Pt = SRcT * map.X[n] + J * map.W[n];
+    for (int k = 0; k < 2; ++k) {
+      out.template block<3, 3>(6 * k, 6 * n + 3).noalias() += T(map.a[k]) * Pf;
+      out.template block<3, 3>(6 * k + 3, 6 * n + 3).noalias() += map.X[k].transpose() * Pf;
+      out.template block<3, 3>(6 * k + 3, 6 * n + 3).noalias() += map.W[k].transpose() * Pt;
+    }
+  }
+}
+
+/// Adds one station's share to [M | G]: M by addStationMass, G's rotation columns here (G has no
+/// translation columns: Ḣ and H_Ω have none). `rate`: Ḣ along the motion (blocks X[n], W[n]);
+/// `omega`: Ω = H_Ω dq.
 template <class Map, class Rate>
 [[gnu::flatten]] void addStationTangent(const Map& map, const Rate& rate, const Vec3& omega, double mass, const Vec3& first_moment,
                        const Mat3& inertia, SectionInertiaTangent& out) {
+  addStationMass<double>(map, mass, first_moment, inertia, out.leftCols<12>());
   const Mat3& Rc = map.Rc;
   const Mat3& J = inertia;
   const Mat3 S = skew<double>(first_moment), W = skew<double>(omega);
@@ -51,29 +80,14 @@ template <class Map, class Rate>
   const Mat3 SRcT = -RcS.transpose();  // s̃ R_cᵀ
   const Mat3 gyro_f = -Rc * (skew<double>(Vec3(omega.cross(first_moment))) + W * S + S * W);
   const Mat3 gyro_t = J * W + W * J - skew<double>(Vec3(J * omega));
-  // H_x = [a⁰I, X⁰, a¹I, X¹] and H_Ω = [0, W⁰, 0, W¹], Ḣ likewise without the a I blocks: every
-  // column block of [M | G] is Hᵀ [P_f; P_τ] for a 3 × 3 force and torque pair, 3 × 3 products
-  // node by node (no products with H's zero blocks).
-  const auto project = [&](const Mat3& Pf, const Mat3& Pt, int column) {
-    for (int n = 0; n < 2; ++n) {
-      out.block<3, 3>(6 * n, column).noalias() += map.a[n] * Pf;
-      out.block<3, 3>(6 * n + 3, column).noalias() += map.X[n].transpose() * Pf;
-      out.block<3, 3>(6 * n + 3, column).noalias() += map.W[n].transpose() * Pt;
+  for (int n = 0; n < 2; ++n) {
+    const Mat3 Pf = 2.0 * (mass * rate.X[n] - RcS * rate.W[n]) + gyro_f * map.W[n],
+               Pt = 2.0 * (SRcT * rate.X[n] + J * rate.W[n]) + gyro_t * map.W[n];
+    for (int k = 0; k < 2; ++k) {
+      out.block<3, 3>(6 * k, 12 + 6 * n + 3).noalias() += map.a[k] * Pf;
+      out.block<3, 3>(6 * k + 3, 12 + 6 * n + 3).noalias() += map.X[k].transpose() * Pf;
+      out.block<3, 3>(6 * k + 3, 12 + 6 * n + 3).noalias() += map.W[k].transpose() * Pt;
     }
-  };
-  // M's translation columns of end n: aⁿ Hᵀ [m I; s̃ R_cᵀ], one 12 × 3 block for both ends.
-  Eigen::Matrix<double, 12, 3> translation;
-  for (int n = 0; n < 2; ++n) {
-    translation.middleRows<3>(6 * n) = (map.a[n] * mass) * Mat3::Identity();
-    translation.middleRows<3>(6 * n + 3).noalias() = mass * map.X[n].transpose();
-    translation.middleRows<3>(6 * n + 3).noalias() += map.W[n].transpose() * SRcT;
-  }
-  for (int n = 0; n < 2; ++n) {
-    out.middleCols<3>(6 * n).noalias() += map.a[n] * translation;
-    // M's and G's rotation columns (G has no translation columns: Ḣ and H_Ω have none).
-    project(mass * map.X[n] - RcS * map.W[n], SRcT * map.X[n] + J * map.W[n], 6 * n + 3);
-    project(2.0 * (mass * rate.X[n] - RcS * rate.W[n]) + gyro_f * map.W[n],
-            2.0 * (SRcT * rate.X[n] + J * rate.W[n]) + gyro_t * map.W[n], 12 + 6 * n + 3);
   }
 }
 
