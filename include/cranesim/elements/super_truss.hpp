@@ -407,25 +407,13 @@ struct SuperTrussKernel {
   }
 
   /// Σ ½ dᵀ K d of the flexible members (3-77 for each Timoshenko tube).
-  double strainEnergy(const Q<double>& q) const {
-    const SectionFrames<double> s = sectionFrames<double>(q);
-    double U = 0.0;
-    for (const MemberModel& m : members) {
-      const auto e = memberEndFrames<double>(m, nodeState<double>(s, nodes[m.node[0]]), nodeState<double>(s, nodes[m.node[1]]));
-      const Eigen::Matrix<double, 12, 1> d = m.beam.coRotate<double>(e.r1, e.R1, e.r2, e.R2).d;
-      U += 0.5 * d.dot(m.stiffness * d);
-    }
-    return U;
-  }
+  double strainEnergy(const Q<double>& q) const { return memberEnergy(sectionFrames<double>(q), nullptr); }
 
   /// Gravity potential of all tubes + strain energy.
   double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const {
     const SectionFrames<double> s = sectionFrames<double>(q);
-    double V = strainEnergy(q);
+    double V = memberEnergy(s, &gravity);
     for (int i = 0; i < 2; ++i) V -= gravity.dot(rigid[i].mass * s.r[i] + s.R[i] * rigid[i].first_moment);
-    for (const MemberModel& m : members)
-      V += m.beam.gravityPotential(
-          memberEndFrames<double>(m, nodeState<double>(s, nodes[m.node[0]]), nodeState<double>(s, nodes[m.node[1]])), gravity);
     return V;
   }
 
@@ -457,6 +445,21 @@ struct SuperTrussKernel {
     std::vector<Item>& buffer = scratchBuffer<Item>();
     if (buffer.size() < nodes.size()) buffer.resize(nodes.size());
     return buffer;
+  }
+
+  /// Σ ½ dᵀ K d of the flexible members and, with `gravity`, their gravity potential; every
+  /// node's state formed once (a node is shared by several tubes).
+  double memberEnergy(const SectionFrames<double>& s, const Vec3* gravity) const {
+    std::vector<NodeState<double>>& state = scratch<NodeState<double>>();
+    for (std::size_t n = 0; n < nodes.size(); ++n) state[n] = nodeState<double>(s, nodes[n]);
+    double V = 0.0;
+    for (const MemberModel& m : members) {
+      const auto e = memberEndFrames<double>(m, state[m.node[0]], state[m.node[1]]);
+      const Eigen::Matrix<double, 12, 1> d = m.beam.coRotate<double>(e.r1, e.R1, e.r2, e.R2).d;
+      V += 0.5 * d.dot(m.stiffness * d);
+      if (gravity) V += m.beam.gravityPotential(e, *gravity);
+    }
+    return V;
   }
 
   /// T_k: member node velocities [ṙ_a, ω_a, ṙ_b, ω_b] (member node frames) = T_k dq_e.
