@@ -9,12 +9,15 @@ namespace cranesim {
 
 struct SparseLU::Klu {
   static constexpr double kRefactorConditionLimit = 3.7e-11;  // ε^(2/3)
+  static constexpr double kGrowthTolerance = 1e-2;  // refactored pivot growth / pivoted pivot growth
 
   klu_common common;
   klu_symbolic* symbolic = nullptr;
   klu_numeric* numeric = nullptr;
   int n = 0;
   std::vector<int> outer, inner;  // the pattern `symbolic` was analysed for
+  double pivoted_growth = 0.0;     // reciprocal pivot growth of the last factorisation with pivoting
+  int pivotings = 0;               // factorisations with pivoting so far
 
   Klu() { klu_defaults(&common); }
   ~Klu() { release(); }
@@ -47,18 +50,28 @@ bool SparseLU::factorise(int n, const int* Ap, const int* Ai, const double* Ax) 
     k.symbolic = klu_analyze(n, ap, ai, &k.common);
     if (!k.symbolic) return false;
   }
-  if (k.numeric && klu_refactor(ap, ai, ax, k.symbolic, k.numeric, &k.common) &&
-      klu_rcond(k.symbolic, k.numeric, &k.common) && k.common.rcond > Klu::kRefactorConditionLimit)
-    return true;
+  if (k.numeric && klu_refactor(ap, ai, ax, k.symbolic, k.numeric, &k.common) && stableRefactor(ap, ai, ax)) return true;
   if (k.numeric) klu_free_numeric(&k.numeric, &k.common);
   k.numeric = klu_factor(ap, ai, ax, k.symbolic, &k.common);
-  return k.numeric != nullptr && k.common.status == KLU_OK;
+  if (k.numeric == nullptr || k.common.status != KLU_OK) return false;
+  ++k.pivotings;
+  k.pivoted_growth = klu_rgrowth(ap, ai, ax, k.symbolic, k.numeric, &k.common) ? k.common.rgrowth : 0.0;
+  return true;
+}
+
+bool SparseLU::stableRefactor(int* Ap, int* Ai, double* Ax) {
+  Klu& k = *klu_;
+  if (klu_rcond(k.symbolic, k.numeric, &k.common) && k.common.rcond > Klu::kRefactorConditionLimit) return true;
+  return k.pivoted_growth > 0.0 && klu_rgrowth(Ap, Ai, Ax, k.symbolic, k.numeric, &k.common) &&
+         k.common.rgrowth >= Klu::kGrowthTolerance * k.pivoted_growth;
 }
 
 void SparseLU::solve(double* x) {
   Klu& k = *klu_;
   klu_solve(k.symbolic, k.numeric, k.n, 1, x, &k.common);
 }
+
+int SparseLU::pivotedFactorisations() const { return klu_->pivotings; }
 
 long SparseLU::factorNonZeros() const {
   const Klu& k = *klu_;

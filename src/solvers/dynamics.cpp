@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <idas/idas.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
@@ -14,6 +13,7 @@
 #include "cranesim/math/rotation.hpp"
 #include "cranesim/solvers/generalized_alpha.hpp"
 #include "cranesim/solvers/serial_vector_ops.hpp"
+#include "cranesim/solvers/sparse_lu_linear_solver.hpp"
 
 namespace cranesim {
 namespace {
@@ -54,7 +54,7 @@ void check(int flag, const char* what) {
   if (flag < 0) throw std::runtime_error(fmt::format("IDAS set-up failed in {} (flag {})", what, flag));
 }
 
-/// IDAS' variable-order BDF with KLU on the assembler's Jacobian; owns the SUNDIALS objects.
+/// IDAS' variable-order BDF with KLU (SparseLU) on the assembler's Jacobian; owns the SUNDIALS objects.
 class IdasStepper final : public TimeStepper {
  public:
   IdasStepper(const Assembler& assembler, const DynamicState& s) : data_{&assembler, {}}, t_(s.t) {
@@ -82,7 +82,7 @@ class IdasStepper final : public TimeStepper {
     check(IDASVtolerances(mem_, model.solver.rtol, atol_), "IDASVtolerances");
     const SparsityPattern& p = assembler.pattern();
     A_ = SUNSparseMatrix(n, n, std::max(p.nonZeros(), 1), CSC_MAT, ctx_);
-    LS_ = SUNLinSol_KLU(y_, A_, ctx_);
+    LS_ = sparseLuLinearSolver(ctx_);
     check(IDASetLinearSolver(mem_, LS_, A_), "IDASetLinearSolver");
     check(IDASetJacFn(mem_, jacobianCallback), "IDASetJacFn");
     // Differential: q and dq. Algebraic, excluded from the error test: λ (and μ).
