@@ -38,7 +38,7 @@ std::string attributeText(hid_t attr) {
       out = fmt::format("{:g}", v);
       break;
     }
-    default: out = "?";
+    default: out.assign(1, '?');  // not = "?": g++ 12 warns falsely (-Wrestrict, GCC bug 105329)
   }
   H5Tclose(type);
   return out;
