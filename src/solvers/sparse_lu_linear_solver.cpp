@@ -4,7 +4,6 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <new>
-#include <stdexcept>
 #include <vector>
 
 #include "cranesim/math/sparse_lu.hpp"

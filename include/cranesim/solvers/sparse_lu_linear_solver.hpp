@@ -5,9 +5,8 @@
 // the condition number (klu_condest, several solves) and, that being large too, factorises anew
 // with pivoting: on a crane's DAE Jacobian, whose scaling keeps that ratio small whatever the
 // pivots, every linear setup paid for a refactorisation, a condition estimate and a full
-// factorisation. SparseLU judges the refactored pivots by their growth instead, and orders the
-// matrix by AMD on A + Aᵀ (KLU's default; SUNDIALS' module uses COLAMD on AᵀA), the better fit
-// for Jacobians whose pattern is nearly symmetric.
+// factorisation. SparseLU judges the refactored pivots by their growth instead. It orders the
+// matrix by KLU's default, AMD on A + Aᵀ, where SUNDIALS' module chose COLAMD.
 
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
