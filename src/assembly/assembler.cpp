@@ -54,6 +54,16 @@ Eigen::Matrix<double, kConstraintDirections, 1> localExtended(const Model& model
   return out;
 }
 
+/// The rows × pattern.size() matrix of `pattern` with the values laid out by it.
+Eigen::SparseMatrix<double> patternedMatrix(const SparsityPattern& pattern, int rows, const VecX& values) {
+  Eigen::SparseMatrix<double> A(rows, pattern.size());
+  A.resizeNonZeros(pattern.nonZeros());
+  std::copy(pattern.columnPointers().begin(), pattern.columnPointers().end(), A.outerIndexPtr());
+  std::copy(pattern.rowIndices().begin(), pattern.rowIndices().end(), A.innerIndexPtr());
+  std::copy(values.data(), values.data() + values.size(), A.valuePtr());
+  return A;
+}
+
 }  // namespace
 
 Assembler::Assembler(const Model& model, Formulation formulation) : model_(model), formulation_(formulation) {
@@ -76,7 +86,9 @@ void Assembler::buildPattern() {
     for (int i : e->coordinateIndices()) cols.push_back(i);
     for (int i : e->velocityIndices()) cols.push_back(nq + i);
     element_blocks_.push_back(pattern_.addBlock(rows, cols));
+    mass_blocks_.push_back(mass_pattern_.addBlock(e->velocityIndices(), e->velocityIndices()));
   }
+  mass_pattern_.finalize(model_.nv);
   for (const Load& l : model_.loads) {
     const Node& n = model_.nodes[model_.joints[l.joint].node];
     if (n.hasRotation()) load_blocks_.push_back(pattern_.addBlock(range(nq + n.v, 6), range(n.q, 6)));
@@ -84,7 +96,10 @@ void Assembler::buildPattern() {
   for (const Constraint& c : model_.constraints) {
     const ConstraintSides s = sidesOf(model_, c);
     ConstraintBlocks b;
-    std::vector<int> q_rows;
+    std::vector<int> q_rows, v_directions, q_directions;
+    for (int d : s) v_directions.push_back(vIndex(model_, s, d)), q_directions.push_back(qIndex(model_, s, d));
+    b.g = constraint_pattern_.addBlock(range(c.row, c.rows), v_directions);
+    b.phi_q = coordinate_pattern_.addBlock(range(c.row, c.rows), q_directions);
     for (int d : s) {
       b.v_rows.push_back(nq + vIndex(model_, s, d));
       b.q_cols.push_back(qIndex(model_, s, d));
@@ -105,6 +120,8 @@ void Assembler::buildPattern() {
     constraint_blocks_.push_back(std::move(b));
   }
   pattern_.finalize(size_);
+  constraint_pattern_.finalize(model_.nv);
+  coordinate_pattern_.finalize(model_.nq);
 }
 
 template <class S>
@@ -339,20 +356,17 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
 }
 
 Eigen::SparseMatrix<double> Assembler::massMatrix(double t, const double* q) const {
-  std::vector<Eigen::Triplet<double>> triplets;
+  VecX values = VecX::Zero(mass_pattern_.nonZeros());
   const ElementInput in{q, nullptr, nullptr, t, gravity()};
   std::vector<double> local;
-  for (const auto& e : model_.elements) {
-    const int n = e->size();
-    local.resize(n * n);
-    e->mass(in, local.data());
-    const auto& idx = e->velocityIndices();
-    for (int c = 0; c < n; ++c)
-      for (int r = 0; r < n; ++r) triplets.emplace_back(idx[r], idx[c], local[c * n + r]);
+  for (std::size_t k = 0; k < model_.elements.size(); ++k) {
+    const Element& e = *model_.elements[k];
+    local.resize(e.size() * e.size());
+    e.mass(in, local.data());
+    const std::vector<int>& slots = mass_pattern_.slots(mass_blocks_[k]);
+    for (std::size_t i = 0; i < slots.size(); ++i) values[slots[i]] += local[i];
   }
-  Eigen::SparseMatrix<double> M(model_.nv, model_.nv);
-  M.setFromTriplets(triplets.begin(), triplets.end());
-  return M;
+  return patternedMatrix(mass_pattern_, model_.nv, values);
 }
 
 VecX Assembler::appliedForces(double t, const double* q, const double* v, Limit limit) const {
@@ -382,8 +396,11 @@ ConstraintState Assembler::constraints(double t, const double* q, const double* 
   out.gamma = VecX::Zero(m);
   out.phi_t = VecX::Zero(m);
   const VecX qdot = coordinateRates(q, v);
-  std::vector<Eigen::Triplet<double>> g, pq;
-  for (const Constraint& c : model_.constraints) {
+  VecX g = VecX::Zero(constraint_pattern_.nonZeros()), pq = VecX::Zero(constraint_pattern_.nonZeros());
+  for (std::size_t n = 0; n < model_.constraints.size(); ++n) {
+    const Constraint& c = model_.constraints[n];
+    const std::vector<int>& v_slots = constraint_pattern_.slots(constraint_blocks_[n].g);
+    const std::vector<int>& q_slots = coordinate_pattern_.slots(constraint_blocks_[n].phi_q);
     const ConstraintSides s = sidesOf(model_, c);
     const auto vloc = localExtended(model_, s, v, false);
     const auto qdloc = localExtended(model_, s, qdot.data(), true);
@@ -403,22 +420,21 @@ ConstraintState Assembler::constraints(double t, const double* q, const double* 
         out.phi_dot(row) += C.G(i, j).value() * vloc(j);
         out.gamma(row) += C.G(i, j).derivatives()(0) * vloc(j);
       }
-      for (int d : s) {
-        g.emplace_back(row, vIndex(model_, s, d), C.G(i, d).value());
+      for (int j = 0; j < s.count; ++j) {
+        const int d = s.direction[j], entry = j * c.rows + i;  // column-major in the block
+        g(v_slots[entry]) += C.G(i, d).value();
         const int side = d / 6, k = d % 6;
         double dphi = C.G(i, d).value();  // ∂Φ/∂r = ∂Φ/∂δr
         if (k >= 3) {
           dphi = 0.0;
           for (int l = 0; l < 3; ++l) dphi += C.G(i, 6 * side + 3 + l).value() * twist_per_phi[side](l, k - 3);
         }
-        pq.emplace_back(row, qIndex(model_, s, d), dphi);
+        pq(q_slots[entry]) += dphi;
       }
     }
   }
-  out.G.resize(m, model_.nv);
-  out.G.setFromTriplets(g.begin(), g.end());
-  out.Phi_q.resize(m, model_.nq);
-  out.Phi_q.setFromTriplets(pq.begin(), pq.end());
+  out.G = patternedMatrix(constraint_pattern_, m, g);
+  out.Phi_q = patternedMatrix(coordinate_pattern_, m, pq);
   return out;
 }
 

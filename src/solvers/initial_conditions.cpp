@@ -131,19 +131,60 @@ double AccelerationSolver::jump(const Assembler& assembler, DynamicState& s, con
 void AccelerationSolver::factorise(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& G, double t,
                                    const char* where) {
   const int nv = static_cast<int>(M.rows()), m = static_cast<int>(G.rows());
-  triplets_.clear();
-  for (int k = 0; k < M.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) triplets_.emplace_back(it.row(), it.col(), it.value());
-  for (int k = 0; k < G.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(G, k); it; ++it) {
-      triplets_.emplace_back(nv + it.row(), it.col(), it.value());
-      triplets_.emplace_back(it.col(), nv + it.row(), it.value());
-    }
-  matrix_.resize(nv + m, nv + m);
-  matrix_.setFromTriplets(triplets_.begin(), triplets_.end());
+  if (!samePattern(M, G)) buildPattern(M, G);
+  double* values = matrix_.valuePtr();
+  for (std::size_t k = 0; k < mass_slots_.size(); ++k) values[mass_slots_[k]] = M.valuePtr()[k];
+  for (std::size_t k = 0; k < constraint_slots_.size(); ++k) {
+    values[constraint_slots_[k]] = G.valuePtr()[k];
+    values[transposed_slots_[k]] = G.valuePtr()[k];
+  }
   if (!lu_.factorise(nv + m, matrix_.outerIndexPtr(), matrix_.innerIndexPtr(), matrix_.valuePtr()))
     throw std::runtime_error(fmt::format("t = {} s: the saddle-point matrix [M Gᵀ; G 0] is singular{} "
                                          "(a body without mass or inertia in a free direction?)", t, where));
+}
+
+bool AccelerationSolver::samePattern(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& G) const {
+  const auto same = [](const Eigen::SparseMatrix<double>& A, const std::vector<int>& outer, const std::vector<int>& inner) {
+    return A.isCompressed() && static_cast<std::size_t>(A.outerSize()) + 1 == outer.size() &&
+           std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) && static_cast<std::size_t>(A.nonZeros()) == inner.size() &&
+           std::equal(inner.begin(), inner.end(), A.innerIndexPtr());
+  };
+  return matrix_.rows() == M.rows() + G.rows() && same(M, mass_outer_, mass_inner_) && same(G, constraint_outer_, constraint_inner_);
+}
+
+void AccelerationSolver::buildPattern(const Eigen::SparseMatrix<double>& M, const Eigen::SparseMatrix<double>& G) {
+  const int nv = static_cast<int>(M.rows()), m = static_cast<int>(G.rows());
+  std::vector<Eigen::Triplet<double>> pattern;
+  for (int k = 0; k < M.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) pattern.emplace_back(it.row(), it.col(), 0.0);
+  for (int k = 0; k < G.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(G, k); it; ++it) {
+      pattern.emplace_back(nv + it.row(), it.col(), 0.0);
+      pattern.emplace_back(it.col(), nv + it.row(), 0.0);
+    }
+  matrix_.resize(nv + m, nv + m);
+  matrix_.setFromTriplets(pattern.begin(), pattern.end());
+  matrix_.makeCompressed();
+  // Position of entry (r, c) in matrix_'s value array.
+  const auto slot = [&](int r, int c) {
+    const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c];
+    const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[c + 1];
+    return static_cast<int>(std::lower_bound(begin, end, r) - matrix_.innerIndexPtr());
+  };
+  mass_slots_.clear();
+  for (int k = 0; k < M.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, k); it; ++it) mass_slots_.push_back(slot(it.row(), it.col()));
+  constraint_slots_.clear();
+  transposed_slots_.clear();
+  for (int k = 0; k < G.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(G, k); it; ++it) {
+      constraint_slots_.push_back(slot(nv + it.row(), it.col()));
+      transposed_slots_.push_back(slot(it.col(), nv + it.row()));
+    }
+  mass_outer_.assign(M.outerIndexPtr(), M.outerIndexPtr() + M.outerSize() + 1);
+  mass_inner_.assign(M.innerIndexPtr(), M.innerIndexPtr() + M.nonZeros());
+  constraint_outer_.assign(G.outerIndexPtr(), G.outerIndexPtr() + G.outerSize() + 1);
+  constraint_inner_.assign(G.innerIndexPtr(), G.innerIndexPtr() + G.nonZeros());
 }
 
 std::string AssemblyMove::describe() const {

@@ -76,6 +76,7 @@ class Assembler {
   void jacobian(double t, double cj, const double* y, const double* yp, double* values) const;
 
   // Pieces used by initial conditions, restarts and output.
+  /// M(q), scattered into a pattern built once (every element's velocity block).
   Eigen::SparseMatrix<double> massMatrix(double t, const double* q) const;
   /// F(q, dq, t) − Q(q, t): everything but inertia and constraint forces.
   /// `limit`: at a drive or load breakpoint, the one-sided values to use (Right when
@@ -101,6 +102,7 @@ class Assembler {
   struct ConstraintBlocks {
     std::vector<int> v_rows, q_cols, v_cols;
     int vq = -1, vl = -1, lq = -1, lv = -1, qm = -1, qq = -1, mq = -1, la = -1;
+    int g = -1, phi_q = -1;  // its rows of G and Φ_q (constraint_pattern_, coordinate_pattern_)
   };
   struct NodeBlocks {
     int qq = -1, qv = -1;
@@ -126,6 +128,9 @@ class Assembler {
   SparsityPattern pattern_;
   std::vector<NodeBlocks> node_blocks_;
   std::vector<int> element_blocks_;
+  // Patterns of M (nv × nv, a block per element: mass_blocks_), G (m × nv) and Φ_q (m × nq).
+  SparsityPattern mass_pattern_, constraint_pattern_, coordinate_pattern_;
+  std::vector<int> mass_blocks_;
   std::vector<int> load_blocks_;
   std::vector<ConstraintBlocks> constraint_blocks_;
   // Per-element and per-constraint scratch written in parallel and reduced in a fixed order.

@@ -11,10 +11,10 @@ class SparsityPattern {
   /// Registers a dense block rows × cols (entries stored column-major) and returns its id.
   /// With `diagonal`, only entries (rows[k], cols[k]) are registered.
   int addBlock(const std::vector<int>& rows, const std::vector<int>& cols, bool diagonal = false);
-  /// Builds the CSC arrays; afterwards blocks can be scattered into value arrays.
+  /// Builds the CSC arrays of n columns; afterwards blocks can be scattered into value arrays.
   void finalize(int n);
 
-  int size() const { return n_; }
+  int size() const { return n_; }  // columns (rows too, for a square pattern)
   int nonZeros() const { return static_cast<int>(row_index_.size()); }
   const std::vector<int>& columnPointers() const { return column_pointer_; }
   const std::vector<int>& rowIndices() const { return row_index_; }

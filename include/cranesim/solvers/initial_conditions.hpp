@@ -44,9 +44,10 @@ DynamicState consistentInitialState(const Assembler& assembler, double t, VecX q
 DynamicState assembledInitialState(const Assembler& assembler, double t, VecX q, VecX v, double tolerance,
                                    AssemblyMove* move = nullptr);
 
-/// Solves the saddle-point system (4-3) for a and λ, or for a drive's velocity jump, by KLU. Keeps the ordering and symbolic
-/// analysis while the matrix pattern stays the same, as it does from one output sample to the
-/// next, and refactors with the previous pivot sequence while that stays well conditioned.
+/// Solves the saddle-point system (4-3) for a and λ, or for a drive's velocity jump, by KLU. While
+/// M's and G's patterns stay the same, as they do from one output sample to the next, keeps the
+/// matrix's pattern (the values scattered into it), the ordering and symbolic analysis, and
+/// refactors with the previous pivot sequence while that stays well conditioned.
 class AccelerationSolver {
  public:
   void solve(const Assembler& assembler, DynamicState& state, const ConstraintState& constraints, Limit limit);
@@ -60,9 +61,14 @@ class AccelerationSolver {
   /// Factorises [M Gᵀ; G 0]; `where` completes the message when it is singular.
   void factorise(const Eigen::SparseMatrix<double>& mass, const Eigen::SparseMatrix<double>& G, double t,
                  const char* where);
+  /// Whether M and G have the patterns the saddle-point matrix was built for.
+  bool samePattern(const Eigen::SparseMatrix<double>& mass, const Eigen::SparseMatrix<double>& G) const;
+  /// Builds the saddle-point matrix's pattern and where each entry of M and G goes in it.
+  void buildPattern(const Eigen::SparseMatrix<double>& mass, const Eigen::SparseMatrix<double>& G);
 
-  std::vector<Eigen::Triplet<double>> triplets_;
   Eigen::SparseMatrix<double> matrix_;
+  std::vector<int> mass_slots_, constraint_slots_, transposed_slots_;  // value positions of M's, G's and Gᵀ's entries
+  std::vector<int> mass_outer_, mass_inner_, constraint_outer_, constraint_inner_;  // the patterns built for
   SparseLU lu_;
 };
 
