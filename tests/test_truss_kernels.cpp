@@ -210,6 +210,32 @@ TEMPLATE_TEST_CASE("Truss elements: mass matrix SPD with the tubes' exact rigid-
   }
 }
 
+TEMPLATE_TEST_CASE("Truss elements: the mass matrix is the fused residual's acceleration columns at deformed states", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
+  // massMatrix (section_mass_matrix.hpp: station sums in the axes of end 1) against M e_k =
+  // (r(q, dq, s e_k) − r(q, dq, 0)) / s of the residual (section_inertia_forces.hpp, linear in
+  // the accelerations), with end rotations up to ~1 rad apart; type 2 and the transition piece.
+  // s = 10⁸ keeps the elastic forces of these large deformations (~10⁶ × M) from cancelling.
+  const Vec3 g(0.3, -0.2, -9.81);
+  Rng rng(41);
+  double worst = 0.0;
+  for (const TrussGeometry* geometry : {&type2Geometry(), &transitionGeometry()}) {
+    const TestType k = kernelOn<TestType>(*geometry, 0.02);
+    for (int trial = 0; trial < 3; ++trial) {
+      const Q12 q = deformedState(rng, k.length, 0.4 * (trial + 1)), v = 2.0 * Q12::Random();
+      const Q12 r0 = k.template residual<double>(q, v, Q12::Zero(), 0.0, g);
+      M12 columns;
+      const double scale = 1e8;
+      for (int c = 0; c < 12; ++c)
+        columns.col(c) = (k.template residual<double>(q, v, Q12(scale * Q12::Unit(c)), 0.0, g) - r0) / scale;
+      const M12 M = k.template massMatrix<double>(q);
+      worst = std::max(worst, (M - columns).norm() / M.norm());
+      CHECK((M - M.transpose()).norm() < 1e-13 * M.norm());
+    }
+  }
+  std::printf("[truss] mass matrix vs the residual's acceleration columns: rel. err %.3g\n", worst);
+  CHECK(worst < 1e-12);
+}
+
 TEMPLATE_TEST_CASE("Truss elements: no elastic force under rigid placements and rigid velocities", "[super_truss][condensed_truss]", SuperTrussKernel, CondensedTrussKernel) {
   const TestType k = type2Kernel<TestType>(0.01);  // with Kelvin–Voigt damping
   Rng rng(11);

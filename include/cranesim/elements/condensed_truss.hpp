@@ -39,7 +39,7 @@
 
 #include "cranesim/elements/objective_tangent.hpp"
 #include "cranesim/elements/section_inertia_forces.hpp"
-#include "cranesim/elements/section_inertia_tangent.hpp"
+#include "cranesim/elements/section_mass_matrix.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/rotation.hpp"
@@ -84,14 +84,13 @@ struct CondensedTrussKernel {
   // ---------------------------------------------------------------------------------------------
   // Kernel contract (element.hpp)
 
-  /// M = Σ H_xᵀ (m H_x − R_c s̃ H_Ω) + H_Ωᵀ (s̃ R_cᵀ H_x + J H_Ω) over the mass stations, in 3 × 3
-  /// blocks (section_inertia_tangent.hpp).
+  /// M = Σ H_xᵀ (m H_x − R_c s̃ H_Ω) + H_Ωᵀ (s̃ R_cᵀ H_x + J H_Ω) over the mass stations
+  /// (section_mass_matrix.hpp).
   template <class S> Eigen::Matrix<S, kNv, kNv> massMatrix(const Q<S>& q, double = 0.0) const {
     const auto e = frame.endFrames<S>(q);
-    Eigen::Matrix<S, kNv, kNv> M = Eigen::Matrix<S, kNv, kNv>::Zero();
-    for (const MassStation& st : stations)
-      addStationMass<S>(frame.sectionMap<S>(e, st.xi), st.mass, st.first_moment, st.inertia, M);
-    return M;
+    SectionMassMatrix<S> M(e.R1, e.Rrel, e.phi, e.Tinv, length);
+    for (const MassStation& st : stations) M.add(st.xi, st.mass, st.first_moment, st.inertia);
+    return M.matrix();
   }
 
   template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
@@ -148,15 +147,23 @@ struct CondensedTrussKernel {
     return 0.5 * v.dot(massMatrix<double>(q) * v);
   }
 
-  /// −Σ g·(m x + R_c s) + strain energy.
+  /// −Σ g·(m x + R_c s) + strain energy: with x = N₀ r¹ + N₁ R¹e_x + N₂ r² + N₃ R²e_x and
+  /// R_c s = R¹ exp(ξφ̃) s, the sums Σ m Nᵢ and Σ exp(ξφ̃) s times per-call vectors.
   double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const {
-    const auto e = frame.endFrames<double>(q);
-    double V = strainEnergy(q);
+    const Mat3 R1 = rotationMatrix<double>(Vec3(q.segment<3>(3))), R2 = rotationMatrix<double>(Vec3(q.segment<3>(9)));
+    const Vec3 phi = rotationLog<double>(Mat3(R1.transpose() * R2));
+    double n[4] = {0.0, 0.0, 0.0, 0.0};
+    Vec3 turned = Vec3::Zero();  // Σ exp(ξφ̃) s
     for (const MassStation& st : stations) {
-      const auto m = frame.sectionMap<double>(e, st.xi);
-      V -= gravity.dot(st.mass * m.x + m.Rc * st.first_moment);
+      const HermiteBasis h = hermiteBasis(st.xi, length);
+      for (int k = 0; k < 4; ++k) n[k] += st.mass * h.N[k];
+      if (st.first_moment == Vec3::Zero()) continue;
+      const Vec3 psi = st.xi * phi, ps = psi.cross(st.first_moment);
+      const ExpCoefficients<double> c = expCoefficients<double>(psi.squaredNorm());
+      turned += st.first_moment + c.a * ps + c.b * psi.cross(ps);
     }
-    return V;
+    const Vec3 centre = n[0] * q.segment<3>(0) + n[1] * R1.col(0) + n[2] * q.segment<3>(6) + n[3] * R2.col(0);
+    return strainEnergy(q) - gravity.dot(centre + R1 * turned);
   }
 
   double mass() const {

@@ -19,8 +19,8 @@
 //   ∂r/∂dq = −M C + Σ H_xᵀ (2 (m Ḣ_x − R_c s̃ Ḣ_Ω) − R_c ((Ω × s)~ + Ω̃ s̃ + s̃ Ω̃) H_Ω)
 //                 + H_Ωᵀ (2 (s̃ R_cᵀ Ḣ_x + J Ḣ_Ω) + (J Ω̃ + Ω̃ J − (J Ω)~) H_Ω),
 //   M = Σ H_xᵀ (m H_x − R_c s̃ H_Ω) + H_Ωᵀ (s̃ R_cᵀ H_x + J H_Ω).
-// Both sums are accumulated station by station into [M | ∂r/∂dq + M C] (addStationTangent);
-// the kernel then subtracts M C once (subtractTwistBracket).
+// The sum in ∂r/∂dq, G = ∂r/∂dq + M C, is accumulated station by station (addStationTangent), M
+// by section_mass_matrix.hpp; the kernel then subtracts M C once (subtractTwistBracket).
 //
 // The coordinate columns ∂r/∂q come from end 2's by frame indifference (objective_tangent.hpp);
 // the inertial and gravity forces of an interpolation whose centre-line tangents and section
@@ -35,44 +35,14 @@
 
 namespace cranesim {
 
-/// [M | G] of one element, 12 × 24: the mass matrix and Σ Hᵀ(…) of the file comment.
-using SectionInertiaTangent = Eigen::Matrix<double, 12, 24>;
-
-/// Adds one station's share of M = Σ H_xᵀ (m H_x − R_c s̃ H_Ω) + H_Ωᵀ (s̃ R_cᵀ H_x + J H_Ω) to the
-/// 12 × 12 block `out`. `map`: the section map H at the station (blocks a[n] I, X[n] of H_x and
-/// W[n] of H_Ω, section rotation Rc), in scalars T. H_x = [a⁰I, X⁰, a¹I, X¹] and
-/// H_Ω = [0, W⁰, 0, W¹]: every column block is Hᵀ [P_f; P_τ] for a 3 × 3 force and torque pair,
-/// 3 × 3 products node by node (no products with H's zero blocks).
-template <class T, class Map, class Out>
-[[gnu::flatten]] void addStationMass(const Map& map, double mass, const Vec3& first_moment, const Mat3& inertia, Out&& out) {
-  const Mat3T<T> RcS = map.Rc * skew<T>(Vec3T<T>(first_moment.cast<T>()));  // R_c s̃
-  const Mat3T<T> SRcT = -RcS.transpose();                                   // s̃ R_cᵀ
-  const Mat3T<T> J = inertia.cast<T>();
-  // The translation columns of end n: aⁿ Hᵀ [m I; s̃ R_cᵀ], one 12 × 3 block for both ends.
-  Eigen::Matrix<T, 12, 3> translation;
-  for (int n = 0; n < 2; ++n) {
-    translation.template middleRows<3>(6 * n) = T(map.a[n] * mass) * Mat3T<T>::Identity();
-    translation.template middleRows<3>(6 * n + 3).noalias() = T(mass) * map.X[n].transpose();
-    translation.template middleRows<3>(6 * n + 3).noalias() += map.W[n].transpose() * SRcT;
-  }
-  for (int n = 0; n < 2; ++n) {
-    out.template middleCols<3>(6 * n).noalias() += T(map.a[n]) * translation;
-    const Mat3T<T> Pf = T(mass) * map.X[n] - RcS * map.W[n], Pt = SRcT * map.X[n] + J * map.W[n];
-    for (int k = 0; k < 2; ++k) {
-      out.template block<3, 3>(6 * k, 6 * n + 3).noalias() += T(map.a[k]) * Pf;
-      out.template block<3, 3>(6 * k + 3, 6 * n + 3).noalias() += map.X[k].transpose() * Pf;
-      out.template block<3, 3>(6 * k + 3, 6 * n + 3).noalias() += map.W[k].transpose() * Pt;
-    }
-  }
-}
-
-/// Adds one station's share to [M | G]: M by addStationMass, G's rotation columns here (G has no
-/// translation columns: Ḣ and H_Ω have none). `rate`: Ḣ along the motion (blocks X[n], W[n]);
-/// `omega`: Ω = H_Ω dq.
+/// Adds one station's share to G = Σ Hᵀ(…) of the file comment: its rotation columns (G has no
+/// translation columns: Ḣ and H_Ω have none). `map`: the section map H at the station (blocks
+/// a[n] I, X[n] of H_x and W[n] of H_Ω, section rotation Rc); `rate`: Ḣ along the motion (blocks
+/// X[n], W[n]); `omega`: Ω = H_Ω dq. Every column block is Hᵀ [P_f; P_τ] for a 3 × 3 force and
+/// torque pair, 3 × 3 products node by node (no products with H's zero blocks).
 template <class Map, class Rate>
 [[gnu::flatten]] void addStationTangent(const Map& map, const Rate& rate, const Vec3& omega, double mass, const Vec3& first_moment,
-                       const Mat3& inertia, SectionInertiaTangent& out) {
-  addStationMass<double>(map, mass, first_moment, inertia, out.leftCols<12>());
+                                        const Mat3& inertia, Eigen::Matrix<double, 12, 12>& G) {
   const Mat3& Rc = map.Rc;
   const Mat3& J = inertia;
   const Mat3 S = skew<double>(first_moment), W = skew<double>(omega);
@@ -84,20 +54,19 @@ template <class Map, class Rate>
     const Mat3 Pf = 2.0 * (mass * rate.X[n] - RcS * rate.W[n]) + gyro_f * map.W[n],
                Pt = 2.0 * (SRcT * rate.X[n] + J * rate.W[n]) + gyro_t * map.W[n];
     for (int k = 0; k < 2; ++k) {
-      out.block<3, 3>(6 * k, 12 + 6 * n + 3).noalias() += map.a[k] * Pf;
-      out.block<3, 3>(6 * k + 3, 12 + 6 * n + 3).noalias() += map.X[k].transpose() * Pf;
-      out.block<3, 3>(6 * k + 3, 12 + 6 * n + 3).noalias() += map.W[k].transpose() * Pt;
+      G.block<3, 3>(6 * k, 6 * n + 3).noalias() += map.a[k] * Pf;
+      G.block<3, 3>(6 * k + 3, 6 * n + 3).noalias() += map.X[k].transpose() * Pf;
+      G.block<3, 3>(6 * k + 3, 6 * n + 3).noalias() += map.W[k].transpose() * Pt;
     }
   }
 }
 
-/// G − M C(dq): C has the blocks ω̃ⁿ (ωⁿ = dq's rotational velocity of node n) on the diagonal of
-/// each node's rotation.
-inline Eigen::Matrix<double, 12, 12> subtractTwistBracket(const SectionInertiaTangent& MG, const Eigen::Matrix<double, 12, 1>& v) {
-  Eigen::Matrix<double, 12, 12> G = MG.rightCols<12>();
+/// G − M C(dq) in place: C has the blocks ω̃ⁿ (ωⁿ = dq's rotational velocity of node n) on the
+/// diagonal of each node's rotation.
+inline void subtractTwistBracket(const Eigen::Matrix<double, 12, 12>& M, const Eigen::Matrix<double, 12, 1>& v,
+                                 Eigen::Matrix<double, 12, 12>& G) {
   for (int n = 0; n < 2; ++n)
-    G.middleCols<3>(6 * n + 3).noalias() -= MG.block<12, 3>(0, 6 * n + 3) * skew<double>(Vec3(v.segment<3>(6 * n + 3)));
-  return G;
+    G.middleCols<3>(6 * n + 3).noalias() -= M.middleCols<3>(6 * n + 3) * skew<double>(Vec3(v.segment<3>(6 * n + 3)));
 }
 
 }  // namespace cranesim

@@ -26,6 +26,7 @@
 // M(t) d(dq)/dt: the rope material enters and leaves with the velocity of the element.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "cranesim/elements/reeled_length.hpp"
@@ -49,14 +50,21 @@ struct SplineRopeKernel : ReeledLength {
   double damping = 0.0;  // Kelvin–Voigt retardation time η, s
   double transverse_damping = 0.0;  // c, N·s (see the file comment)
 
+  /// M = ∫ ρA Nᵀ N ds = m ⊗ I₃ with m_kl = ∫ ρA N_k N_l ds, the Hermite functions' 4 × 4 mass.
   template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const Q<S>&, double t) const {
     const double L = segmentLength(t), rhoA = material.density * section.area;
-    Eigen::Matrix<double, 12, 12> M = Eigen::Matrix<double, 12, 12>::Zero();
+    Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
     for (int g = 0; g < rule.points; ++g) {
-      const auto N = shape(hermiteBasis(rule.xi[g], L).N);
-      M += (rule.weight[g] * L * rhoA) * N.transpose() * N;
+      const std::array<double, 4> N = hermiteBasis(rule.xi[g], L).N;
+      const double w = rule.weight[g] * L * rhoA;
+      for (int l = 0; l < 4; ++l)
+        for (int k = 0; k < 4; ++k) m(k, l) += (w * N[k]) * N[l];
     }
-    return M.cast<S>();
+    Eigen::Matrix<S, 12, 12> M = Eigen::Matrix<S, 12, 12>::Zero();
+    for (int l = 0; l < 4; ++l)
+      for (int k = 0; k < 4; ++k)
+        for (int i = 0; i < 3; ++i) M(3 * k + i, 3 * l + i) = S(m(k, l));
+    return M;
   }
 
   /// `rates`: which L̇ the damping takes (element.hpp, ElementInput::rates).

@@ -63,6 +63,7 @@
 #include "cranesim/elements/section.hpp"
 #include "cranesim/elements/section_inertia_forces.hpp"
 #include "cranesim/elements/section_inertia_tangent.hpp"
+#include "cranesim/elements/section_mass_matrix.hpp"
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/hermite.hpp"
@@ -455,33 +456,22 @@ struct TimoshenkoBeamKernel {
     return FrameT<S>{m.x, m.Rc};
   }
 
-  /// M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds, accumulated block by block (H_x has identity blocks,
-  /// H_Ω zero blocks).
+  /// M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds: the Gauss points as mass stations with mass w ρA, no
+  /// first moment and inertia w ρJ (section_mass_matrix.hpp).
   template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const Q<S>& q, double = 0.0) const {
     return massMatrix<S>(endFrames<S>(q));
   }
 
   template <class S> Eigen::Matrix<S, 12, 12> massMatrix(const EndFrames<S>& e) const {
     const SectionProperties p = section.properties(material);
-    const double rhoA = p.rhoA;
-    const Vec3T<S> J = Vec3(p.rhoIp, p.rhoIy, p.rhoIz).template cast<S>();
+    const Vec3 J(p.rhoIp, p.rhoIy, p.rhoIz);
     const GaussRule& rule = gaussLegendre(mass_points);
-    Eigen::Matrix<S, 12, 12> M = Eigen::Matrix<S, 12, 12>::Zero();
+    SectionMassMatrix<S> M(e.R1, e.Rrel, e.phi, e.Tinv, length);
     for (int g = 0; g < rule.points; ++g) {
-      const SectionMap<S> m = sectionMap<S>(e, rule.xi[g]);
-      const double w = rule.weight[g] * length, wm = w * rhoA;
-      Mat3T<S> JW[2];
-      for (int i = 0; i < 2; ++i) JW[i] = S(w) * (J.asDiagonal() * m.W[i]);
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) {
-          for (int k = 0; k < 3; ++k) M(6 * i + k, 6 * j + k) += S(wm * m.a[i] * m.a[j]);
-          M.template block<3, 3>(6 * i, 6 * j + 3) += S(wm * m.a[i]) * m.X[j];
-          M.template block<3, 3>(6 * i + 3, 6 * j) += S(wm * m.a[j]) * m.X[i].transpose();
-          M.template block<3, 3>(6 * i + 3, 6 * j + 3) +=
-              S(wm) * (m.X[i].transpose() * m.X[j]) + m.W[i].transpose() * JW[j];
-        }
+      const double w = rule.weight[g] * length;
+      M.add(rule.xi[g], w * p.rhoA, Vec3::Zero(), Mat3((w * J).asDiagonal()));
     }
-    return M;
+    return M.matrix();
   }
 
   /// Quadratic-velocity inertial forces and gravity: ∫ H_xᵀ ρA (Ḣ_x dq − g)
@@ -552,13 +542,16 @@ struct TimoshenkoBeamKernel {
   Mat12 stationVelocityTangent(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2, const V<double>& v,
                                const Mat12& K, const Stations& stations, Mat12& M) const {
     const EndFrameRates e = endFrameRates(r1, R1, r2, R2, v);
-    SectionInertiaTangent MG = SectionInertiaTangent::Zero();
+    const EndFrames<double>& f = e.frames;
+    SectionMassMatrix<double> mass_matrix(f.R1, f.Rrel, f.phi, f.Tinv, length);
+    Mat12 G = Mat12::Zero();
     stations([&](double xi, double mass, const Vec3& first_moment, const Mat3& inertia) {
       const SectionMotion m = sectionMotion(e, xi, v);
-      addStationTangent(m.map, m.rate, m.omega, mass, first_moment, inertia, MG);
+      mass_matrix.add(xi, m.E_R, m.E_T, mass, first_moment, inertia);
+      addStationTangent(m.map, m.rate, m.omega, mass, first_moment, inertia, G);
     });
-    M = MG.leftCols<12>();
-    Mat12 G = subtractTwistBracket(MG, v);
+    M = mass_matrix.matrix();
+    subtractTwistBracket(M, v, G);
     if (damped()) {
       const Mat12 Jd = coRotateWithTangent<double>(r1, R1, r2, R2).matrix();
       G.noalias() += damping * (Jd.transpose() * K * Jd);
@@ -605,6 +598,7 @@ struct TimoshenkoBeamKernel {
     SectionMap<double> map;
     SectionMapRate rate;
     Vec3 omega;
+    Mat3 E_R, E_T;  // exp(ξφ̃), T(ξφ)
   };
 
   /// sectionMap and its rate: with E_R = exp(ξφ̃), E_T = T(ξφ) and their rates along ξφ̇ in closed
@@ -626,6 +620,7 @@ struct TimoshenkoBeamKernel {
     out.rate.W[0] = E.R_dot.transpose() - xi * (E.T_dot * f.TinvRrelT + E.T * e.TinvRrelT_dot);
     out.rate.W[1] = xi * (E.T_dot * f.Tinv + E.T * e.Tinv_dot);
     out.omega = m.angularVelocity(v);
+    out.E_R = E.R, out.E_T = E.T;
     return out;
   }
 
