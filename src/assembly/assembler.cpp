@@ -96,17 +96,17 @@ void Assembler::buildPattern() {
   for (const Constraint& c : model_.constraints) {
     const ConstraintSides s = sidesOf(model_, c);
     ConstraintBlocks b;
-    std::vector<int> q_rows, v_directions, q_directions;
-    for (int d : s) v_directions.push_back(vIndex(model_, s, d)), q_directions.push_back(qIndex(model_, s, d));
-    b.g = constraint_pattern_.addBlock(range(c.row, c.rows), v_directions);
-    b.phi_q = coordinate_pattern_.addBlock(range(c.row, c.rows), q_directions);
+    std::vector<int> q_rows, v_directions;
     for (int d : s) {
+      v_directions.push_back(vIndex(model_, s, d));
       b.v_rows.push_back(nq + vIndex(model_, s, d));
       b.q_cols.push_back(qIndex(model_, s, d));
       b.v_cols.push_back(nq + vIndex(model_, s, d));
       q_rows.push_back(qIndex(model_, s, d));
     }
     const std::vector<int> lambda = range(lambdaOffset() + c.row, c.rows);
+    b.g = constraint_pattern_.addBlock(range(c.row, c.rows), v_directions);
+    b.phi_q = coordinate_pattern_.addBlock(range(c.row, c.rows), q_rows);
     b.vq = pattern_.addBlock(b.v_rows, b.q_cols);
     b.vl = pattern_.addBlock(b.v_rows, lambda);
     b.lq = pattern_.addBlock(lambda, b.q_cols);
@@ -396,7 +396,7 @@ ConstraintState Assembler::constraints(double t, const double* q, const double* 
   out.gamma = VecX::Zero(m);
   out.phi_t = VecX::Zero(m);
   const VecX qdot = coordinateRates(q, v);
-  VecX g = VecX::Zero(constraint_pattern_.nonZeros()), pq = VecX::Zero(constraint_pattern_.nonZeros());
+  VecX g = VecX::Zero(constraint_pattern_.nonZeros()), pq = VecX::Zero(coordinate_pattern_.nonZeros());
   for (std::size_t n = 0; n < model_.constraints.size(); ++n) {
     const Constraint& c = model_.constraints[n];
     const std::vector<int>& v_slots = constraint_pattern_.slots(constraint_blocks_[n].g);
