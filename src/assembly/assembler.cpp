@@ -230,7 +230,6 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
   const int nq = model_.nq;
   const double* q = y;
   const double* v = y + nq;
-  const double* lambda = y + lambdaOffset();
   const double* qdot = yp;
   const double* a = yp + nq;
   std::fill(values, values + pattern_.nonZeros(), 0.0);
@@ -262,14 +261,14 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     scatter(node_blocks_[n].qq, J.data());
   }
 
-  // The elements' tangents and the constraints' second derivatives in one loop, each into its
-  // own scratch; their blocks are added in order below.
+  // The elements' and the constraints' tangents in one loop, each into its own scratch; their
+  // blocks are added in order below.
   const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left)};
   const std::size_t elements = model_.elements.size();
   constraint_scratch_.resize(model_.constraints.size());
   jacobian_loop_.run(elements + model_.constraints.size(), [&](std::size_t item) {
     if (item >= elements) {
-      constraint_scratch_[item - elements] = constraintSecondDerivatives(model_, model_.constraints[item - elements], q, t);
+      constraintTangent(item - elements, t, cj, y, yp, constraint_scratch_[item - elements]);
       return;
     }
     const auto& el = *model_.elements[item];
@@ -293,66 +292,81 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     scatter(load_blocks_[block++], J.data());
   }
 
+  for (std::size_t ci = 0; ci < model_.constraints.size(); ++ci) {
+    const ConstraintBlocks& b = constraint_blocks_[ci];
+    const double* block = constraint_scratch_[ci].data();
+    const std::array<int, 7> order{b.qm, b.qq, b.mq, b.vq, b.vl, b.lq, b.lv};
+    for (auto id = order.begin() + (ggl() ? 0 : 3); id != order.end(); ++id) {
+      scatter(*id, block);
+      block += pattern_.slots(*id).size();
+    }
+  }
+}
+
+/// Constraint `ci`'s blocks of the DAE Jacobian, flat in the order jacobian() scatters them:
+/// with GGL qm, qq, mq, then vq, vl, lq, lv.
+void Assembler::constraintTangent(std::size_t ci, double t, double cj, const double* y, const double* yp,
+                                  std::vector<double>& out) const {
+  const int nq = model_.nq;
+  const double* q = y;
+  const double* v = y + nq;
+  const double* lambda = y + lambdaOffset();
+  const double* qdot = yp;
+  const double* a = yp + nq;
+  out.clear();
+  const auto append = [&](const auto& block) { out.insert(out.end(), block.data(), block.data() + block.size()); };
   const SolverSpec& sv = model_.solver;
   const double alpha = sv.baumgarte_alpha, beta = sv.baumgarte_beta;
   using Rows12 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraintRows, 12>;
   using Square12 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 12, 12>;
   using Columns12 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 12, kMaxConstraintRows>;
-  for (std::size_t ci = 0; ci < model_.constraints.size(); ++ci) {
-    const Constraint& c = model_.constraints[ci];
-    const ConstraintBlocks& b = constraint_blocks_[ci];
-    const ConstraintSides s = sidesOf(model_, c);
-    const ConstraintSecondDerivatives& C = constraint_scratch_[ci];
-    const auto vloc = localExtended(model_, s, v, false);
-    const int nd = s.count;
-    const int m = c.rows;
-    // Σ wᵢ ∂Gᵢ/∂q over the constraint's directions: the Jacobian of Gᵀw for w = λ or μ.
-    const auto weightedSecondDerivative = [&](const double* w) {
-      Square12 out = Square12::Zero(nd, nd);
-      for (int i = 0; i < m; ++i)
-        for (int jj = 0; jj < nd; ++jj)
-          for (int kk = 0; kk < nd; ++kk) out(jj, kk) += w[i] * C.dG[i](s.direction[jj], s.direction[kk]);
-      return out;
-    };
-    // Over the constraint's directions: G (vl = Gᵀ, lv), λᵀ∂G/∂q (vq), ∂(G dq + Φ_t)/∂q (dGv), Φ_q.
-    const Square12 vq = weightedSecondDerivative(lambda + c.row);
-    Columns12 vl(nd, m);
-    Rows12 lq(m, nd), lv(m, nd), dGv(m, nd), phi_q(m, nd);
-    for (int i = 0; i < m; ++i) {
-      const Eigen::Matrix<double, 1, kConstraintDirections> dG_v = vloc.transpose() * C.dG[i];
-      for (int jj = 0; jj < nd; ++jj) {
-        const int j = s.direction[jj];
-        vl(jj, i) = lv(i, jj) = C.G(i, j);
-        phi_q(i, jj) = C.phi_q(i, j);
-        dGv(i, jj) = dG_v(j);
-      }
+  const Constraint& c = model_.constraints[ci];
+  const ConstraintSides s = sidesOf(model_, c);
+  const ConstraintSecondDerivatives C = constraintSecondDerivatives(model_, c, q, t);
+  const auto vloc = localExtended(model_, s, v, false);
+  const int nd = s.count;
+  const int m = c.rows;
+  // Σ wᵢ ∂Gᵢ/∂q over the constraint's directions: the Jacobian of Gᵀw for w = λ or μ.
+  const auto weightedSecondDerivative = [&](const double* w) {
+    Square12 sum = Square12::Zero(nd, nd);
+    for (int i = 0; i < m; ++i)
+      for (int jj = 0; jj < nd; ++jj)
+        for (int kk = 0; kk < nd; ++kk) sum(jj, kk) += w[i] * C.dG[i](s.direction[jj], s.direction[kk]);
+    return sum;
+  };
+  // Over the constraint's directions: G (vl = Gᵀ, lv), λᵀ∂G/∂q (vq), ∂(G dq + Φ_t)/∂q (dGv), Φ_q.
+  const Square12 vq = weightedSecondDerivative(lambda + c.row);
+  Columns12 vl(nd, m);
+  Rows12 lq(m, nd), lv(m, nd), dGv(m, nd), phi_q(m, nd);
+  for (int i = 0; i < m; ++i) {
+    const Eigen::Matrix<double, 1, kConstraintDirections> dG_v = vloc.transpose() * C.dG[i];
+    for (int jj = 0; jj < nd; ++jj) {
+      const int j = s.direction[jj];
+      vl(jj, i) = lv(i, jj) = C.G(i, j);
+      phi_q(i, jj) = C.phi_q(i, j);
+      dGv(i, jj) = dG_v(j);
     }
-    if (ggl()) {
-      lq = dGv;
-      const Square12 qq = weightedSecondDerivative(y + muOffset() + c.row);
-      scatter(b.qm, vl.data());
-      scatter(b.qq, qq.data());
-      scatter(b.mq, phi_q.data());
-    } else {
-      // Exact except for ∂Γ/∂q, which needs third derivatives and only slows Newton slightly.
-      const auto qdloc = localExtended(model_, s, qdot, true);
-      auto aloc = localExtended(model_, s, a, false);
-      aloc(kTimeDirection) = 0.0;
-      for (int i = 0; i < m; ++i) {
-        const Eigen::Matrix<double, 1, kConstraintDirections> dG_a = aloc.transpose() * C.dG[i];
-        const Eigen::Matrix<double, kConstraintDirections, 1> G_rate = C.dG[i] * qdloc;
-        for (int kk = 0; kk < nd; ++kk) {
-          const int k = s.direction[kk];
-          lq(i, kk) = dG_a(k) + (2.0 * alpha * beta + cj) * dGv(i, kk) + alpha * alpha * phi_q(i, kk);
-          lv(i, kk) = (cj + 2.0 * alpha * beta) * C.G(i, k) + G_rate(k);
-        }
-      }
-    }
-    scatter(b.vq, vq.data());
-    scatter(b.vl, vl.data());
-    scatter(b.lq, lq.data());
-    scatter(b.lv, lv.data());
   }
+  if (ggl()) {
+    lq = dGv;
+    const Square12 qq = weightedSecondDerivative(y + muOffset() + c.row);
+    append(vl), append(qq), append(phi_q);
+  } else {
+    // Exact except for ∂Γ/∂q, which needs third derivatives and only slows Newton slightly.
+    const auto qdloc = localExtended(model_, s, qdot, true);
+    auto aloc = localExtended(model_, s, a, false);
+    aloc(kTimeDirection) = 0.0;
+    for (int i = 0; i < m; ++i) {
+      const Eigen::Matrix<double, 1, kConstraintDirections> dG_a = aloc.transpose() * C.dG[i];
+      const Eigen::Matrix<double, kConstraintDirections, 1> G_rate = C.dG[i] * qdloc;
+      for (int kk = 0; kk < nd; ++kk) {
+        const int k = s.direction[kk];
+        lq(i, kk) = dG_a(k) + (2.0 * alpha * beta + cj) * dGv(i, kk) + alpha * alpha * phi_q(i, kk);
+        lv(i, kk) = (cj + 2.0 * alpha * beta) * C.G(i, k) + G_rate(k);
+      }
+    }
+  }
+  append(vq), append(vl), append(lq), append(lv);
 }
 
 Eigen::SparseMatrix<double> Assembler::massMatrix(double t, const double* q) const {

@@ -109,6 +109,8 @@ class Assembler {
   };
 
   void buildPattern();
+  void constraintTangent(std::size_t ci, double t, double cj, const double* y, const double* yp,
+                         std::vector<double>& out) const;
   template <class S> Eigen::Matrix<S, 6, 1> loadVector(const Load& load, const double* q, double t,
                                                        bool seed, Limit limit = Limit::Left) const;
 
@@ -135,7 +137,7 @@ class Assembler {
   std::vector<ConstraintBlocks> constraint_blocks_;
   // Per-element and per-constraint scratch written in parallel and reduced in a fixed order.
   mutable std::vector<std::vector<double>> element_scratch_;
-  mutable std::vector<ConstraintSecondDerivatives> constraint_scratch_;
+  mutable std::vector<std::vector<double>> constraint_scratch_;
   mutable ElementLoop residual_loop_, jacobian_loop_;
 };
 
