@@ -77,6 +77,27 @@ TEST_CASE("Series and closed forms of the coefficient functions join continuousl
   CHECK((angularVelocityMapInverse<double>(below * n) - angularVelocityMapInverse<double>(above * n)).norm() < 1e-12);
 }
 
+TEST_CASE("The curvatures b″, c″ of the coefficients equal their closed forms in extended precision", "[rotation]") {
+  // b′ = (a − 2b)/(2θ²), c′ = (b − 3c)/(2θ²) differentiated once more, in long double (the closed
+  // forms cancel less there), either side of the series' switch at θ² = 1; near θ² = 0 against
+  // forward AD of b′ and c′ (their series).
+  for (long double t2 : {0.1L, 0.3L, 0.99L, 1.01L, 4.0L, 9.0L}) {
+    INFO("θ² = " << static_cast<double>(t2));
+    const long double t = std::sqrt(t2), a = std::sin(t) / t, b = (1.0L - std::cos(t)) / t2, c = (t - std::sin(t)) / (t2 * t);
+    const long double da = (std::cos(t) - a) / (2.0L * t2), db = (a - 2.0L * b) / (2.0L * t2), dc = (b - 3.0L * c) / (2.0L * t2);
+    const ExpCoefficientCurvatures closed = expCoefficientCurvatures(static_cast<double>(t2), expCoefficients<double>(static_cast<double>(t2)));
+    CHECK(closed.ddb == Approx(static_cast<double>((da - 4.0L * db) / (2.0L * t2))).epsilon(1e-12));
+    CHECK(closed.ddc == Approx(static_cast<double>((db - 5.0L * dc) / (2.0L * t2))).epsilon(1e-12));
+  }
+  using P = Dual<double, 1>;
+  for (double t2 : {0.0, 1e-6, 1e-3}) {
+    const ExpCoefficients<P> ad = expCoefficients<P>(P(t2, Eigen::Matrix<double, 1, 1>(1.0)));
+    const ExpCoefficientCurvatures closed = expCoefficientCurvatures(t2, expCoefficients<double>(t2));
+    CHECK(closed.ddb == Approx(ad.db.derivatives()(0)).epsilon(1e-12));
+    CHECK(closed.ddc == Approx(ad.dc.derivatives()(0)).epsilon(1e-12));
+  }
+}
+
 TEST_CASE("Re-parameterisation keeps the rotation and maps θ to 2π − θ", "[rotation]") {
   Vec3 phi = Vec3(0.2, -0.5, 0.8).normalized() * (1.3 * std::numbers::pi);
   const Mat3 before = rotationMatrix<double>(phi);

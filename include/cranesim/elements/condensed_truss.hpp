@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "cranesim/elements/objective_tangent.hpp"
+#include "cranesim/elements/section_inertia_coordinate_tangent.hpp"
 #include "cranesim/elements/section_inertia_forces.hpp"
 #include "cranesim/elements/section_mass_matrix.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
@@ -104,15 +105,17 @@ struct CondensedTrussKernel {
 
   /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp): the
   /// elastic and damping forces by forward AD in end 2's six directions, the inertial and gravity
-  /// forces in its three rotation directions, the other columns by frame indifference.
+  /// forces in its three rotation directions (section_inertia_coordinate_tangent.hpp), the other
+  /// columns by frame indifference.
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
+    using D = SectionInertiaCoordinateTangent::D;
+    const V<D> vd = v.cast<D>(), ad = a.cast<D>();
+    SectionInertiaCoordinateTangent inertia(rotationMatrix<double>(Vec3(q.segment<3>(3))).cast<D>(),
+                                            rotationMatrix<D>(seededSecondRotation(q)), vd, &ad, gravity, length);
+    for (const MassStation& st : stations) inertia.add(st.xi, st.mass, st.first_moment, st.inertia);
     return objectiveCoordinateTangent(
-        {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); },
-        [&]<class S>(const Q<S>& qs) {
-          const V<S> as = a.cast<S>();
-          return inertiaAndGravity<S>(qs, v.cast<S>(), &as, gravity);
-        });
+        {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }, inertia.forces());
   }
 
   /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp) and M beside it (element.hpp).
@@ -181,12 +184,8 @@ struct CondensedTrussKernel {
            frame.elasticForce<S>(q.template segment<3>(0), R1, q.template segment<3>(6), R2, v, stiffness);
   }
 
-  /// Inertial (and, with `a`, M a) and gravity forces of the mass stations.
-  template <class S> V<S> inertiaAndGravity(const Q<S>& q, const V<S>& v, const V<S>* a, const Vec3& gravity) const {
-    return inertiaAndGravity<S>(rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
-                                rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v, a, gravity);
-  }
-  /// The same from the end rotations (the forces do not depend on the end positions).
+  /// Inertial (and, with `a`, M a) and gravity forces of the mass stations from the end rotations
+  /// (they do not depend on the end positions).
   template <class S>
   V<S> inertiaAndGravity(const Mat3T<S>& R1, const Mat3T<S>& R2, const V<S>& v, const V<S>* a, const Vec3& gravity) const {
     SectionInertiaForces<S> inertia(R1, R2, v, a, gravity, length);

@@ -71,16 +71,27 @@ Eigen::Matrix<double, 12, 12> objectiveCoordinateTangent(const ObjectiveTangentI
   return objective_detail::fromSecondEnd(in, r, second_end);
 }
 
+/// End 2's rotation vector φ² of q, seeded in three directions.
+inline Vec3T<Dual<double, 3>> seededSecondRotation(const Eigen::Matrix<double, 12, 1>& q) {
+  Vec3T<Dual<double, 3>> phi2;
+  for (int k = 0; k < 3; ++k) phi2(k) = seeded<double, 3>(q(9 + k), k);
+  return phi2;
+}
+
 /// The same for a residual split into elastic forces and inertial and gravity forces that do not
 /// depend on the end positions (material riding on an interpolation driven by the end rotations):
-/// the first by forward AD in end 2's six directions, the second in its three rotation directions.
-template <class Elastic, class Inertial>
+/// the first by forward AD in end 2's six directions, the second given with its derivatives in
+/// the directions of seededSecondRotation (section_inertia_coordinate_tangent.hpp).
+template <class Elastic>
 Eigen::Matrix<double, 12, 12> objectiveCoordinateTangent(const ObjectiveTangentInput& in, const Elastic& elastic,
-                                                         const Inertial& inertial) {
-  Eigen::Matrix<double, 12, 1> r_elastic, r_inertial;
+                                                         const Eigen::Matrix<Dual<double, 3>, 12, 1>& inertial) {
+  Eigen::Matrix<double, 12, 1> r_elastic;
   Eigen::Matrix<double, 12, 6> second_end = segmentDerivative<6>(in.q, 6, elastic, r_elastic);
-  second_end.rightCols<3>() += segmentDerivative<3>(in.q, 9, inertial, r_inertial);
-  return objective_detail::fromSecondEnd(in, r_elastic + r_inertial, second_end);
+  for (int i = 0; i < 12; ++i) {
+    r_elastic(i) += inertial(i).value();
+    second_end.block<1, 3>(i, 3) += inertial(i).derivatives().transpose();
+  }
+  return objective_detail::fromSecondEnd(in, r_elastic, second_end);
 }
 
 }  // namespace cranesim

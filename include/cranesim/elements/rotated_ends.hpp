@@ -86,12 +86,18 @@ struct RotatedEndsBeamKernel {
   }
 
   /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp), as the
-  /// beam's.
+  /// beam's (the inertia's columns of end 2's rotation: section_inertia_coordinate_tangent.hpp).
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
+    using D = SectionInertiaCoordinateTangent::D;
+    const V<D> vb = beamVelocities<double>(v).cast<D>(), ab = beamVelocities<double>(a).cast<D>();
+    SectionInertiaCoordinateTangent inertia(sectionRotation<double>(q, 0).cast<D>(),
+                                            Mat3T<D>(rotationMatrix<D>(seededSecondRotation(q)) * offset_[1].cast<D>()), vb, &ab,
+                                            gravity, beam_.length);
+    beam_.addMassPoints(inertia);
     return objectiveCoordinateTangent(
         {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); },
-        [&]<class S>(const Q<S>& qs) { return inertialAndGravityForce<S>(qs, v.cast<S>(), a.cast<S>(), gravity); });
+        nodeForce<D>(inertia.forces()));
   }
 
   /// The beam's damping forces alone (timoshenko_beam.hpp).

@@ -22,8 +22,9 @@
 // - Projection: H_xᵀ f has the rows N₀ f, N₁ e_x × R¹ᵀ f, N₂ f, N₃ e_x × R²ᵀ f and H_Ωᵀ τ the rows
 //   E_R τ − ξ R_rel T(φ)⁻ᵀ E_Tᵀ τ and ξ T(φ)⁻ᵀ E_Tᵀ τ: sums over the stations of f (in the axes of
 //   end 1) weighted by N₀…N₃, of E_R τ and of ξ E_Tᵀ τ, turned once per call.
-// Scalars: templated on S (double for the residual, a dual number for the Jacobian's coordinate
-// columns, section_inertia_tangent.hpp).
+// Scalars: templated on S (double for the residual; a dual number for the per-call part of the
+// Jacobian's coordinate columns, section_inertia_coordinate_tangent.hpp, whose stations are
+// differentiated in closed form, and for the tests' forward-AD reference of those).
 
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/hermite.hpp"
@@ -107,7 +108,7 @@ template <class S> class SectionInertiaForces {
     return out;
   }
 
- private:
+ protected:
   /// The section at ξ: E_R = exp(ψ̃) with ψ = ξφ, applied through its coefficients, and Ω, Ω̇.
   struct Section {
     Vec3T<S> psi;

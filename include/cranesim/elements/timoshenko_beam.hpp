@@ -61,6 +61,7 @@
 
 #include "cranesim/elements/objective_tangent.hpp"
 #include "cranesim/elements/section.hpp"
+#include "cranesim/elements/section_inertia_coordinate_tangent.hpp"
 #include "cranesim/elements/section_inertia_forces.hpp"
 #include "cranesim/elements/section_inertia_tangent.hpp"
 #include "cranesim/elements/section_mass_matrix.hpp"
@@ -479,38 +480,37 @@ struct TimoshenkoBeamKernel {
   /// With accelerations `a`, M a is added in the same pass (H a joins Ḣ dq), which is cheaper
   /// than building M.
   template <class S>
-  V<S> inertialAndGravityForce(const Q<S>& q, const V<S>& v, const Vec3& gravity, const V<S>* a = nullptr) const {
-    return inertialAndGravityForce<S>(q.template segment<3>(0), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))),
-                                      q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))), v,
-                                      gravity, a);
-  }
-
-  /// The same from the end frames.
-  template <class S>
   V<S> inertialAndGravityForce(const Vec3T<S>&, const Mat3T<S>& R1, const Vec3T<S>&, const Mat3T<S>& R2, const V<S>& v,
                                const Vec3& gravity, const V<S>* a = nullptr) const {
+    SectionInertiaForces<S> inertia(R1, R2, v, a, gravity, length);
+    addMassPoints(inertia);
+    return inertia.forces();
+  }
+
+  /// Calls sum.add(ξ, w ρA, w ρJ) for the Gauss points of the mass rule (weights w in length).
+  template <class Sum> void addMassPoints(Sum& sum) const {
     const SectionProperties p = section.properties(material);
     const Vec3 J(p.rhoIp, p.rhoIy, p.rhoIz);
     const GaussRule& rule = gaussLegendre(mass_points);
-    SectionInertiaForces<S> inertia(R1, R2, v, a, gravity, length);
     for (int gp = 0; gp < rule.points; ++gp) {
       const double wl = rule.weight[gp] * length;
-      inertia.add(rule.xi[gp], wl * p.rhoA, Vec3(wl * J));
+      sum.add(rule.xi[gp], wl * p.rhoA, Vec3(wl * J));
     }
-    return inertia.forces();
   }
 
   /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp): the
   /// elastic and damping forces by forward AD in end 2's six directions, the inertial and gravity
-  /// forces in its three rotation directions, the other columns by frame indifference.
+  /// forces in its three rotation directions (section_inertia_coordinate_tangent.hpp), the other
+  /// columns by frame indifference.
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
+    using D = SectionInertiaCoordinateTangent::D;
+    const V<D> vd = v.cast<D>(), ad = a.cast<D>();
+    SectionInertiaCoordinateTangent inertia(rotationMatrix<double>(Vec3(q.segment<3>(3))).cast<D>(),
+                                            rotationMatrix<D>(seededSecondRotation(q)), vd, &ad, gravity, length);
+    addMassPoints(inertia);
     return objectiveCoordinateTangent(
-        {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); },
-        [&]<class S>(const Q<S>& qs) {
-          const V<S> as = a.cast<S>();
-          return inertialAndGravityForce<S>(qs, v.cast<S>(), gravity, &as);
-        });
+        {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }, inertia.forces());
   }
 
   /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp: the Gauss points as stations

@@ -113,6 +113,27 @@ template <class S> ExpCoefficients<S> expCoefficients(const S& t2) {
   return k;
 }
 
+/// b″ and c″, the derivatives of expCoefficients' b′ and c′ with respect to θ² (what the
+/// coordinate tangent of Ė_T ψ̇ needs, section_inertia_coordinate_tangent.hpp). Below θ² = 1 by
+/// their series b″ = Σₙ₌₂ n(n−1)(−θ²)ⁿ⁻²/(2n+2)!, c″ = Σₙ₌₂ n(n−1)(−θ²)ⁿ⁻²/(2n+3)! (the closed
+/// forms lose ~8 digits to cancellation at θ² = 10⁻²), above it in closed form.
+struct ExpCoefficientCurvatures {
+  double ddb, ddc;
+};
+inline ExpCoefficientCurvatures expCoefficientCurvatures(double t2, const ExpCoefficients<double>& k) {
+  if (t2 >= 1.0) return {(k.da - 4.0 * k.db) / (2.0 * t2), (k.db - 5.0 * k.dc) / (2.0 * t2)};  // from b′ = (a − 2b)/(2θ²), c′ = (b − 3c)/(2θ²)
+  ExpCoefficientCurvatures out{0.0, 0.0};
+  double term = 1.0, factorial_b = 720.0, factorial_c = 5040.0;  // (−θ²)ⁿ⁻², (2n+2)!, (2n+3)! at n = 2
+  for (int n = 2; n <= 12; ++n) {  // the terms fall below 10⁻²⁰ by n = 12
+    out.ddb += n * (n - 1) * term / factorial_b;
+    out.ddc += n * (n - 1) * term / factorial_c;
+    term *= -t2;
+    factorial_b *= (2.0 * n + 3.0) * (2.0 * n + 4.0);
+    factorial_c *= (2.0 * n + 4.0) * (2.0 * n + 5.0);
+  }
+  return out;
+}
+
 /// R = exp(φ̃), T(φ) and their rates along φ̇ = w, in closed form (instead of a forward-AD
 /// direction through rotationAndRateMap): with P = φ̃, W = w̃ and the coefficients of
 /// expCoefficients,
