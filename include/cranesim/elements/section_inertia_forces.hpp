@@ -4,7 +4,7 @@
 // R_c(ξ) = R¹ exp(ξ φ̃), φ = log(R¹ᵀR²)), M a + F_ine + F_g = Σ H_xᵀ f + H_Ωᵀ τ over mass
 // stations (ξ, m, s, J):
 //   f = m (ẍ − g) + R_c (Ω̇ × s + Ω × (Ω × s)),   τ = s × R_cᵀ (ẍ − g) + J Ω̇ + Ω × J Ω.
-// The same sum as timoshenko_beam.hpp's sectionMotion and project, arranged so that a station
+// The sum Σ H_xᵀ f + H_Ωᵀ τ of section_inertia_tangent.hpp's maps, arranged so that a station
 // costs a few vector operations and one small map: no 3 × 12 blocks of H, no forward-AD
 // direction along the motion through the whole section map.
 // - Centre line: ẍ = N₀ r̈¹ + N₂ r̈² − N₁ R¹ k¹ − N₃ R² k² with kⁿ = e_x × ω̇ⁿ + ωⁿ × (e_x × ωⁿ)

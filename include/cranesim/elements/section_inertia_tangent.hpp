@@ -19,8 +19,25 @@
 //   ∂r/∂dq = −M C + Σ H_xᵀ (2 (m Ḣ_x − R_c s̃ Ḣ_Ω) − R_c ((Ω × s)~ + Ω̃ s̃ + s̃ Ω̃) H_Ω)
 //                 + H_Ωᵀ (2 (s̃ R_cᵀ Ḣ_x + J Ḣ_Ω) + (J Ω̃ + Ω̃ J − (J Ω)~) H_Ω),
 //   M = Σ H_xᵀ (m H_x − R_c s̃ H_Ω) + H_Ωᵀ (s̃ R_cᵀ H_x + J H_Ω).
-// The sum in ∂r/∂dq, G = ∂r/∂dq + M C, is accumulated station by station (addStationTangent), M
-// by section_mass_matrix.hpp; the kernel then subtracts M C once (subtractTwistBracket).
+// The sum G = ∂r/∂dq + M C is formed like the mass matrix (section_mass_matrix.hpp), from
+// station sums in the axes of end 1 with everything that does not depend on ξ left outside.
+// With E_R = exp(ψ̃), E_T = T(ψ), ψ = ξφ (they commute, E_R E_T = E_Tᵀ), ω_E = E_T ψ̇ (so
+// Ė_R = E_R ω̃_E), Ω = E_Rᵀ ω¹ + ω_E, the maps split into station factors and per-call selectors
+//   R¹ᵀ H_x = Σ N_j R¹ᵀB_j,   R¹ᵀ Ḣ_x = N₁ Ẏ₁ + N₃ Ẏ₃,   Ẏ₁ = [0, −ω̃¹ẽ_x, 0, 0],  Ẏ₃ = [0, 0, 0, −R_rel ω̃² ẽ_x],
+//   H_Ω = E_Rᵀ P₁ + ξ E_T P_φ,   Ḣ_Ω = −ω̃_E E_Rᵀ P₁ + ξ Ė_T P_φ + ξ E_T Ṗ_φ,
+//   P₁ = [0, I, 0, 0],  P_φ = ∂φ̇/∂dq = [0, −T(φ)⁻¹R_relᵀ, 0, T(φ)⁻¹],  Ṗ_φ its rate,
+// and with the mass matrix's sums μ_jk, U_k, S_k, A₀₁, A₁₁ and these:
+//   Q₁ = E_R (2 s̃ ω̃_E − K) E_Rᵀ,  Q₂ = −ξ E_R (2 s̃ Ė_T + K E_T),  K = (Ω × s)~ + Ω̃ s̃ + s̃ Ω̃,
+//   Y = (g_τ − 2 J ω̃_E) E_Rᵀ,  Z = 2 J Ė_T + g_τ E_T,  g_τ = J Ω̃ + Ω̃ J − (J Ω)~,
+//   F_j = Σ N_j Q₁,  Φ_j = Σ N_j Q₂,  A_11 = Σ E_R Y,  A_φ1 = Σ ξ E_Tᵀ Y,  A_1φ = Σ ξ E_R Z,  A_φφ = Σ ξ² E_Tᵀ Z,
+// G = Σ_j L_j (2 μ_j1 Ẏ₁ + 2 μ_j3 Ẏ₃ + F_j P₁ + Φ_j P_φ − 2 S_j Ṗ_φ)
+//   + P₁ᵀ (2 Ũ₁ Ẏ₁ + 2 Ũ₃ Ẏ₃ + A_11 P₁ + A_1φ P_φ + 2 A₀₁ Ṗ_φ)
+//   + P_φᵀ (−2 S₁ᵀ Ẏ₁ − 2 S₃ᵀ Ẏ₃ + A_φ1 P₁ + A_φφ P_φ + 2 A₁₁ Ṗ_φ),
+// L_j = B_jᵀ R¹ the rows [R¹; 0; 0; 0], [0; ẽ_x; 0; 0], [0; 0; R¹; 0], [0; 0; 0; ẽ_x R_relᵀ] (the
+// terms m Ḣ_x, s̃ R_cᵀ Ḣ_x and J Ṗ_φ need no sums of their own: E_R s̃ E_Rᵀ = ũ, ξ E_Tᵀ s̃ E_Rᵀ =
+// ξ E_T ũ, E_R s̃ E_T = ũ E_Tᵀ). A station costs the mass matrix's five 3 × 3 products and about
+// a dozen more (≈ 2 600 instructions with a first moment and a full inertia, mass matrix
+// included); the kernel then subtracts M C once (subtractTwistBracket).
 //
 // The coordinate columns ∂r/∂q come from end 2's by frame indifference (objective_tangent.hpp);
 // the inertial and gravity forces of an interpolation whose centre-line tangents and section
@@ -30,36 +47,107 @@
 
 #include <Eigen/Dense>
 
-#include "cranesim/math/autodiff.hpp"
+#include "cranesim/elements/section_mass_matrix.hpp"
+#include "cranesim/math/hermite.hpp"
 #include "cranesim/math/rotation.hpp"
 
 namespace cranesim {
 
-/// Adds one station's share to G = Σ Hᵀ(…) of the file comment: its rotation columns (G has no
-/// translation columns: Ḣ and H_Ω have none). `map`: the section map H at the station (blocks
-/// a[n] I, X[n] of H_x and W[n] of H_Ω, section rotation Rc); `rate`: Ḣ along the motion (blocks
-/// X[n], W[n]); `omega`: Ω = H_Ω dq. Every column block is Hᵀ [P_f; P_τ] for a 3 × 3 force and
-/// torque pair, 3 × 3 products node by node (no products with H's zero blocks).
-template <class Map, class Rate>
-[[gnu::flatten]] void addStationTangent(const Map& map, const Rate& rate, const Vec3& omega, double mass, const Vec3& first_moment,
-                                        const Mat3& inertia, Eigen::Matrix<double, 12, 12>& G) {
-  const Mat3& Rc = map.Rc;
-  const Mat3& J = inertia;
-  const Mat3 S = skew<double>(first_moment), W = skew<double>(omega);
-  const Mat3 RcS = Rc * S;             // R_c s̃
-  const Mat3 SRcT = -RcS.transpose();  // s̃ R_cᵀ
-  const Mat3 gyro_f = -Rc * (skew<double>(Vec3(omega.cross(first_moment))) + W * S + S * W);
-  const Mat3 gyro_t = J * W + W * J - skew<double>(Vec3(J * omega));
-  for (int n = 0; n < 2; ++n) {
-    const Mat3 Pf = 2.0 * (mass * rate.X[n] - RcS * rate.W[n]) + gyro_f * map.W[n],
-               Pt = 2.0 * (SRcT * rate.X[n] + J * rate.W[n]) + gyro_t * map.W[n];
-    for (int k = 0; k < 2; ++k) {
-      G.block<3, 3>(6 * k, 6 * n + 3).noalias() += map.a[k] * Pf;
-      G.block<3, 3>(6 * k + 3, 6 * n + 3).noalias() += map.X[k].transpose() * Pf;
-      G.block<3, 3>(6 * k + 3, 6 * n + 3).noalias() += map.W[k].transpose() * Pt;
+/// M and G = ∂r/∂dq + M C(dq) of mass stations riding on the section interpolation (file
+/// comment), from the end frames and their rates along the motion.
+class SectionInertiaTangent : public SectionMassMatrix<double> {
+ public:
+  using Mat12 = Eigen::Matrix<double, 12, 12>;
+
+  /// End rotation R¹, R_rel = R¹ᵀR², φ = log(R_rel), its rate φ̇, T(φ)⁻¹ and T(φ)⁻¹R_relᵀ with
+  /// their rates, the end velocities dq and the length that scales the Hermite slopes.
+  SectionInertiaTangent(const Mat3& R1, const Mat3& Rrel, const Vec3& phi, const Vec3& phi_dot, const Mat3& Tinv,
+                        const Mat3& TinvRrelT, const Mat3& Tinv_dot, const Mat3& TinvRrelT_dot,
+                        const Eigen::Matrix<double, 12, 1>& v, double length)
+      : SectionMassMatrix<double>(R1, Rrel, phi, Tinv, length),
+        phi_dot_(phi_dot),
+        omega1_(v.segment<3>(3)),
+        omega2_(v.segment<3>(9)),
+        TinvRrelT_(TinvRrelT),
+        Tinv_dot_(Tinv_dot),
+        TinvRrelT_dot_(TinvRrelT_dot) {
+    for (int j = 0; j < 4; ++j) F_[j].setZero(), Phi_[j].setZero();
+    A_11_.setZero(), A_phi1_.setZero(), A_1phi_.setZero(), A_phiphi_.setZero();
+  }
+
+  /// Adds a mass station: mass m, first moment s and inertia J about the axis point (section
+  /// axes) on the section at ξ.
+  [[gnu::flatten]] void add(double xi, double mass, const Vec3& first_moment, const Mat3& inertia) {
+    const HermiteBasis h = hermiteBasis(xi, length_);
+    const Vec3 psi_dot = xi * phi_dot_;
+    const RotationAndRateMapRates<double> E = rotationAndRateMapRates<double>(Vec3(xi * phi_), psi_dot);
+    addStation(h, xi, E.R, E.T, mass, first_moment, inertia);
+    const Mat3& J = inertia;
+    const Vec3 omega_E = E.T * psi_dot;
+    const Vec3 omega = E.R.transpose() * omega1_ + omega_E;
+    const Mat3 We = skew<double>(omega_E), W = skew<double>(omega);
+    const Mat3 g_tau = J * W + W * J - skew<double>(Vec3(J * omega));
+    const Mat3 Y = (g_tau - 2.0 * (J * We)) * E.R.transpose();
+    const Mat3 Z = 2.0 * (J * E.T_dot) + g_tau * E.T;
+    A_11_.noalias() += E.R * Y;
+    A_phi1_.noalias() += xi * (E.T.transpose() * Y);
+    A_1phi_.noalias() += xi * (E.R * Z);
+    A_phiphi_.noalias() += (xi * xi) * (E.T.transpose() * Z);
+    if (first_moment == Vec3::Zero()) return;
+    first_moments_ = true;
+    const Mat3 Ss = skew<double>(first_moment);
+    const Mat3 K = skew<double>(Vec3(omega.cross(first_moment))) + W * Ss + Ss * W;
+    const Mat3 Q1 = E.R * (2.0 * (Ss * We) - K) * E.R.transpose();
+    const Mat3 Q2 = -xi * (E.R * (2.0 * (Ss * E.T_dot) + K * E.T));
+    for (int j = 0; j < 4; ++j) {
+      F_[j] += h.N[j] * Q1;
+      Phi_[j] += h.N[j] * Q2;
     }
   }
-}
+
+  /// G = ∂r/∂dq + M C of the stations added (file comment); its translation columns are zero.
+  /// Without first moments (a beam's Gauss points) F_j, Φ_j, S_j and U_k vanish.
+  Mat12 velocityTangent() const {
+    const Mat3 ex = skew<double>(Vec3(Vec3::UnitX()));
+    const Mat3 Y1 = -(skew<double>(omega1_) * ex), Y3 = -(Rrel_ * (skew<double>(omega2_) * ex));
+    // The two column blocks (rotations of ends 1, 2) of a row block; add() adds A P₁ + B P_φ + C Ṗ_φ.
+    struct Columns {
+      Mat3 c[2];
+    };
+    const auto add = [&](Columns& x, const Mat3& A, const Mat3& B, const Mat3& C) {
+      x.c[0] += A - B * TinvRrelT_ - C * TinvRrelT_dot_;
+      x.c[1] += B * Tinv_ + C * Tinv_dot_;
+    };
+    Columns row[4];
+    for (int j = 0; j < 4; ++j) {
+      row[j].c[0] = (2.0 * mu(j, 1)) * Y1, row[j].c[1] = (2.0 * mu(j, 3)) * Y3;
+      if (first_moments_) add(row[j], F_[j], Phi_[j], Mat3(-2.0 * S_[j]));
+    }
+    Columns turn{{Mat3::Zero(), Mat3::Zero()}}, twist{{Mat3::Zero(), Mat3::Zero()}};
+    add(turn, A_11_, A_1phi_, Mat3(2.0 * A01_));
+    add(twist, A_phi1_, A_phiphi_, Mat3(2.0 * A11_));
+    if (first_moments_) {
+      turn.c[0].noalias() += 2.0 * (skew<double>(U_[1]) * Y1), turn.c[1].noalias() += 2.0 * (skew<double>(U_[3]) * Y3);
+      twist.c[0].noalias() -= 2.0 * (S_[1].transpose() * Y1), twist.c[1].noalias() -= 2.0 * (S_[3].transpose() * Y3);
+    }
+    const Mat3 L3 = ex * Rrel_.transpose();
+    Mat12 G = Mat12::Zero();
+    for (int n = 0; n < 2; ++n) {
+      G.block<3, 3>(0, 6 * n + 3).noalias() = R1_ * row[0].c[n];
+      G.block<3, 3>(3, 6 * n + 3).noalias() = ex * row[1].c[n] + turn.c[n] - TinvRrelT_.transpose() * twist.c[n];
+      G.block<3, 3>(6, 6 * n + 3).noalias() = R1_ * row[2].c[n];
+      G.block<3, 3>(9, 6 * n + 3).noalias() = L3 * row[3].c[n] + Tinv_.transpose() * twist.c[n];
+    }
+    return G;
+  }
+
+ private:
+  Vec3 phi_dot_, omega1_, omega2_;
+  Mat3 TinvRrelT_, Tinv_dot_, TinvRrelT_dot_;
+  Mat3 F_[4], Phi_[4];  // Σ N_j Q₁, Σ N_j Q₂
+  Mat3 A_11_, A_phi1_, A_1phi_, A_phiphi_;
+  bool first_moments_ = false;  // a station with s ≠ 0 was added
+};
 
 /// G − M C(dq) in place: C has the blocks ω̃ⁿ (ωⁿ = dq's rotational velocity of node n) on the
 /// diagonal of each node's rotation.

@@ -48,24 +48,8 @@ template <class S> class SectionMassMatrix {
   }
 
   /// The same with E_R = exp(ξφ̃) and E_T = T(ξφ) at hand.
-  [[gnu::flatten]] void add(double xi, const Mat3T<S>& ER, const Mat3T<S>& ET, double mass, const Vec3& first_moment,
-                            const Mat3& inertia) {
-    const HermiteBasis h = hermiteBasis(xi, length_);
-    for (int k = 0; k < 4; ++k)
-      for (int l = k; l < 4; ++l) mu_[k][l] += S(mass * h.N[k] * h.N[l]);
-    if (first_moment != Vec3::Zero()) {
-      const Vec3T<S> u = ER * first_moment.cast<S>();
-      const Mat3T<S> uET = skew<S>(u) * ET.transpose();
-      for (int k = 0; k < 4; ++k) {
-        U_[k] += S(h.N[k]) * u;
-        S_[k] += S(xi * h.N[k]) * uET;
-      }
-    }
-    const Mat3T<S> J = inertia.cast<S>();
-    const Mat3T<S> RJ = ER * J, TJ = ET.transpose() * J;
-    A00_.noalias() += RJ * ER.transpose();
-    A01_.noalias() += S(xi) * (RJ * ET);
-    A11_.noalias() += S(xi * xi) * (TJ * ET);
+  void add(double xi, const Mat3T<S>& ER, const Mat3T<S>& ET, double mass, const Vec3& first_moment, const Mat3& inertia) {
+    addStation(hermiteBasis(xi, length_), xi, ER, ET, mass, first_moment, inertia);
   }
 
   /// M of the stations added (file comment).
@@ -84,7 +68,6 @@ template <class S> class SectionMassMatrix {
     const M3 D01 = X - Rrel_ * D11;
     const M3 D[2][2] = {{M3(A00_ - X * RrelT - Rrel_ * X.transpose() + Rrel_ * D11 * RrelT), D01},
                         {M3(D01.transpose()), D11}};
-    const auto mu = [&](int k, int l) { return k <= l ? mu_[k][l] : mu_[l][k]; };
     Mat12 M;
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 2; ++j) {
@@ -99,7 +82,30 @@ template <class S> class SectionMassMatrix {
     return M;
   }
 
- private:
+ protected:
+  /// add with the station's Hermite basis h at hand.
+  [[gnu::flatten]] void addStation(const HermiteBasis& h, double xi, const Mat3T<S>& ER, const Mat3T<S>& ET, double mass,
+                            const Vec3& first_moment, const Mat3& inertia) {
+    for (int k = 0; k < 4; ++k)
+      for (int l = k; l < 4; ++l) mu_[k][l] += S(mass * h.N[k] * h.N[l]);
+    if (first_moment != Vec3::Zero()) {
+      const Vec3T<S> u = ER * first_moment.cast<S>();
+      const Mat3T<S> uET = skew<S>(u) * ET.transpose();
+      for (int k = 0; k < 4; ++k) {
+        U_[k] += S(h.N[k]) * u;
+        S_[k] += S(xi * h.N[k]) * uET;
+      }
+    }
+    const Mat3T<S> J = inertia.cast<S>();
+    const Mat3T<S> RJ = ER * J, TJ = ET.transpose() * J;
+    A00_.noalias() += RJ * ER.transpose();
+    A01_.noalias() += S(xi) * (RJ * ET);
+    A11_.noalias() += S(xi * xi) * (TJ * ET);
+  }
+
+  /// μ_kl = Σ m N_k N_l.
+  S mu(int k, int l) const { return k <= l ? mu_[k][l] : mu_[l][k]; }
+
   double length_;
   Mat3T<S> R1_, Rrel_;
   Vec3T<S> phi_;

@@ -405,56 +405,13 @@ struct TimoshenkoBeamKernel {
                         q.template segment<3>(6), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9))));
   }
 
-  /// Section motion at ξ: centre line x and its velocity ẋ = a¹ ṙ¹ + X¹ ω¹ + a² ṙ² + X² ω²,
-  /// section rotation R_c and its body angular velocity Ω = W¹ ω¹ + W² ω², i.e. the blocks of
-  /// H_x = [a¹I, X¹, a²I, X²] and H_Ω = [0, W¹, 0, W²].
-  template <class T> struct SectionMap {
-    double a[2];
-    Mat3T<T> X[2], W[2];
-    Vec3T<T> x;
-    Mat3T<T> Rc;
-
-    Vec3T<T> angularVelocity(const Eigen::Matrix<T, 12, 1>& v) const {
-      return W[0] * v.template segment<3>(3) + W[1] * v.template segment<3>(9);
-    }
-    /// H_xᵀ f + H_Ωᵀ m.
-    Eigen::Matrix<T, 12, 1> project(const Vec3T<T>& f, const Vec3T<T>& m) const {
-      Eigen::Matrix<T, 12, 1> out;
-      out << T(a[0]) * f, X[0].transpose() * f + W[0].transpose() * m, T(a[1]) * f,
-          X[1].transpose() * f + W[1].transpose() * m;
-      return out;
-    }
-  };
-
-  /// H_x's blocks X[n] = −Nₙ' Rⁿ ẽ_x = [0, −Nₙ' Rⁿ e_z, Nₙ' Rⁿ e_y] (Nₙ' = N₁, N₃), linear in the
-  /// end rotations: with their rates Ṙⁿ instead, the blocks' rates.
-  template <class T> static void slopeBlocks(const HermiteBasis& h, const Mat3T<T>& R1, const Mat3T<T>& R2, Mat3T<T> (&X)[2]) {
-    const T n1(-h.N[1]), n3(-h.N[3]);
-    X[0] << Vec3T<T>::Zero(), n1 * R1.col(2), -n1 * R1.col(1);
-    X[1] << Vec3T<T>::Zero(), n3 * R2.col(2), -n3 * R2.col(1);
-  }
-
-  template <class T> SectionMap<T> sectionMap(const EndFrames<T>& e, double xi) const {
-    const HermiteBasis h = hermiteBasis(xi, length);
-    SectionMap<T> m;
-    // x = N0¹ r¹ + N1¹ R¹e_x + N0² r² + N1² R²e_x (A-9 with unit end slopes); d(Re_x)/dt = −R ẽ_x ω,
-    // where R ẽ_x = [0, R e_z, −R e_y].
-    m.x = T(h.N[0]) * e.r1 + T(h.N[1]) * e.R1.col(0) + T(h.N[2]) * e.r2 + T(h.N[3]) * e.R2.col(0);
-    m.a[0] = h.N[0], m.a[1] = h.N[2];
-    slopeBlocks<T>(h, e.R1, e.R2, m.X);
-    // R_c = R¹ exp(ξφ̃): Ω = exp(ξφ̃)ᵀ ω¹ + ξ T(ξφ) φ̇, φ̇ = T(φ)⁻¹ (ω² − Rrelᵀ ω¹) (2-10, B-8).
-    const RotationAndRateMap<T> E = rotationAndRateMap<T>(Vec3T<T>(T(xi) * e.phi));
-    const Mat3T<T> xT = T(xi) * E.T;
-    m.Rc = e.R1 * E.R;
-    m.W[0] = E.R.transpose() - xT * e.TinvRrelT;
-    m.W[1] = xT * e.Tinv;
-    return m;
-  }
-
-  /// Position and rotation of the section at ξ ∈ [0, 1] (the interpolation used for inertia).
+  /// Position and rotation of the section at ξ ∈ [0, 1] (the interpolation used for inertia):
+  /// x = N0¹ r¹ + N1¹ R¹e_x + N0² r² + N1² R²e_x (A-9 with unit end slopes), R_c = R¹ exp(ξφ̃).
   template <class S> FrameT<S> sectionFrame(const Q<S>& q, double xi) const {
-    const SectionMap<S> m = sectionMap<S>(endFrames<S>(q), xi);
-    return FrameT<S>{m.x, m.Rc};
+    const EndFrames<S> e = endFrames<S>(q);
+    const HermiteBasis h = hermiteBasis(xi, length);
+    return FrameT<S>{Vec3T<S>(S(h.N[0]) * e.r1 + S(h.N[1]) * e.R1.col(0) + S(h.N[2]) * e.r2 + S(h.N[3]) * e.R2.col(0)),
+                     Mat3T<S>(e.R1 * rotationMatrix<S>(Vec3T<S>(S(xi) * e.phi)))};
   }
 
   /// M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds: the Gauss points as mass stations with mass w ρA, no
@@ -543,28 +500,33 @@ struct TimoshenkoBeamKernel {
                                const Mat12& K, const Stations& stations, Mat12& M) const {
     const EndFrameRates e = endFrameRates(r1, R1, r2, R2, v);
     const EndFrames<double>& f = e.frames;
-    SectionMassMatrix<double> mass_matrix(f.R1, f.Rrel, f.phi, f.Tinv, length);
-    Mat12 G = Mat12::Zero();
-    stations([&](double xi, double mass, const Vec3& first_moment, const Mat3& inertia) {
-      const SectionMotion m = sectionMotion(e, xi, v);
-      mass_matrix.add(xi, m.E_R, m.E_T, mass, first_moment, inertia);
-      addStationTangent(m.map, m.rate, m.omega, mass, first_moment, inertia, G);
-    });
-    M = mass_matrix.matrix();
+    SectionInertiaTangent inertia(f.R1, f.Rrel, f.phi, e.phi_dot, f.Tinv, f.TinvRrelT, e.Tinv_dot, e.TinvRrelT_dot, v, length);
+    stations([&](double xi, double mass, const Vec3& first_moment, const Mat3& J) { inertia.add(xi, mass, first_moment, J); });
+    M = inertia.matrix();
+    Mat12 G = inertia.velocityTangent();
     subtractTwistBracket(M, v, G);
     if (damped()) {
+      // η J_dᵀ K J_d through J_d's seven nonzero rows (ψ¹, u²_x, ψ²) and K between them.
+      constexpr std::array<int, 7> rows{3, 4, 5, 6, 9, 10, 11};
       const Mat12 Jd = coRotateWithTangent<double>(r1, R1, r2, R2).matrix();
-      G.noalias() += damping * (Jd.transpose() * K * Jd);
+      Eigen::Matrix<double, 7, 12> J7;
+      Eigen::Matrix<double, 7, 7> K7;
+      for (int i = 0; i < 7; ++i) {
+        J7.row(i) = Jd.row(rows[i]);
+        for (int j = 0; j < 7; ++j) K7(i, j) = K(rows[i], rows[j]);
+      }
+      const Eigen::Matrix<double, 7, 12> KJ = K7.lazyProduct(J7);
+      G.noalias() += damping * J7.transpose().lazyProduct(KJ);
     }
     return G;
   }
 
   /// The end frames and the rates along the motion (dq held constant) of what the section maps
-  /// take from them: Ṙⁿ = Rⁿ ω̃ⁿ, φ̇, and those of T(φ)⁻¹ and T(φ)⁻¹ R_relᵀ (one forward-AD
-  /// direction through the end frames, once per call).
+  /// take from them: φ̇ and the rates of T(φ)⁻¹ and T(φ)⁻¹ R_relᵀ (one forward-AD direction
+  /// through the end frames, Ṙⁿ = Rⁿ ω̃ⁿ, once per call).
   struct EndFrameRates {
     EndFrames<double> frames;
-    Mat3 R1_dot, R2_dot, Tinv_dot, TinvRrelT_dot;
+    Mat3 Tinv_dot, TinvRrelT_dot;
     Vec3 phi_dot;
   };
   EndFrameRates endFrameRates(const Vec3& r1, const Mat3& R1, const Vec3& r2, const Mat3& R2, const V<double>& v) const {
@@ -577,7 +539,7 @@ struct TimoshenkoBeamKernel {
         R2p(i, j) = P(R2(i, j), Eigen::Matrix<double, 1, 1>(dR2(i, j)));
       }
     const EndFrames<P> moving = endFrames<P>(r1.cast<P>(), R1p, r2.cast<P>(), R2p);
-    EndFrameRates out{endFrames<double>(r1, R1, r2, R2), dR1, dR2, Mat3(), Mat3(), Vec3()};
+    EndFrameRates out{endFrames<double>(r1, R1, r2, R2), Mat3(), Mat3(), Vec3()};
     for (int i = 0; i < 3; ++i) {
       out.phi_dot(i) = moving.phi(i).derivatives()(0);
       for (int j = 0; j < 3; ++j) {
@@ -585,42 +547,6 @@ struct TimoshenkoBeamKernel {
         out.TinvRrelT_dot(i, j) = moving.TinvRrelT(i, j).derivatives()(0);
       }
     }
-    return out;
-  }
-
-  /// Ḣ along the motion: the rates of H_x's blocks X[n] and H_Ω's W[n] (its a[n] are constant).
-  struct SectionMapRate {
-    Mat3 X[2], W[2];
-  };
-  /// The section at ξ: its map H, the rate Ḣ along the motion and the angular velocity
-  /// Ω = H_Ω dq (what section_inertia_tangent.hpp needs).
-  struct SectionMotion {
-    SectionMap<double> map;
-    SectionMapRate rate;
-    Vec3 omega;
-    Mat3 E_R, E_T;  // exp(ξφ̃), T(ξφ)
-  };
-
-  /// sectionMap and its rate: with E_R = exp(ξφ̃), E_T = T(ξφ) and their rates along ξφ̇ in closed
-  /// form (rotationAndRateMapRates), W¹ = E_Rᵀ − ξ E_T T(φ)⁻¹R_relᵀ and W² = ξ E_T T(φ)⁻¹ differentiate
-  /// as products; X[n] as slopeBlocks of Ṙⁿ.
-  [[gnu::flatten]] SectionMotion sectionMotion(const EndFrameRates& e, double xi, const V<double>& v) const {
-    const EndFrames<double>& f = e.frames;
-    const HermiteBasis h = hermiteBasis(xi, length);
-    SectionMotion out;
-    SectionMap<double>& m = out.map;
-    m.x = h.N[0] * f.r1 + h.N[1] * f.R1.col(0) + h.N[2] * f.r2 + h.N[3] * f.R2.col(0);
-    m.a[0] = h.N[0], m.a[1] = h.N[2];
-    slopeBlocks<double>(h, f.R1, f.R2, m.X);
-    slopeBlocks<double>(h, e.R1_dot, e.R2_dot, out.rate.X);
-    const RotationAndRateMapRates<double> E = rotationAndRateMapRates<double>(Vec3(xi * f.phi), Vec3(xi * e.phi_dot));
-    m.Rc = f.R1 * E.R;
-    m.W[0] = E.R.transpose() - xi * (E.T * f.TinvRrelT);
-    m.W[1] = xi * (E.T * f.Tinv);
-    out.rate.W[0] = E.R_dot.transpose() - xi * (E.T_dot * f.TinvRrelT + E.T * e.TinvRrelT_dot);
-    out.rate.W[1] = xi * (E.T_dot * f.Tinv + E.T * e.Tinv_dot);
-    out.omega = m.angularVelocity(v);
-    out.E_R = E.R, out.E_T = E.T;
     return out;
   }
 
