@@ -10,6 +10,14 @@
 namespace cranesim {
 namespace {
 
+/// The parts of the DAE's y = [q, v, λ, …] and ẏ = [q̇, a, …].
+struct DaeState {
+  const double *q, *v, *lambda, *qdot, *a;
+};
+DaeState daeState(const double* y, const double* yp, int nq, int lambda_offset) {
+  return {y, y + nq, y + lambda_offset, yp, yp + nq};
+}
+
 std::vector<int> range(int first, int count) {
   std::vector<int> out(count);
   for (int k = 0; k < count; ++k) out[k] = first + k;
@@ -159,11 +167,7 @@ Eigen::Matrix<S, 6, 1> Assembler::loadVector(const Load& load, const double* q, 
 
 void Assembler::residual(double t, const double* y, const double* yp, double* res) const {
   const int nq = model_.nq;
-  const double* q = y;
-  const double* v = y + nq;
-  const double* lambda = y + lambdaOffset();
-  const double* qdot = yp;
-  const double* a = yp + nq;
+  const auto [q, v, lambda, qdot, a] = daeState(y, yp, nq, lambdaOffset());
   std::fill(res, res + size_, 0.0);
   double* res_v = res + nq;
 
@@ -227,11 +231,7 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
 
 void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
                          double* values) const {
-  const int nq = model_.nq;
-  const double* q = y;
-  const double* v = y + nq;
-  const double* qdot = yp;
-  const double* a = yp + nq;
+  const auto [q, v, lambda, qdot, a] = daeState(y, yp, model_.nq, lambdaOffset());
   std::fill(values, values + pattern_.nonZeros(), 0.0);
   const auto scatter = [&](int block, const double* local) {
     const auto& slots = pattern_.slots(block);
@@ -307,12 +307,7 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
 /// with GGL qm, qq, mq, then vq, vl, lq, lv.
 void Assembler::constraintTangent(std::size_t ci, double t, double cj, const double* y, const double* yp,
                                   std::vector<double>& out) const {
-  const int nq = model_.nq;
-  const double* q = y;
-  const double* v = y + nq;
-  const double* lambda = y + lambdaOffset();
-  const double* qdot = yp;
-  const double* a = yp + nq;
+  const auto [q, v, lambda, qdot, a] = daeState(y, yp, model_.nq, lambdaOffset());
   out.clear();
   const auto append = [&](const auto& block) { out.insert(out.end(), block.data(), block.data() + block.size()); };
   const SolverSpec& sv = model_.solver;
