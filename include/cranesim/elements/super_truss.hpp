@@ -371,8 +371,12 @@ struct SuperTrussKernel {
       const Mat12 Gk = m.beam.velocityTangent(end[0]->state.r, Mat3(end[0]->state.R * m.relative[0]), end[1]->state.r,
                                               Mat3(end[1]->state.R * m.relative[1]), Eigen::Matrix<double, 12, 1>(T * v),
                                               m.stiffness, Mk);
-      MG.leftCols<12>().noalias() += T.transpose() * (Mk * T);
-      MG.rightCols<12>().noalias() += T.transpose() * (Gk * T + Mk * D);
+      // Coefficient-based products: at 12 × 12 Eigen's general product spends about as much on
+      // packing its operands as on the sums (1.5× slower here).
+      const Mat12 MkT = Mk.lazyProduct(T);
+      const Mat12 GkT_MkD = Gk.lazyProduct(T) + Mk.lazyProduct(D);
+      MG.leftCols<12>().noalias() += T.transpose().lazyProduct(MkT);
+      MG.rightCols<12>().noalias() += T.transpose().lazyProduct(GkT_MkD);
     };
     Tangent MG = Tangent::Zero();
     tbb::this_task_arena::isolate([&] {
