@@ -41,9 +41,10 @@
 // M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds and, by d'Alembert (3-45, C-36),
 // F_ine = ∫ (ρA H_xᵀ Ḣ_x dq + H_Ωᵀ (ρJ Ḣ_Ω dq + Ω × ρJ Ω)) ds. Since Ṁ = ∫ (ḢᵀWH + HᵀWḢ) ds,
 // M d(dq)/dt = −F_ine gives dT/dt = dqᵀ M d(dq)/dt + ½ dqᵀ Ṁ dq = 0 exactly: the inertial terms
-// do no work. H is written explicitly (the mass matrix, the velocity tangent); Ḣ dq is its
-// derivative along the motion (one forward-AD direction), and the forces are evaluated in the
-// arrangement of section_inertia_forces.hpp, without H's blocks. Gravity (3-47):
+// do no work. The mass matrix and the velocity tangent are sums over the Gauss points with H's
+// per-call factors taken out (section_mass_matrix.hpp, section_inertia_tangent.hpp; the rates
+// of T(φ)⁻¹ along the motion by one forward-AD direction per call), and the forces are evaluated
+// in the arrangement of section_inertia_forces.hpp, without H's blocks. Gravity (3-47):
 // F_g = −∫ ρA H_xᵀ g ds, the exact gradient of −∫ ρA g·x ds.
 // At the undeformed state M is the Euler–Bernoulli consistent mass plus rotary inertia with
 // linear rotations. Quadrature: `mass_points` = 4 (exact for the cubic centre line at rest),
