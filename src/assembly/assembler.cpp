@@ -130,6 +130,27 @@ void Assembler::buildPattern() {
   pattern_.finalize(size_);
   constraint_pattern_.finalize(model_.nv);
   coordinate_pattern_.finalize(model_.nq);
+  listJacobianBlocks();
+}
+
+void Assembler::listJacobianBlocks() {
+  const auto list = [&](int block) { return jacobian_gather_.add(pattern_, block); };
+  std::vector<std::size_t> qv_at;
+  for (NodeBlocks& b : node_blocks_) {
+    qv_at.push_back(list(b.qv));
+    b.qq_at = list(b.qq);
+  }
+  for (int block : element_blocks_) element_at_.push_back(list(block));
+  for (int block : load_blocks_) load_at_.push_back(list(block));
+  for (ConstraintBlocks& b : constraint_blocks_) {
+    const std::array<int, 7> order{b.qm, b.qq, b.mq, b.vq, b.vl, b.lq, b.lv};
+    b.tangent_at = jacobian_gather_.bufferSize();
+    for (auto id = order.begin() + (ggl() ? 0 : 3); id != order.end(); ++id) list(*id);
+  }
+  jacobian_gather_.finalize(pattern_);
+  jacobian_buffer_.assign(jacobian_gather_.bufferSize(), 0.0);
+  for (std::size_t n = 0; n < node_blocks_.size(); ++n)  // q̇ − K(q) v: ∂/∂v = −K(q) with K's diagonal of 1
+    std::fill_n(jacobian_buffer_.begin() + qv_at[n], model_.nodes[n].size(), -1.0);
 }
 
 template <class S>
@@ -232,21 +253,40 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
 void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
                          double* values) const {
   const auto [q, v, lambda, qdot, a] = daeState(y, yp, model_.nq, lambdaOffset());
-  std::fill(values, values + pattern_.nonZeros(), 0.0);
-  const auto scatter = [&](int block, const double* local) {
-    const auto& slots = pattern_.slots(block);
-    for (std::size_t k = 0; k < slots.size(); ++k) values[slots[k]] += local[k];
-  };
+  double* buffer = jacobian_buffer_.data();
+  // The elements', the constraints' and, as one more item, the nodes' and loads' blocks, each
+  // into its own place in the buffer; then every value gathered from its blocks.
+  const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left)};
+  const std::size_t elements = model_.elements.size(), constraints = model_.constraints.size();
+  jacobian_loop_.run(elements + constraints + 1, [&](std::size_t item) {
+    if (item == elements + constraints) {
+      nodeAndLoadTangents(t, cj, q, qdot, buffer);
+      return;
+    }
+    if (item >= elements) {
+      constraintTangent(item - elements, t, cj, y, yp, buffer + constraint_blocks_[item - elements].tangent_at);
+      return;
+    }
+    const auto& el = *model_.elements[item];
+    double* out = buffer + element_at_[item];
+    if (!coordinate_jacobian_only_) {
+      el.jacobian(in, cj, out);
+      return;
+    }
+    const std::size_t coordinates = el.size() * el.coordinateIndices().size();
+    el.coordinateJacobian(in, out);
+    std::fill(out + coordinates, out + coordinates + el.size() * el.size(), 0.0);
+  });
+  jacobian_gather_.gather(buffer, values);
+}
 
-  std::array<double, kMaxNodeSize> minus_one, cj_diagonal;
-  minus_one.fill(-1.0);
-  cj_diagonal.fill(cj);
+void Assembler::nodeAndLoadTangents(double t, double cj, const double* q, const double* qdot, double* buffer) const {
   using NodeBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxNodeSize, kMaxNodeSize>;
   for (std::size_t n = 0; n < model_.nodes.size(); ++n) {
     const Node& node = model_.nodes[n];
-    scatter(node_blocks_[n].qv, minus_one.data());
+    double* out = buffer + node_blocks_[n].qq_at;
     if (!node.hasRotation()) {
-      scatter(node_blocks_[n].qq, cj_diagonal.data());
+      std::fill_n(out, node.size(), cj);
       continue;
     }
     // ∂/∂q (K(q) q̇) + cj K(q) with K = diag(I, T(φ), 1…)
@@ -255,61 +295,25 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     for (int k = 0; k < 3; ++k) phi(k) = seeded<double, 3>(q[node.q + 3 + k], k);
     const Vec3T<D> w = angularVelocityMap<D>(phi) * Vec3(qdot + node.q + 3).cast<D>();
     const int size = node.size();
-    NodeBlock J = cj * NodeBlock::Identity(size, size);
+    Eigen::Map<NodeBlock> J(out, size, size);
+    J = cj * NodeBlock::Identity(size, size);
     J.block<3, 3>(3, 3) = cj * angularVelocityMap<double>(Vec3(q + node.q + 3));
     for (int k = 0; k < 3; ++k) J.block<1, 3>(3 + k, 3) += w(k).derivatives().transpose();
-    scatter(node_blocks_[n].qq, J.data());
   }
-
-  // The elements' and the constraints' tangents in one loop, each into its own scratch; their
-  // blocks are added in order below.
-  const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left)};
-  const std::size_t elements = model_.elements.size();
-  constraint_scratch_.resize(model_.constraints.size());
-  jacobian_loop_.run(elements + model_.constraints.size(), [&](std::size_t item) {
-    if (item >= elements) {
-      constraintTangent(item - elements, t, cj, y, yp, constraint_scratch_[item - elements]);
-      return;
-    }
-    const auto& el = *model_.elements[item];
-    const std::size_t coordinates = el.size() * el.coordinateIndices().size();
-    std::vector<double>& out = element_scratch_[item];
-    out.resize(coordinates + el.size() * el.size());
-    if (!coordinate_jacobian_only_) {
-      el.jacobian(in, cj, out.data());
-      return;
-    }
-    el.coordinateJacobian(in, out.data());
-    std::fill(out.begin() + coordinates, out.end(), 0.0);
-  });
-  for (std::size_t e = 0; e < model_.elements.size(); ++e) scatter(element_blocks_[e], element_scratch_[e].data());
-
   for (std::size_t l = 0, block = 0; l < model_.loads.size(); ++l) {
     if (!model_.nodes[model_.joints[model_.loads[l].joint].node].hasRotation()) continue;  // constant force
     const auto Q = loadVector<Dual<double, 6>>(model_.loads[l], q, t, true);
-    Eigen::Matrix<double, 6, 6> J;
+    Eigen::Map<Eigen::Matrix<double, 6, 6>> J(buffer + load_at_[block++]);
     for (int k = 0; k < 6; ++k) J.row(k) = -Q(k).derivatives().transpose();
-    scatter(load_blocks_[block++], J.data());
-  }
-
-  for (std::size_t ci = 0; ci < model_.constraints.size(); ++ci) {
-    const ConstraintBlocks& b = constraint_blocks_[ci];
-    const double* block = constraint_scratch_[ci].data();
-    const std::array<int, 7> order{b.qm, b.qq, b.mq, b.vq, b.vl, b.lq, b.lv};
-    for (auto id = order.begin() + (ggl() ? 0 : 3); id != order.end(); ++id) {
-      scatter(*id, block);
-      block += pattern_.slots(*id).size();
-    }
   }
 }
 
 /// Constraint `ci`'s blocks of the DAE Jacobian, flat in the order jacobian() scatters them:
 /// with GGL qm, qq, mq, then vq, vl, lq, lv.
 void Assembler::constraintTangent(std::size_t ci, double t, double cj, const double* y, const double* yp,
-                                  std::vector<double>& out) const {
+                                  double* out) const {
   const auto [q, v, lambda, qdot, a] = daeState(y, yp, model_.nq, lambdaOffset());
-  out.clear();
-  const auto append = [&](const auto& block) { out.insert(out.end(), block.data(), block.data() + block.size()); };
+  const auto append = [&](const auto& block) { out = std::copy(block.data(), block.data() + block.size(), out); };
   const SolverSpec& sv = model_.solver;
   const double alpha = sv.baumgarte_alpha, beta = sv.baumgarte_beta;
   using Rows12 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraintRows, 12>;
@@ -323,10 +327,11 @@ void Assembler::constraintTangent(std::size_t ci, double t, double cj, const dou
   const int m = c.rows;
   // Σ wᵢ ∂Gᵢ/∂q over the constraint's directions: the Jacobian of Gᵀw for w = λ or μ.
   const auto weightedSecondDerivative = [&](const double* w) {
-    Square12 sum = Square12::Zero(nd, nd);
-    for (int i = 0; i < m; ++i)
-      for (int jj = 0; jj < nd; ++jj)
-        for (int kk = 0; kk < nd; ++kk) sum(jj, kk) += w[i] * C.dG[i](s.direction[jj], s.direction[kk]);
+    ConstraintSecondDerivatives::Mat13 full = w[0] * C.dG[0];
+    for (int i = 1; i < m; ++i) full.noalias() += w[i] * C.dG[i];
+    Square12 sum(nd, nd);
+    for (int kk = 0; kk < nd; ++kk)
+      for (int jj = 0; jj < nd; ++jj) sum(jj, kk) = full(s.direction[jj], s.direction[kk]);
     return sum;
   };
   // Over the constraint's directions: G (vl = Gᵀ, lv), λᵀ∂G/∂q (vq), ∂(G dq + Φ_t)/∂q (dGv), Φ_q.

@@ -11,6 +11,7 @@
 
 #include <Eigen/Sparse>
 
+#include "cranesim/assembly/block_gather.hpp"
 #include "cranesim/assembly/constraint_evaluation.hpp"
 #include "cranesim/assembly/constraint_second_derivatives.hpp"
 #include "cranesim/assembly/element_loop.hpp"
@@ -103,14 +104,19 @@ class Assembler {
     std::vector<int> v_rows, q_cols, v_cols;
     int vq = -1, vl = -1, lq = -1, lv = -1, qm = -1, qq = -1, mq = -1, la = -1;
     int g = -1, phi_q = -1;  // its rows of G and Φ_q (constraint_pattern_, coordinate_pattern_)
+    std::size_t tangent_at = 0;  // its blocks in jacobian_buffer_, in constraintTangent's order
   };
   struct NodeBlocks {
     int qq = -1, qv = -1;
+    std::size_t qq_at = 0;  // the qq block in jacobian_buffer_
   };
 
   void buildPattern();
-  void constraintTangent(std::size_t ci, double t, double cj, const double* y, const double* yp,
-                         std::vector<double>& out) const;
+  /// Lists the DAE Jacobian's blocks in jacobian_gather_ in the order their entries are summed.
+  void listJacobianBlocks();
+  void constraintTangent(std::size_t ci, double t, double cj, const double* y, const double* yp, double* out) const;
+  /// The nodes' kinematic blocks ∂/∂q (K(q) q̇) + cj K(q) and the loads' −∂Q/∂q.
+  void nodeAndLoadTangents(double t, double cj, const double* q, const double* qdot, double* buffer) const;
   template <class S> Eigen::Matrix<S, 6, 1> loadVector(const Load& load, const double* q, double t,
                                                        bool seed, Limit limit = Limit::Left) const;
 
@@ -130,14 +136,17 @@ class Assembler {
   SparsityPattern pattern_;
   std::vector<NodeBlocks> node_blocks_;
   std::vector<int> element_blocks_;
+  std::vector<std::size_t> element_at_, load_at_;  // their Jacobian blocks in jacobian_buffer_
   // Patterns of M (nv × nv, a block per element: mass_blocks_), G (m × nv) and Φ_q (m × nq).
   SparsityPattern mass_pattern_, constraint_pattern_, coordinate_pattern_;
   std::vector<int> mass_blocks_;
   std::vector<int> load_blocks_;
   std::vector<ConstraintBlocks> constraint_blocks_;
-  // Per-element and per-constraint scratch written in parallel and reduced in a fixed order.
+  // Per-element residuals written in parallel and summed in a fixed order.
   mutable std::vector<std::vector<double>> element_scratch_;
-  mutable std::vector<std::vector<double>> constraint_scratch_;
+  // Every block of the DAE Jacobian side by side, written in parallel and gathered into its values.
+  BlockGather jacobian_gather_;
+  mutable std::vector<double> jacobian_buffer_;
   mutable ElementLoop residual_loop_, jacobian_loop_;
 };
 
