@@ -1,6 +1,7 @@
-// BlockGather (assembly/block_gather.hpp): the values gathered from blocks side by side equal, bit
-// for bit, the blocks scattered and added in the order they were listed, for overlapping blocks,
-// diagonal blocks and a value that only one block reaches.
+// BlockGather (assembly/block_gather.hpp): the values written by each block's task (those it alone
+// reaches) and gathered after them (those several reach) equal, bit for bit, the blocks scattered
+// and added in the order they were listed, for overlapping blocks, diagonal blocks and a value
+// that only one block reaches.
 
 #include <catch2/catch.hpp>
 
@@ -13,7 +14,7 @@
 
 using namespace cranesim;
 
-TEST_CASE("Gathered block sums equal the blocks scattered in listing order", "[assembly]") {
+TEST_CASE("Block sums written and gathered equal the blocks scattered in listing order", "[assembly]") {
   SparsityPattern pattern;
   std::vector<int> blocks = {
       pattern.addBlock({0, 1, 2}, {0, 1, 2}),                    // overlaps the next two
@@ -40,7 +41,9 @@ TEST_CASE("Gathered block sums equal the blocks scattered in listing order", "[a
     for (std::size_t k = 0; k < slots.size(); ++k) scattered[slots[k]] += buffer[offset[i] + k];
   }
   std::vector<double> gathered(pattern.nonZeros(), -1.0);
-  gather.gather(buffer.data(), gathered.data());
+  for (std::size_t i = order.size(); i-- > 0;)  // the tasks in any order
+    gather.writeExclusive(offset[i], offset[i] + pattern.slots(order[i]).size(), buffer.data(), gathered.data());
+  gather.gatherShared(buffer.data(), gathered.data());
   REQUIRE(gathered == scattered);
   CHECK(gather.bufferSize() == 9 + 8 + 5 + 1 + 4);
   CHECK(pattern.nonZeros() == 9 + 6 + 1 + 1);  // the second block adds 6 values, the diagonal (4, 4), then (4, 0)

@@ -135,17 +135,23 @@ void Assembler::buildPattern() {
 
 void Assembler::listJacobianBlocks() {
   const auto list = [&](int block) { return jacobian_gather_.add(pattern_, block); };
+  const auto end = [&] { return jacobian_gather_.bufferSize(); };
   std::vector<std::size_t> qv_at;
   for (NodeBlocks& b : node_blocks_) {
     qv_at.push_back(list(b.qv));
     b.qq_at = list(b.qq);
   }
-  for (int block : element_blocks_) element_at_.push_back(list(block));
+  node_range_ = {0, end()};
+  for (int block : element_blocks_) element_range_.push_back({list(block), end()});
+  load_range_.begin = end();
   for (int block : load_blocks_) load_at_.push_back(list(block));
-  for (ConstraintBlocks& b : constraint_blocks_) {
+  load_range_.end = end();
+  for (const ConstraintBlocks& b : constraint_blocks_) {
     const std::array<int, 7> order{b.qm, b.qq, b.mq, b.vq, b.vl, b.lq, b.lv};
-    b.tangent_at = jacobian_gather_.bufferSize();
+    BufferRange range{end(), 0};
     for (auto id = order.begin() + (ggl() ? 0 : 3); id != order.end(); ++id) list(*id);
+    range.end = end();
+    constraint_range_.push_back(range);
   }
   jacobian_gather_.finalize(pattern_);
   jacobian_buffer_.assign(jacobian_gather_.bufferSize(), 0.0);
@@ -255,29 +261,36 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
   const auto [q, v, lambda, qdot, a] = daeState(y, yp, model_.nq, lambdaOffset());
   double* buffer = jacobian_buffer_.data();
   // The elements', the constraints' and, as one more item, the nodes' and loads' blocks, each
-  // into its own place in the buffer; then every value gathered from its blocks.
+  // into its own places in the buffer and on into the values that it alone reaches; then the
+  // values that several reach, gathered from their blocks.
   const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left)};
   const std::size_t elements = model_.elements.size(), constraints = model_.constraints.size();
+  const auto write = [&](const BufferRange& r) { jacobian_gather_.writeExclusive(r.begin, r.end, buffer, values); };
   jacobian_loop_.run(elements + constraints + 1, [&](std::size_t item) {
     if (item == elements + constraints) {
       nodeAndLoadTangents(t, cj, q, qdot, buffer);
+      write(node_range_), write(load_range_);
       return;
     }
     if (item >= elements) {
-      constraintTangent(item - elements, t, cj, y, yp, buffer + constraint_blocks_[item - elements].tangent_at);
+      const BufferRange& r = constraint_range_[item - elements];
+      constraintTangent(item - elements, t, cj, y, yp, buffer + r.begin);
+      write(r);
       return;
     }
     const auto& el = *model_.elements[item];
-    double* out = buffer + element_at_[item];
-    if (!coordinate_jacobian_only_) {
+    const BufferRange& r = element_range_[item];
+    double* out = buffer + r.begin;
+    if (coordinate_jacobian_only_) {
+      const std::size_t coordinates = el.size() * el.coordinateIndices().size();
+      el.coordinateJacobian(in, out);
+      std::fill(out + coordinates, buffer + r.end, 0.0);
+    } else {
       el.jacobian(in, cj, out);
-      return;
     }
-    const std::size_t coordinates = el.size() * el.coordinateIndices().size();
-    el.coordinateJacobian(in, out);
-    std::fill(out + coordinates, out + coordinates + el.size() * el.size(), 0.0);
+    write(r);
   });
-  jacobian_gather_.gather(buffer, values);
+  jacobian_gather_.gatherShared(buffer, values);
 }
 
 void Assembler::nodeAndLoadTangents(double t, double cj, const double* q, const double* qdot, double* buffer) const {

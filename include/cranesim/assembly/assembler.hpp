@@ -104,7 +104,6 @@ class Assembler {
     std::vector<int> v_rows, q_cols, v_cols;
     int vq = -1, vl = -1, lq = -1, lv = -1, qm = -1, qq = -1, mq = -1, la = -1;
     int g = -1, phi_q = -1;  // its rows of G and Φ_q (constraint_pattern_, coordinate_pattern_)
-    std::size_t tangent_at = 0;  // its blocks in jacobian_buffer_, in constraintTangent's order
   };
   struct NodeBlocks {
     int qq = -1, qv = -1;
@@ -136,7 +135,15 @@ class Assembler {
   SparsityPattern pattern_;
   std::vector<NodeBlocks> node_blocks_;
   std::vector<int> element_blocks_;
-  std::vector<std::size_t> element_at_, load_at_;  // their Jacobian blocks in jacobian_buffer_
+  // Places in jacobian_buffer_: each element's block, each constraint's blocks (in
+  // constraintTangent's order), all nodes' blocks and all loads' blocks; the qq block of each
+  // node and the block of each load with a torque.
+  struct BufferRange {
+    std::size_t begin = 0, end = 0;
+  };
+  std::vector<BufferRange> element_range_, constraint_range_;
+  BufferRange node_range_, load_range_;
+  std::vector<std::size_t> load_at_;
   // Patterns of M (nv × nv, a block per element: mass_blocks_), G (m × nv) and Φ_q (m × nq).
   SparsityPattern mass_pattern_, constraint_pattern_, coordinate_pattern_;
   std::vector<int> mass_blocks_;
