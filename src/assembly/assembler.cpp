@@ -321,7 +321,7 @@ void Assembler::nodeAndLoadTangents(double t, double cj, const double* q, const 
   }
 }
 
-/// Constraint `ci`'s blocks of the DAE Jacobian, flat in the order jacobian() scatters them:
+/// Constraint `ci`'s blocks of the DAE Jacobian, flat in the order listJacobianBlocks lists them:
 /// with GGL qm, qq, mq, then vq, vl, lq, lv.
 void Assembler::constraintTangent(std::size_t ci, double t, double cj, const double* y, const double* yp,
                                   double* out) const {

@@ -151,7 +151,8 @@ class Assembler {
   std::vector<ConstraintBlocks> constraint_blocks_;
   // Per-element residuals written in parallel and summed in a fixed order.
   mutable std::vector<std::vector<double>> element_scratch_;
-  // Every block of the DAE Jacobian side by side, written in parallel and gathered into its values.
+  // Every block of the DAE Jacobian side by side, written in parallel; jacobian_gather_ puts
+  // them into the values.
   BlockGather jacobian_gather_;
   mutable std::vector<double> jacobian_buffer_;
   mutable ElementLoop residual_loop_, jacobian_loop_;
