@@ -12,25 +12,31 @@ std::size_t BlockGather::add(const SparsityPattern& pattern, int block) {
 }
 
 void BlockGather::finalize(const SparsityPattern& pattern) {
-  // Each value's places in listing order; a value with one place is that place's alone, the
-  // others are grouped by how many places they have.
-  std::vector<std::vector<int>> sources(pattern.nonZeros());
+  // Each value's places in listing order (a stable counting sort: value s has the places
+  // place[first[s]] … place[first[s + 1] − 1]); a value with one place is that place's alone,
+  // the others are grouped by how many places they have.
+  const int n = pattern.nonZeros();
+  std::vector<int> first(n + 1, 0);
+  for (const Listed& l : listed_)
+    for (int s : pattern.slots(l.block)) ++first[s + 1];
+  for (int s = 0; s < n; ++s) first[s + 1] += first[s];
+  std::vector<int> place(buffer_size_), next(first.begin(), first.end() - 1);
   for (const Listed& l : listed_) {
     const std::vector<int>& slots = pattern.slots(l.block);
-    for (std::size_t k = 0; k < slots.size(); ++k) sources[slots[k]].push_back(static_cast<int>(l.offset + k));
+    for (std::size_t k = 0; k < slots.size(); ++k) place[next[slots[k]]++] = static_cast<int>(l.offset + k);
   }
   exclusive_value_.assign(buffer_size_, -1);
   shared_.clear();
-  for (int s = 0; s < pattern.nonZeros(); ++s) {
-    const int count = static_cast<int>(sources[s].size());
+  for (int s = 0; s < n; ++s) {
+    const int count = first[s + 1] - first[s];
     if (count == 1) {
-      exclusive_value_[sources[s][0]] = s;
+      exclusive_value_[place[first[s]]] = s;
       continue;
     }
     auto group = std::find_if(shared_.begin(), shared_.end(), [&](const Group& g) { return g.count == count; });
     if (group == shared_.end()) group = shared_.insert(shared_.end(), Group{count, {}, {}});
     group->value.push_back(s);
-    group->source.insert(group->source.end(), sources[s].begin(), sources[s].end());
+    group->source.insert(group->source.end(), place.begin() + first[s], place.begin() + first[s + 1]);
   }
 }
 
