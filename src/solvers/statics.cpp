@@ -12,6 +12,10 @@
 namespace cranesim {
 namespace {
 
+/// A Newton correction more than this many times longer than the previous one is wild
+/// (dampedNewton): converging Newton corrections shrink.
+constexpr double kMaxCorrectionGrowth = 2.0;
+
 /// The largest step fraction (≤ 1) that turns no node by more than π/2 and moves none by more
 /// than a tenth of the scene's size (1 + max |q|): a rotation vector is meaningful within a
 /// turn, and a mechanism far from its rest position (a body hanging on an unloaded joint, two
@@ -47,6 +51,7 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
   Eigen::SparseLU<Eigen::SparseMatrix<double>>& lu = factorisation ? *factorisation : own;
   VecX r = system.residual(x);
   int short_steps = 0;
+  double previous_correction = 0.0;  // ‖Δq‖ of the last iteration's step (before the line search)
   for (int it = 1; it <= options.max_iterations; ++it) {
     if (atRoundingFloor(model, x, r, options)) return it - 1;
     // Directions without stiffness (a slack rope, a body free to turn about its joint) make
@@ -65,14 +70,26 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
     // damp it into many short Levenberg–Marquardt steps (shifts of 1e-4…1e-2 of the largest
     // stiffness cost the corrector of a luffing path 12 iterations and a linear rate of
     // convergence). The line search then scales it to the caps.
+    // A Newton correction more than twice as long as the last one is wild too, whatever the caps:
+    // near a family of equilibria (a body free to spin about its joint: its Jacobian is
+    // singular along the spin at every equilibrium) the step along the family is the residual's
+    // rounding, or its quadratic remainder, divided by the smallest singular value, and an
+    // iterate within 1e-14 of equilibrium would be spun by a sizeable fraction of a turn, away
+    // from it (a tilted offset bar took 11…655 iterations, or failed, as rounding decided;
+    // 7…12 with this rule, test_statics_spin.cpp). The shift that tames it leaves the stiff
+    // directions' correction as it was.
     const double magnitude = J.coeffs().cwiseAbs().maxCoeff();
     bool shifted_step = false;
     const auto limitOf = [&] { return lu.info() == Eigen::Success ? stepLimit(model, x, dx) : 0.0; };
-    double limit = limitOf(), previous_limit = 0.0;
+    const auto growthOf = [&] {
+      return lu.info() == Eigen::Success && previous_correction > 0.0 ? dx.head(model.nq).norm() / previous_correction : 0.0;
+    };
+    double limit = limitOf(), previous_limit = 0.0, growth = growthOf(), previous_growth = 0.0;
     const auto wild = [&] {
       if (lu.info() != Eigen::Success) return true;
-      if (!shifted_step) return limit < 1e-3;
-      return limit < 1.0 && limit > 1.1 * previous_limit;
+      if (!shifted_step) return limit < 1e-3 || growth > kMaxCorrectionGrowth;
+      return (limit < 1.0 && limit > 1.1 * previous_limit) ||
+             (growth > kMaxCorrectionGrowth && growth < previous_growth / 1.1);
     };
     for (double shift = 1e-10 * magnitude; wild() && shift < magnitude; shift *= 100.0) {
       Eigen::SparseMatrix<double> shifted = J;
@@ -80,8 +97,10 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
       lu.compute(shifted);
       shifted_step = true;
       previous_limit = limit;
+      previous_growth = growth;
       if (lu.info() == Eigen::Success) dx = -lu.solve(r);
       limit = limitOf();
+      growth = growthOf();
     }
     if (lu.info() != Eigen::Success) {
       why = "singular equilibrium Jacobian (a mechanism without stiffness in some direction?)";
@@ -121,6 +140,7 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
     x = trial;
     reparameteriseRotations(model, x);
     r = r_trial;
+    previous_correction = correction;
     short_steps = step < options.stall_step ? short_steps + 1 : 0;
     if (short_steps >= options.stall_iterations) {
       why = fmt::format("Newton stalled after {} iterations (line search step {:.2g}, residual {:.3g})", it, step,
