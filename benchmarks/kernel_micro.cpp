@@ -196,7 +196,7 @@ void BM_CraneConstraints(benchmark::State& state) {
   for (auto _ : state) {
     for (const cranesim::Constraint& c : f.model.constraints) {
       if (second) {
-        auto C = cranesim::constraintSecondDerivatives(f.model, c, f.y.data(), 0.0);
+        const cranesim::ConstraintSecondDerivatives C(f.model, c, f.y.data(), 0.0);
         benchmark::DoNotOptimize(C);
       } else {
         auto C = cranesim::evaluateConstraint<double>(f.model, c, f.y.data(), 0.0);

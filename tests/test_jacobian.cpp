@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <random>
 
 #include "cranesim/assembly/assembler.hpp"
@@ -151,22 +152,50 @@ TEST_CASE("Constraint quantities Φ_q, Φ̇ and Γ equal finite differences", "[
 
 namespace {
 
-/// The worst deviation of constraintSecondDerivatives from nested forward AD over all entries of
-/// one constraint, and the largest reference entry.
+/// The worst deviation of ConstraintSecondDerivatives from nested forward AD over all entries of
+/// one constraint and over its contractions with random weights and vectors, and the largest
+/// reference entry.
 std::pair<double, double> closedFormDeviation(const Model& model, const Constraint& c, const VecX& q, double t) {
-  const ConstraintSecondDerivatives closed = constraintSecondDerivatives(model, c, q.data(), t);
+  const ConstraintSecondDerivatives closed(model, c, q.data(), t);
   const ConstraintDerivatives<ConstraintQDual> nested = evaluateConstraint<ConstraintQDual>(model, c, q.data(), t);
   double worst = 0.0, scale = 0.0;
   const auto compare = [&](double x, double reference) {
     worst = std::max(worst, std::abs(x - reference));
     scale = std::max(scale, std::abs(reference));
   };
+  using Mat13 = ConstraintSecondDerivatives::Mat13;
+  std::array<Mat13, kMaxConstraintRows> reference;  // ∂G_ij/∂[q, t]_k
   for (int i = 0; i < c.rows; ++i) {
+    for (int j = 0; j < kConstraintDirections; ++j)
+      reference[i].row(j) = nested.G(i, j).derivatives().transpose();
+    const Mat13 dG = closed.secondDerivative(i);
     compare(closed.phi(i), nested.phi(i).value());
     for (int k = 0; k < 12; ++k) compare(closed.phi_q(i, k), nested.phi(i).derivatives()(k));
     for (int j = 0; j < kConstraintDirections; ++j) {
       compare(closed.G(i, j), nested.G(i, j).value());
-      for (int k = 0; k < kConstraintDirections; ++k) compare(closed.dG[i](j, k), nested.G(i, j).derivatives()(k));
+      for (int k = 0; k < kConstraintDirections; ++k) compare(dG(j, k), reference[i](j, k));
+    }
+  }
+  // The contractions the DAE Jacobian takes, with random weights and vectors.
+  std::mt19937 rng(c.rows + 7 * c.joint1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  ConstraintSecondDerivatives::Vec13 x, z;
+  double w[kMaxConstraintRows];
+  for (int k = 0; k < kConstraintDirections; ++k) x(k) = u(rng), z(k) = u(rng);
+  for (double& wi : w) wi = u(rng);
+  Mat13 weighted = Mat13::Zero();
+  for (int i = 0; i < c.rows; ++i) weighted += w[i] * reference[i];
+  const Mat13 closed_weighted = closed.weighted(w);
+  const ConstraintSecondDerivatives::Rows13 directions = closed.directionContractions(x),
+                                            coordinates = closed.coordinateContractions(z);
+  for (int j = 0; j < kConstraintDirections; ++j)
+    for (int k = 0; k < kConstraintDirections; ++k) compare(closed_weighted(j, k), weighted(j, k));
+  for (int i = 0; i < c.rows; ++i) {
+    const Eigen::Matrix<double, 1, kConstraintDirections> along_directions = x.transpose() * reference[i];
+    const ConstraintSecondDerivatives::Vec13 along_coordinates = reference[i] * z;
+    for (int k = 0; k < kConstraintDirections; ++k) {
+      compare(directions(i, k), along_directions(k));
+      compare(coordinates(i, k), along_coordinates(k));
     }
   }
   return {worst, scale};

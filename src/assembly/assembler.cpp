@@ -334,14 +334,12 @@ void Assembler::constraintTangent(std::size_t ci, double t, double cj, const dou
   using Columns12 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 12, kMaxConstraintRows>;
   const Constraint& c = model_.constraints[ci];
   const ConstraintSides s = sidesOf(model_, c);
-  const ConstraintSecondDerivatives C = constraintSecondDerivatives(model_, c, q, t);
-  const auto vloc = localExtended(model_, s, v, false);
+  const ConstraintSecondDerivatives C(model_, c, q, t);
   const int nd = s.count;
   const int m = c.rows;
   // Σ wᵢ ∂Gᵢ/∂q over the constraint's directions: the Jacobian of Gᵀw for w = λ or μ.
   const auto weightedSecondDerivative = [&](const double* w) {
-    ConstraintSecondDerivatives::Mat13 full = w[0] * C.dG[0];
-    for (int i = 1; i < m; ++i) full.noalias() += w[i] * C.dG[i];
+    const ConstraintSecondDerivatives::Mat13 full = C.weighted(w);
     Square12 sum(nd, nd);
     for (int kk = 0; kk < nd; ++kk)
       for (int jj = 0; jj < nd; ++jj) sum(jj, kk) = full(s.direction[jj], s.direction[kk]);
@@ -349,15 +347,15 @@ void Assembler::constraintTangent(std::size_t ci, double t, double cj, const dou
   };
   // Over the constraint's directions: G (vl = Gᵀ, lv), λᵀ∂G/∂q (vq), ∂(G dq + Φ_t)/∂q (dGv), Φ_q.
   const Square12 vq = weightedSecondDerivative(lambda + c.row);
+  const ConstraintSecondDerivatives::Rows13 dG_v = C.directionContractions(localExtended(model_, s, v, false));
   Columns12 vl(nd, m);
   Rows12 lq(m, nd), lv(m, nd), dGv(m, nd), phi_q(m, nd);
   for (int i = 0; i < m; ++i) {
-    const Eigen::Matrix<double, 1, kConstraintDirections> dG_v = vloc.transpose() * C.dG[i];
     for (int jj = 0; jj < nd; ++jj) {
       const int j = s.direction[jj];
       vl(jj, i) = lv(i, jj) = C.G(i, j);
       phi_q(i, jj) = C.phi_q(i, j);
-      dGv(i, jj) = dG_v(j);
+      dGv(i, jj) = dG_v(i, j);
     }
   }
   if (ggl()) {
@@ -366,16 +364,15 @@ void Assembler::constraintTangent(std::size_t ci, double t, double cj, const dou
     append(vl), append(qq), append(phi_q);
   } else {
     // Exact except for ∂Γ/∂q, which needs third derivatives and only slows Newton slightly.
-    const auto qdloc = localExtended(model_, s, qdot, true);
     auto aloc = localExtended(model_, s, a, false);
     aloc(kTimeDirection) = 0.0;
+    const ConstraintSecondDerivatives::Rows13 dG_a = C.directionContractions(aloc);
+    const ConstraintSecondDerivatives::Rows13 G_rate = C.coordinateContractions(localExtended(model_, s, qdot, true));
     for (int i = 0; i < m; ++i) {
-      const Eigen::Matrix<double, 1, kConstraintDirections> dG_a = aloc.transpose() * C.dG[i];
-      const Eigen::Matrix<double, kConstraintDirections, 1> G_rate = C.dG[i] * qdloc;
       for (int kk = 0; kk < nd; ++kk) {
         const int k = s.direction[kk];
-        lq(i, kk) = dG_a(k) + (2.0 * alpha * beta + cj) * dGv(i, kk) + alpha * alpha * phi_q(i, kk);
-        lv(i, kk) = (cj + 2.0 * alpha * beta) * C.G(i, k) + G_rate(k);
+        lq(i, kk) = dG_a(i, k) + (2.0 * alpha * beta + cj) * dGv(i, kk) + alpha * alpha * phi_q(i, kk);
+        lv(i, kk) = (cj + 2.0 * alpha * beta) * C.G(i, k) + G_rate(i, k);
       }
     }
   }

@@ -5,24 +5,33 @@
 namespace cranesim {
 namespace {
 
-using Mat12 = Eigen::Matrix<double, 12, 12>;
-using Vec12 = Eigen::Matrix<double, 12, 1>;
-using Mat3x12 = Eigen::Matrix<double, 3, 12>;
+constexpr int kBlocks = 4;  // [δr₁, δθ₁, δr₂, δθ₂]
 
-/// One joint of the constraint: its node's frame and rate map, and the joint frame on it.
-struct JointSide {
-  bool moves = false;    // on a node (not the ground)
-  bool rotates = false;  // on a frame node
-  Mat3 R = Mat3::Identity(), T = Mat3::Identity();
-  Vec3 offset = Vec3::Zero();
-  Mat3 relative = Mat3::Identity();
-  Vec3 rJ = Vec3::Zero();
-  Mat3 RJ = Mat3::Identity();
-};
+bool hasBlock(unsigned blocks, int b) { return (blocks >> b) & 1u; }
 
-JointSide jointSide(const Model& model, int joint, const double* q) {
+/// h(p, t) of every equation with its first (Slope) or first and second (Curvature) derivatives
+/// in the primitives' directions and time's (index kMaxConstraintPrimitives); a linear h needs
+/// no second derivatives.
+constexpr int kHDirections = kMaxConstraintPrimitives + 1;
+using Slope = Dual<double, kHDirections>;
+using Curvature = Dual<Slope, kHDirections>;
+
+Slope seed(double value, int direction, const Slope*) { return seeded<double, kHDirections>(value, direction); }
+Curvature seed(double value, int direction, const Curvature*) {
+  return seeded<Slope, kHDirections>(seeded<double, kHDirections>(value, direction), direction);
+}
+
+template <class D> void evaluateH(const ConstraintLaw& law, const double* p, int count, double t, D* h) {
+  D prim[kMaxConstraintPrimitives];
+  for (int a = 0; a < count; ++a) prim[a] = seed(p[a], a, h);
+  constraintFromPrimitives(law, prim, seed(t, kMaxConstraintPrimitives, h), h);
+}
+
+}  // namespace
+
+ConstraintSecondDerivatives::Side ConstraintSecondDerivatives::side(const Model& model, int joint, const double* q) {
   const Joint& J = model.joints[joint];
-  JointSide s;
+  Side s;
   s.offset = J.offset;
   s.relative = J.rotation;
   s.rJ = J.offset;
@@ -41,41 +50,47 @@ JointSide jointSide(const Model& model, int joint, const double* q) {
   return s;
 }
 
-/// A vector of the equations, affine in the twists: x = value + J δ. Its rotation R(I + δθ̃) u on
-/// side s contributes W_x(y) to the second derivatives, with u = lever[s] and sign[s].
-struct VectorJet {
-  Vec3 value = Vec3::Zero();
-  Mat3x12 J = Mat3x12::Zero();
-  bool moves = false;  // J ≠ 0
-  Vec3 lever[2] = {Vec3::Zero(), Vec3::Zero()};
-  double sign[2] = {0.0, 0.0};
-};
+Vec3 ConstraintSecondDerivatives::Jet::apply(const Vec12& delta) const {
+  Vec3 out = Vec3::Zero();
+  for (int b = 0; b < kBlocks; ++b)
+    if (hasBlock(blocks, b)) out.noalias() += J.block<3, 3>(0, 3 * b) * delta.segment<3>(3 * b);
+  return out;
+}
 
-VectorJet vectorJet(ConstraintVectorRef ref, const std::array<JointSide, 2>& side) {
-  VectorJet x;
+void ConstraintSecondDerivatives::Jet::addTransposed(const Vec3& v, Vec12& out) const {
+  for (int b = 0; b < kBlocks; ++b)
+    if (hasBlock(blocks, b)) out.segment<3>(3 * b).noalias() += J.block<3, 3>(0, 3 * b).transpose() * v;
+}
+
+ConstraintSecondDerivatives::Jet ConstraintSecondDerivatives::jet(ConstraintVectorRef ref) const {
+  Jet x;
+  x.J.setZero();
+  x.blocks = 0;
+  x.lever[0] = x.lever[1] = Vec3::Zero();
+  x.sign[0] = x.sign[1] = 0.0;
   const auto addRotation = [&](int s, const Vec3& u, double sign) {
-    if (!side[s].rotates) return;
-    x.moves = true;
-    x.J.block<3, 3>(0, 6 * s + 3) -= sign * side[s].R * skew<double>(u);
+    if (!side_[s].rotates) return;
+    x.J.block<3, 3>(0, 6 * s + 3) = -sign * side_[s].R * skew<double>(u);
+    x.blocks |= 1u << (2 * s + 1);
     x.lever[s] = u;
     x.sign[s] = sign;
   };
   switch (ref.kind) {
     case ConstraintVector::Separation:
-      x.value = side[0].rJ - side[1].rJ;
+      x.value = side_[0].rJ - side_[1].rJ;
       for (int s = 0; s < 2; ++s) {
         const double sign = s == 0 ? 1.0 : -1.0;
-        if (!side[s].moves) continue;
-        x.moves = true;
+        if (!side_[s].moves) continue;
         x.J.block<3, 3>(0, 6 * s).diagonal().setConstant(sign);
-        addRotation(s, side[s].offset, sign);
+        x.blocks |= 1u << (2 * s);
+        addRotation(s, side_[s].offset, sign);
       }
       break;
     case ConstraintVector::Axis1:
     case ConstraintVector::Axis2: {
       const int s = ref.kind == ConstraintVector::Axis1 ? 0 : 1;
-      x.value = side[s].RJ.col(ref.index);
-      addRotation(s, side[s].relative.col(ref.index), 1.0);
+      x.value = side_[s].RJ.col(ref.index);
+      addRotation(s, side_[s].relative.col(ref.index), 1.0);
       break;
     }
     case ConstraintVector::Inertial: x.value = Vec3::Unit(ref.index); break;
@@ -83,94 +98,194 @@ VectorJet vectorJet(ConstraintVectorRef ref, const std::array<JointSide, 2>& sid
   return x;
 }
 
-/// W_x(y) (file comment of the header) added to H.
-void addRotationCurvature(const VectorJet& x, const Vec3& y, const std::array<JointSide, 2>& side, Mat12& H) {
-  for (int s = 0; s < 2; ++s) {
-    if (x.sign[s] == 0.0) continue;
-    const Vec3 w = side[s].R.transpose() * y;
-    const Vec3& u = x.lever[s];
-    Mat3 W = w * u.transpose();
-    W.diagonal().array() -= w.dot(u);
-    H.block<3, 3>(6 * s + 3, 6 * s + 3) += x.sign[s] * W;
-  }
-}
-
-/// h(p, t) of every equation with its first and second derivatives in (p, t).
-constexpr int kWrapperDirections = kMaxConstraintPrimitives + 1;
-constexpr int kWrapperTime = kMaxConstraintPrimitives;
-using WrapperDual = Dual<Dual<double, kWrapperDirections>, kWrapperDirections>;
-
-WrapperDual seededTwice(double value, int direction) {
-  return seeded<Dual<double, kWrapperDirections>, kWrapperDirections>(seeded<double, kWrapperDirections>(value, direction),
-                                                                      direction);
-}
-
-}  // namespace
-
-ConstraintSecondDerivatives constraintSecondDerivatives(const Model& model, const Constraint& c, const double* q,
-                                                        double t) {
-  const std::array<JointSide, 2> side = {jointSide(model, c.joint1, q), jointSide(model, c.joint2, q)};
+ConstraintSecondDerivatives::ConstraintSecondDerivatives(const Model& model, const Constraint& c, const double* q,
+                                                         double t)
+    : rows(c.rows), side_{side(model, c.joint1, q), side(model, c.joint2, q)} {
   const ConstraintLaw law = c.law();
   const ConstraintPrimitives primitives = constraintPrimitives(law);
+  primitives_ = primitives.count;
+  curved_ = !constraintIsLinear(law);
 
-  // The primitives p_a = x_a · y_a, their twist gradients and second derivatives.
-  std::array<Vec12, kMaxConstraintPrimitives> gradient;
-  std::array<Mat12, kMaxConstraintPrimitives> curvature;
-  WrapperDual prim[kMaxConstraintPrimitives];
-  for (int a = 0; a < primitives.count; ++a) {
-    const VectorJet x = vectorJet(primitives.x[a], side), y = vectorJet(primitives.y[a], side);
-    gradient[a].noalias() = x.J.transpose() * y.value + y.J.transpose() * x.value;
-    if (x.moves && y.moves) {
-      curvature[a].noalias() = x.J.transpose().lazyProduct(y.J);
-      curvature[a] += curvature[a].transpose().eval();
-    } else {
-      curvature[a].setZero();
-    }
-    addRotationCurvature(x, y.value, side, curvature[a]);
-    addRotationCurvature(y, x.value, side, curvature[a]);
-    prim[a] = seededTwice(x.value.dot(y.value), a);
+  // The primitives p_a = x_a · y_a and their twist gradients.
+  double p[kMaxConstraintPrimitives];
+  for (int a = 0; a < primitives_; ++a) {
+    x_[a] = jet(primitives.x[a]);
+    y_[a] = jet(primitives.y[a]);
+    gradient_[a].setZero();
+    x_[a].addTransposed(y_[a].value, gradient_[a]);
+    y_[a].addTransposed(x_[a].value, gradient_[a]);
+    p[a] = x_[a].value.dot(y_[a].value);
   }
-  WrapperDual phi[kMaxConstraintRows];
-  constraintFromPrimitives(law, prim, seededTwice(t, kWrapperTime), phi);
+  phi.setZero();
+  h1_.setZero();
+  if (curved_) {
+    Curvature h[kMaxConstraintRows];
+    evaluateH(law, p, primitives_, t, h);
+    for (int i = 0; i < rows; ++i) {
+      phi(i) = h[i].value().value();
+      h1_.row(i) = h[i].value().derivatives().transpose();
+      for (int a = 0; a < kHDirections; ++a) h2_[i].row(a) = h[i].derivatives()(a).derivatives().transpose();
+    }
+  } else {
+    Slope h[kMaxConstraintRows];
+    evaluateH(law, p, primitives_, t, h);
+    for (int i = 0; i < rows; ++i) {
+      phi(i) = h[i].value();
+      h1_.row(i) = h[i].derivatives().transpose();
+    }
+  }
+  G.setZero();
+  for (int i = 0; i < rows; ++i) {
+    for (int a = 0; a < primitives_; ++a)
+      if (h1_(i, a) != 0.0) G.row(i).head<12>() += h1_(i, a) * gradient_[a].transpose();
+    G(i, kTimeDirection) = h1_(i, kTime);
+  }
+  // From the twist a to the coordinates: ∂/∂φ = ∂/∂a T(φ).
+  phi_q = G.leftCols<12>();
+  for (int s = 0; s < 2; ++s)
+    if (side_[s].rotates) phi_q.middleCols<3>(6 * s + 3) = (phi_q.middleCols<3>(6 * s + 3) * side_[s].T).eval();
+}
 
-  ConstraintSecondDerivatives out;
-  out.rows = c.rows;
-  out.phi.setZero();
-  out.G.setZero();
-  out.phi_q.setZero();
-  for (int i = 0; i < c.rows; ++i) {
-    const double h_t = phi[i].value().derivatives()(kWrapperTime);
-    Vec12 g = Vec12::Zero();
-    Mat12 H = Mat12::Zero();
-    Vec12 g_t = Vec12::Zero();  // ∂G/∂t over the twists: Σ h_at ∇p_a
-    for (int a = 0; a < primitives.count; ++a) {
-      const double h_a = phi[i].value().derivatives()(a);
-      if (h_a != 0.0) {
-        g += h_a * gradient[a];
-        H += h_a * curvature[a];
+void ConstraintSecondDerivatives::addCurvatures(const double* W, Eigen::Ref<Mat12> H) const {
+  Mat12 M = Mat12::Zero();  // Σ_a W_a J_xᵀ J_y
+  for (int a = 0; a < primitives_; ++a) {
+    if (W[a] == 0.0) continue;
+    const Jet &x = x_[a], &y = y_[a];
+    for (int b = 0; b < kBlocks; ++b) {
+      if (!hasBlock(x.blocks, b)) continue;
+      const Mat3 Xb = W[a] * x.J.block<3, 3>(0, 3 * b).transpose();
+      for (int d = 0; d < kBlocks; ++d)
+        if (hasBlock(y.blocks, d)) M.block<3, 3>(3 * b, 3 * d).noalias() += Xb * y.J.block<3, 3>(0, 3 * d);
+    }
+    // W_x(y) and W_y(x) on the rotation blocks.
+    for (const auto& [v, other] : {std::pair{&x, &y}, std::pair{&y, &x}})
+      for (int s = 0; s < 2; ++s) {
+        if (v->sign[s] == 0.0) continue;
+        const double scale = W[a] * v->sign[s];
+        const Vec3 w = side_[s].R.transpose() * other->value;
+        const Vec3& u = v->lever[s];
+        auto B = H.block<3, 3>(6 * s + 3, 6 * s + 3);
+        B.noalias() += (scale * w) * u.transpose();
+        B.diagonal().array() -= scale * w.dot(u);
       }
-      const auto& second = phi[i].derivatives()(a).derivatives();
-      for (int b = 0; b < primitives.count; ++b)
-        if (second(b) != 0.0) H.noalias() += second(b) * gradient[a] * gradient[b].transpose();
-      if (second(kWrapperTime) != 0.0) g_t += second(kWrapperTime) * gradient[a];
-    }
-    out.phi(i) = phi[i].value().value();
-    out.G.row(i).head<12>() = g.transpose();
-    out.G(i, kTimeDirection) = h_t;
-    ConstraintSecondDerivatives::Mat13& dG = out.dG[i];
-    dG.topLeftCorner<12, 12>() = H;
-    dG.col(kTimeDirection).head<12>() = g_t;
-    dG.row(kTimeDirection).head<12>() = g_t.transpose();  // h_ta = h_at
-    dG(kTimeDirection, kTimeDirection) = phi[i].derivatives()(kWrapperTime).derivatives()(kWrapperTime);
-    // From the twist a to the coordinates: ∂/∂φ = ∂/∂a T(φ).
-    out.phi_q.row(i) = g.transpose();
-    for (int s = 0; s < 2; ++s) {
-      if (!side[s].rotates) continue;
-      dG.middleCols<3>(6 * s + 3) = (dG.middleCols<3>(6 * s + 3) * side[s].T).eval();
-      out.phi_q.row(i).segment<3>(6 * s + 3) = (out.phi_q.row(i).segment<3>(6 * s + 3) * side[s].T).eval();
-    }
   }
+  H += M + M.transpose();
+}
+
+double ConstraintSecondDerivatives::gradientDot(int a, const Vec13& u) const {
+  return a == kTime ? u(kTimeDirection) : gradient_[a].dot(u.head<12>());
+}
+
+void ConstraintSecondDerivatives::addGradient(int a, double scale, RowRef row) const {
+  if (a == kTime)
+    row(kTimeDirection) += scale;
+  else
+    row.head<12>() += scale * gradient_[a].transpose();
+}
+
+ConstraintSecondDerivatives::Mat13 ConstraintSecondDerivatives::weighted(const double* w) const {
+  double W[kMaxConstraintPrimitives] = {};
+  for (int i = 0; i < rows; ++i)
+    for (int a = 0; a < primitives_; ++a) W[a] += w[i] * h1_(i, a);
+  Mat13 out = Mat13::Zero();
+  addCurvatures(W, out.topLeftCorner<12, 12>());
+  if (curved_) {
+    HessianH W2 = HessianH::Zero();
+    for (int i = 0; i < rows; ++i) W2 += w[i] * h2_[i];
+    for (int n = 0; n <= primitives_; ++n)
+      for (int m = 0; m <= primitives_; ++m) {
+        const int a = hDirection(n), b = hDirection(m);
+        if (W2(a, b) == 0.0) continue;
+        Eigen::Matrix<double, 1, kConstraintDirections> gb = Eigen::Matrix<double, 1, kConstraintDirections>::Zero();
+        addGradient(b, W2(a, b), gb);
+        if (a == kTime)
+          out.row(kTimeDirection) += gb;
+        else
+          out.topRows<12>().noalias() += gradient_[a] * gb;
+      }
+  }
+  for (int s = 0; s < 2; ++s)
+    if (side_[s].rotates) out.middleCols<3>(6 * s + 3) = (out.middleCols<3>(6 * s + 3) * side_[s].T).eval();
   return out;
+}
+
+ConstraintSecondDerivatives::Rows13 ConstraintSecondDerivatives::directionContractions(const Vec13& u) const {
+  const Vec12 ut = u.head<12>();
+  Rows13 out = Rows13::Zero();
+  for (int a = 0; a < primitives_; ++a) {
+    const Jet &x = x_[a], &y = y_[a];
+    // uᵀ ∇²p_a = (J_x u)ᵀ J_y + (J_y u)ᵀ J_x + uᵀ W_x(y) + uᵀ W_y(x)
+    Vec12 c = Vec12::Zero();
+    y.addTransposed(x.apply(ut), c);
+    x.addTransposed(y.apply(ut), c);
+    for (const auto& [v, other] : {std::pair{&x, &y}, std::pair{&y, &x}})
+      for (int s = 0; s < 2; ++s) {
+        if (v->sign[s] == 0.0) continue;
+        const Vec3 w = side_[s].R.transpose() * other->value;
+        const Vec3& lever = v->lever[s];
+        const Vec3 z = ut.segment<3>(6 * s + 3);
+        c.segment<3>(6 * s + 3) += v->sign[s] * (z.dot(w) * lever - w.dot(lever) * z);
+      }
+    for (int i = 0; i < rows; ++i)
+      if (h1_(i, a) != 0.0) out.row(i).head<12>() += h1_(i, a) * c.transpose();
+  }
+  if (curved_)
+    for (int i = 0; i < rows; ++i)
+      for (int n = 0; n <= primitives_; ++n) {
+        const int a = hDirection(n);
+        const double ua = gradientDot(a, u);
+        if (ua == 0.0) continue;
+        for (int m = 0; m <= primitives_; ++m) {
+          const int b = hDirection(m);
+          if (h2_[i](a, b) != 0.0) addGradient(b, h2_[i](a, b) * ua, out.row(i));
+        }
+      }
+  for (int s = 0; s < 2; ++s)
+    if (side_[s].rotates) out.middleCols<3>(6 * s + 3) = (out.middleCols<3>(6 * s + 3) * side_[s].T).eval();
+  return out;
+}
+
+ConstraintSecondDerivatives::Rows13 ConstraintSecondDerivatives::coordinateContractions(const Vec13& u) const {
+  Vec13 ua = u;  // in the twists a: δ = [dr, T(φ) dφ]
+  for (int s = 0; s < 2; ++s)
+    if (side_[s].rotates) ua.segment<3>(6 * s + 3) = side_[s].T * u.segment<3>(6 * s + 3);
+  const Vec12 ut = ua.head<12>();
+  Rows13 out = Rows13::Zero();
+  for (int a = 0; a < primitives_; ++a) {
+    const Jet &x = x_[a], &y = y_[a];
+    // ∇²p_a u = J_xᵀ (J_y u) + J_yᵀ (J_x u) + W_x(y) u + W_y(x) u
+    Vec12 c = Vec12::Zero();
+    x.addTransposed(y.apply(ut), c);
+    y.addTransposed(x.apply(ut), c);
+    for (const auto& [v, other] : {std::pair{&x, &y}, std::pair{&y, &x}})
+      for (int s = 0; s < 2; ++s) {
+        if (v->sign[s] == 0.0) continue;
+        const Vec3 w = side_[s].R.transpose() * other->value;
+        const Vec3& lever = v->lever[s];
+        const Vec3 z = ut.segment<3>(6 * s + 3);
+        c.segment<3>(6 * s + 3) += v->sign[s] * (lever.dot(z) * w - w.dot(lever) * z);
+      }
+    for (int i = 0; i < rows; ++i)
+      if (h1_(i, a) != 0.0) out.row(i).head<12>() += h1_(i, a) * c.transpose();
+  }
+  if (curved_)
+    for (int i = 0; i < rows; ++i)
+      for (int m = 0; m <= primitives_; ++m) {
+        const int b = hDirection(m);
+        const double ub = gradientDot(b, ua);
+        if (ub == 0.0) continue;
+        for (int n = 0; n <= primitives_; ++n) {
+          const int a = hDirection(n);
+          if (h2_[i](a, b) != 0.0) addGradient(a, h2_[i](a, b) * ub, out.row(i));
+        }
+      }
+  return out;
+}
+
+ConstraintSecondDerivatives::Mat13 ConstraintSecondDerivatives::secondDerivative(int i) const {
+  double w[kMaxConstraintRows] = {};
+  w[i] = 1.0;
+  return weighted(w);
 }
 
 }  // namespace cranesim

@@ -91,6 +91,12 @@ inline ConstraintPrimitives constraintPrimitives(const ConstraintLaw& law) {
   return out;
 }
 
+/// Whether h (constraintFromPrimitives) is linear in the primitives and independent of time:
+/// every undriven joint but the distance.
+inline bool constraintIsLinear(const ConstraintLaw& law) {
+  return !law.drive && law.type != ConstraintType::Distance;
+}
+
 /// Φ = h(p, t) from the primitives p (constraintPrimitives) and time.
 template <class S> void constraintFromPrimitives(const ConstraintLaw& law, const S* prim, const S& t, S* phi) {
   switch (law.type) {
