@@ -282,7 +282,7 @@ struct TimoshenkoBeamKernel {
   template <class S> V<S> elasticForce(const CoRotatedTangent<S>& c, const V<S>& v, const Mat12& K) const {
     Eigen::Matrix<S, 12, 1> strain = c.d;
     if (damping > 0.0) strain.noalias() += S(damping) * c.apply(v);
-    return c.applyTransposed(K.template cast<S>() * strain);
+    return c.applyTransposed(stiffnessTimes<S>(K, strain));
   }
 
   /// Section forces at the two ends, [N, V_y, V_z, T, M_y, M_z] at end 1 and then at end 2, in
@@ -318,11 +318,20 @@ struct TimoshenkoBeamKernel {
   V<S> dampingForce(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2, const Mat3T<S>& R2, const V<S>& v,
                     const Mat12& K) const {
     const CoRotatedTangent<S> c = coRotateWithTangent<S>(r1, R1, r2, R2);
-    return S(damping) * c.applyTransposed(K.template cast<S>() * c.apply(v));
+    return S(damping) * c.applyTransposed(stiffnessTimes<S>(K, c.apply(v)));
   }
 
  private:
   std::optional<Mat12> kept_stiffness_;
+
+  /// K x: for dual numbers coefficient by coefficient with K's entries as plain factors, as
+  /// K.cast<S>() * x computes it but without multiplying K's zero derivatives (same values).
+  template <class S> static Eigen::Matrix<S, 12, 1> stiffnessTimes(const Mat12& K, const Eigen::Matrix<S, 12, 1>& x) {
+    if constexpr (std::is_same_v<S, double>)
+      return K * x;
+    else
+      return K.lazyProduct(x);
+  }
 
   /// R_B and d (3-34), and with kTangent J_d in closed form. With δω_B the variation of R_B in its
   /// own axes (δR_B = R_B δω̃_B), c = r² − r¹, ℓ = ‖c‖, b = c/ℓ, a = R_m e_x, k = a × b:
