@@ -98,6 +98,11 @@ ConstraintSecondDerivatives::Jet ConstraintSecondDerivatives::jet(ConstraintVect
   return x;
 }
 
+template <class Matrix> void ConstraintSecondDerivatives::toCoordinateColumns(Matrix& m) const {
+  for (int s = 0; s < 2; ++s)
+    if (side_[s].rotates) m.template middleCols<3>(6 * s + 3) = (m.template middleCols<3>(6 * s + 3) * side_[s].T).eval();
+}
+
 ConstraintSecondDerivatives::ConstraintSecondDerivatives(const Model& model, const Constraint& c, const double* q,
                                                          double t)
     : rows(c.rows), side_{side(model, c.joint1, q), side(model, c.joint2, q)} {
@@ -140,10 +145,8 @@ ConstraintSecondDerivatives::ConstraintSecondDerivatives(const Model& model, con
       if (h1_(i, a) != 0.0) G.row(i).head<12>() += h1_(i, a) * gradient_[a].transpose();
     G(i, kTimeDirection) = h1_(i, kTime);
   }
-  // From the twist a to the coordinates: ∂/∂φ = ∂/∂a T(φ).
   phi_q = G.leftCols<12>();
-  for (int s = 0; s < 2; ++s)
-    if (side_[s].rotates) phi_q.middleCols<3>(6 * s + 3) = (phi_q.middleCols<3>(6 * s + 3) * side_[s].T).eval();
+  toCoordinateColumns(phi_q);
 }
 
 void ConstraintSecondDerivatives::addCurvatures(const double* W, Eigen::Ref<Mat12> H) const {
@@ -204,17 +207,18 @@ ConstraintSecondDerivatives::Mat13 ConstraintSecondDerivatives::weighted(const d
           out.topRows<12>().noalias() += gradient_[a] * gb;
       }
   }
-  for (int s = 0; s < 2; ++s)
-    if (side_[s].rotates) out.middleCols<3>(6 * s + 3) = (out.middleCols<3>(6 * s + 3) * side_[s].T).eval();
+  toCoordinateColumns(out);
   return out;
 }
 
-ConstraintSecondDerivatives::Rows13 ConstraintSecondDerivatives::directionContractions(const Vec13& u) const {
+ConstraintSecondDerivatives::Rows13 ConstraintSecondDerivatives::twistContractions(const Vec13& u,
+                                                                                   bool over_directions) const {
   const Vec12 ut = u.head<12>();
   Rows13 out = Rows13::Zero();
   for (int a = 0; a < primitives_; ++a) {
     const Jet &x = x_[a], &y = y_[a];
-    // uᵀ ∇²p_a = (J_x u)ᵀ J_y + (J_y u)ᵀ J_x + uᵀ W_x(y) + uᵀ W_y(x)
+    // uᵀ ∇²p_a or ∇²p_a u: J_yᵀ (J_x u) + J_xᵀ (J_y u) (symmetric), and W_x(y), W_y(x) or their
+    // transposes.
     Vec12 c = Vec12::Zero();
     y.addTransposed(x.apply(ut), c);
     x.addTransposed(y.apply(ut), c);
@@ -224,11 +228,13 @@ ConstraintSecondDerivatives::Rows13 ConstraintSecondDerivatives::directionContra
         const Vec3 w = side_[s].R.transpose() * other->value;
         const Vec3& lever = v->lever[s];
         const Vec3 z = ut.segment<3>(6 * s + 3);
-        c.segment<3>(6 * s + 3) += v->sign[s] * (z.dot(w) * lever - w.dot(lever) * z);
+        const Vec3 along = over_directions ? Vec3(z.dot(w) * lever) : Vec3(lever.dot(z) * w);
+        c.segment<3>(6 * s + 3) += v->sign[s] * (along - w.dot(lever) * z);
       }
     for (int i = 0; i < rows; ++i)
       if (h1_(i, a) != 0.0) out.row(i).head<12>() += h1_(i, a) * c.transpose();
   }
+  // Σ h_ab ĝ_a ĝ_bᵀ contracted over its first index or, transposed, its second.
   if (curved_)
     for (int i = 0; i < rows; ++i)
       for (int n = 0; n <= primitives_; ++n) {
@@ -237,11 +243,16 @@ ConstraintSecondDerivatives::Rows13 ConstraintSecondDerivatives::directionContra
         if (ua == 0.0) continue;
         for (int m = 0; m <= primitives_; ++m) {
           const int b = hDirection(m);
-          if (h2_[i](a, b) != 0.0) addGradient(b, h2_[i](a, b) * ua, out.row(i));
+          const double h = over_directions ? h2_[i](a, b) : h2_[i](b, a);
+          if (h != 0.0) addGradient(b, h * ua, out.row(i));
         }
       }
-  for (int s = 0; s < 2; ++s)
-    if (side_[s].rotates) out.middleCols<3>(6 * s + 3) = (out.middleCols<3>(6 * s + 3) * side_[s].T).eval();
+  return out;
+}
+
+ConstraintSecondDerivatives::Rows13 ConstraintSecondDerivatives::directionContractions(const Vec13& u) const {
+  Rows13 out = twistContractions(u, true);
+  toCoordinateColumns(out);
   return out;
 }
 
@@ -249,37 +260,7 @@ ConstraintSecondDerivatives::Rows13 ConstraintSecondDerivatives::coordinateContr
   Vec13 ua = u;  // in the twists a: δ = [dr, T(φ) dφ]
   for (int s = 0; s < 2; ++s)
     if (side_[s].rotates) ua.segment<3>(6 * s + 3) = side_[s].T * u.segment<3>(6 * s + 3);
-  const Vec12 ut = ua.head<12>();
-  Rows13 out = Rows13::Zero();
-  for (int a = 0; a < primitives_; ++a) {
-    const Jet &x = x_[a], &y = y_[a];
-    // ∇²p_a u = J_xᵀ (J_y u) + J_yᵀ (J_x u) + W_x(y) u + W_y(x) u
-    Vec12 c = Vec12::Zero();
-    x.addTransposed(y.apply(ut), c);
-    y.addTransposed(x.apply(ut), c);
-    for (const auto& [v, other] : {std::pair{&x, &y}, std::pair{&y, &x}})
-      for (int s = 0; s < 2; ++s) {
-        if (v->sign[s] == 0.0) continue;
-        const Vec3 w = side_[s].R.transpose() * other->value;
-        const Vec3& lever = v->lever[s];
-        const Vec3 z = ut.segment<3>(6 * s + 3);
-        c.segment<3>(6 * s + 3) += v->sign[s] * (lever.dot(z) * w - w.dot(lever) * z);
-      }
-    for (int i = 0; i < rows; ++i)
-      if (h1_(i, a) != 0.0) out.row(i).head<12>() += h1_(i, a) * c.transpose();
-  }
-  if (curved_)
-    for (int i = 0; i < rows; ++i)
-      for (int m = 0; m <= primitives_; ++m) {
-        const int b = hDirection(m);
-        const double ub = gradientDot(b, ua);
-        if (ub == 0.0) continue;
-        for (int n = 0; n <= primitives_; ++n) {
-          const int a = hDirection(n);
-          if (h2_[i](a, b) != 0.0) addGradient(a, h2_[i](a, b) * ub, out.row(i));
-        }
-      }
-  return out;
+  return twistContractions(ua, false);
 }
 
 ConstraintSecondDerivatives::Mat13 ConstraintSecondDerivatives::secondDerivative(int i) const {

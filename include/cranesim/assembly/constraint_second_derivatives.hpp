@@ -94,6 +94,11 @@ class ConstraintSecondDerivatives {
   Jet jet(ConstraintVectorRef ref) const;
   /// Σ_a W_a ∇²p_a over the twists (12 × 12), added to H.
   void addCurvatures(const double* W, Eigen::Ref<Mat12> H) const;
+  /// Row i: ∂G_i/∂[δ, t] (both indices over the twists and time) contracted with u, in the
+  /// twists, over its first index (over G's directions) or its second.
+  Rows13 twistContractions(const Vec13& u, bool over_directions) const;
+  /// From the twists to the coordinates over the columns: ∂/∂φ = ∂/∂a T(φ) (a = the twist).
+  template <class Matrix> void toCoordinateColumns(Matrix& m) const;
   /// ĝ_a·u and row += scale ĝ_aᵀ, ĝ_a = [∇p_a, 0] over the twists and time, or e_time for a = kTime.
   double gradientDot(int a, const Vec13& u) const;
   void addGradient(int a, double scale, RowRef row) const;
