@@ -104,18 +104,20 @@ struct CondensedTrussKernel {
   }
 
   /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp): the
-  /// elastic and damping forces by forward AD in end 2's six directions, the inertial and gravity
-  /// forces in its three rotation directions (section_inertia_coordinate_tangent.hpp), the other
-  /// columns by frame indifference.
+  /// elastic and damping forces' columns of end 2 in closed form (corotated_elastic_tangent.hpp),
+  /// the inertial and gravity forces' in its three rotation directions
+  /// (section_inertia_coordinate_tangent.hpp), the other columns by frame indifference.
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
     using D = SectionInertiaCoordinateTangent::D;
     const V<D> vd = v.cast<D>(), ad = a.cast<D>();
-    SectionInertiaCoordinateTangent inertia(rotationMatrix<double>(Vec3(q.segment<3>(3))).cast<D>(),
-                                            rotationMatrix<D>(seededSecondRotation(q)), vd, &ad, gravity, length);
+    const Mat3 R1 = rotationMatrix<double>(Vec3(q.segment<3>(3)));
+    SectionInertiaCoordinateTangent inertia(R1.cast<D>(), rotationMatrix<D>(seededSecondRotation(q)), vd, &ad, gravity, length);
     for (const MassStation& st : stations) inertia.add(st.xi, st.mass, st.first_moment, st.inertia);
-    return objectiveCoordinateTangent(
-        {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }, inertia.forces());
+    CoRotatedElasticTangent elastic = coRotatedElasticTangent(frame.length, frame.damping, q.segment<3>(0), R1, q.segment<3>(6),
+                                                              rotationMatrix<double>(Vec3(q.segment<3>(9))), v, stiffness);
+    elastic.alongRotationVector(q.segment<3>(9));
+    return objectiveCoordinateTangent({q, v, a, gravity, M, C}, elastic.force, elastic.second_end, inertia.forces());
   }
 
   /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp) and M beside it (element.hpp).

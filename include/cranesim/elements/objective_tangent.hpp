@@ -78,15 +78,13 @@ inline Vec3T<Dual<double, 3>> seededSecondRotation(const Eigen::Matrix<double, 1
   return phi2;
 }
 
-/// The same for a residual split into elastic forces and inertial and gravity forces that do not
-/// depend on the end positions (material riding on an interpolation driven by the end rotations):
-/// the first by forward AD in end 2's six directions, the second given with its derivatives in
-/// the directions of seededSecondRotation (section_inertia_coordinate_tangent.hpp).
-template <class Elastic>
-Eigen::Matrix<double, 12, 12> objectiveCoordinateTangent(const ObjectiveTangentInput& in, const Elastic& elastic,
-                                                         const Eigen::Matrix<Dual<double, 3>, 12, 1>& inertial) {
-  Eigen::Matrix<double, 12, 1> r_elastic;
-  Eigen::Matrix<double, 12, 6> second_end = segmentDerivative<6>(in.q, 6, elastic, r_elastic);
+/// The same for a residual split into elastic forces, given with their columns of end 2
+/// (corotated_elastic_tangent.hpp), and inertial and gravity forces that do not depend on the end
+/// positions (material riding on an interpolation driven by the end rotations), given with their
+/// derivatives in the directions of seededSecondRotation (section_inertia_coordinate_tangent.hpp).
+inline Eigen::Matrix<double, 12, 12> objectiveCoordinateTangent(const ObjectiveTangentInput& in, Eigen::Matrix<double, 12, 1> r_elastic,
+                                                                Eigen::Matrix<double, 12, 6> second_end,
+                                                                const Eigen::Matrix<Dual<double, 3>, 12, 1>& inertial) {
   for (int i = 0; i < 12; ++i) {
     r_elastic(i) += inertial(i).value();
     second_end.block<1, 3>(i, 3) += inertial(i).derivatives().transpose();

@@ -57,6 +57,12 @@ struct RotatedEndsBeamKernel {
     }
     return Y;
   }
+  /// Tᵀ X for columns X of the beam's generalized forces.
+  Eigen::Matrix<double, 12, 6> nodeRows(const Eigen::Matrix<double, 12, 6>& X) const {
+    Eigen::Matrix<double, 12, 6> Y = X;
+    for (int e = 0; e < 2; ++e) Y.middleRows<3>(6 * e + 3) = offset_[e] * X.middleRows<3>(6 * e + 3);
+    return Y;
+  }
   /// Tᵀ f for a generalized force f of the beam.
   template <class S> V<S> nodeForce(const V<S>& f) const {
     V<S> n = f;
@@ -96,18 +102,22 @@ struct RotatedEndsBeamKernel {
   }
 
   /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp), as the
-  /// beam's (the inertia's columns of end 2's rotation: section_inertia_coordinate_tangent.hpp).
+  /// beam's (end 2's elastic columns in closed form, corotated_elastic_tangent.hpp, turned into its
+  /// node's axes; the inertia's columns of end 2's rotation, section_inertia_coordinate_tangent.hpp).
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
     using D = SectionInertiaCoordinateTangent::D;
-    const V<D> vb = beamVelocities<double>(v).cast<D>(), ab = beamVelocities<double>(a).cast<D>();
-    SectionInertiaCoordinateTangent inertia(sectionRotation<double>(q, 0).cast<D>(),
-                                            Mat3T<D>(rotationMatrix<D>(seededSecondRotation(q)) * offset_[1].cast<D>()), vb, &ab,
-                                            gravity, beam_.length);
+    const V<double> vb = beamVelocities<double>(v);
+    const V<D> ab = beamVelocities<double>(a).cast<D>();
+    const Mat3 R1 = sectionRotation<double>(q, 0);
+    SectionInertiaCoordinateTangent inertia(R1.cast<D>(), Mat3T<D>(rotationMatrix<D>(seededSecondRotation(q)) * offset_[1].cast<D>()),
+                                            vb.cast<D>(), &ab, gravity, beam_.length);
     beam_.addMassPoints(inertia);
-    return objectiveCoordinateTangent(
-        {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); },
-        nodeForce<D>(inertia.forces()));
+    CoRotatedElasticTangent elastic = coRotatedElasticTangent(beam_.length, beam_.damping, q.segment<3>(0), R1, q.segment<3>(6),
+                                                              sectionRotation<double>(q, 1), vb, stiffness_);
+    elastic.alongRotationVector(q.segment<3>(9), offset_[1]);
+    return objectiveCoordinateTangent({q, v, a, gravity, M, C}, nodeForce<double>(elastic.force),
+                                      nodeRows(elastic.second_end), nodeForce<D>(inertia.forces()));
   }
 
   /// The beam's damping forces alone (timoshenko_beam.hpp).

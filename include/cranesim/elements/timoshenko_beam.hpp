@@ -60,6 +60,8 @@
 #include <optional>
 #include <type_traits>
 
+#include "cranesim/elements/corotated_elastic_tangent.hpp"
+#include "cranesim/elements/corotation.hpp"
 #include "cranesim/elements/objective_tangent.hpp"
 #include "cranesim/elements/section.hpp"
 #include "cranesim/elements/section_inertia_coordinate_tangent.hpp"
@@ -189,66 +191,18 @@ struct TimoshenkoBeamKernel {
   // ---------------------------------------------------------------------------------------------
   // Co-rotated frame and local deformations (3-29, 3-34)
 
-  template <class S> struct CoRotated {
-    Mat3T<S> R;               // R_B, body → inertial; x axis along the chord
-    Eigen::Matrix<S, 12, 1> d;  // [u¹, ψ¹, u², ψ²] in R_B axes
-  };
-  /// The same with J_d = ∂d/∂(twist), d's derivatives along r + δr, R (I + δθ̃) of both ends, in
-  /// its factors (coRotation): the rows of ψᵉ are T(ψᵉ)⁻¹ (E_θᵉ − Qᵉᵀ W), Qᵉ = R_BᵀRᵉ and W the
-  /// 3 × 12 map to δω_B, the row of u²_x is b·(δr² − δr¹), the others are zero. The forces apply
-  /// J_d and J_dᵀ through them (a few 3 × 3 products) instead of forming the 12 × 12 matrix.
-  template <class S> struct CoRotatedTangent : CoRotated<S> {
-    using V12 = Eigen::Matrix<S, 12, 1>;
-    Eigen::Matrix<S, 3, 12> W;
-    Mat3T<S> Tinv[2], Q[2];
-    Vec3T<S> b;
-
-    /// J_d x.
-    V12 apply(const V12& x) const {
-      const Vec3T<S> w = W * x;
-      V12 out = V12::Zero();
-      for (int e = 0; e < 2; ++e)
-        out.template segment<3>(3 + 6 * e) = Tinv[e] * Vec3T<S>(x.template segment<3>(3 + 6 * e) - Q[e].transpose() * w);
-      out(6) = b.dot(Vec3T<S>(x.template segment<3>(6) - x.template segment<3>(0)));
-      return out;
-    }
-    /// J_dᵀ y.
-    V12 applyTransposed(const V12& y) const {
-      V12 out = V12::Zero();
-      Vec3T<S> turned = Vec3T<S>::Zero();
-      for (int e = 0; e < 2; ++e) {
-        const Vec3T<S> z = Tinv[e].transpose() * y.template segment<3>(3 + 6 * e);
-        out.template segment<3>(3 + 6 * e) = z;
-        turned.noalias() += Q[e] * z;
-      }
-      out.noalias() -= W.transpose() * turned;
-      out.template segment<3>(0) -= y(6) * b;
-      out.template segment<3>(6) += y(6) * b;
-      return out;
-    }
-    /// J_d as a matrix.
-    Eigen::Matrix<S, 12, 12> matrix() const {
-      Eigen::Matrix<S, 12, 12> Jd = Eigen::Matrix<S, 12, 12>::Zero();
-      for (int e = 0; e < 2; ++e) {
-        Eigen::Matrix<S, 3, 12> dtheta = -(Q[e].transpose() * W);
-        dtheta.template block<3, 3>(0, 3 + 6 * e) += Mat3T<S>::Identity();
-        Jd.template middleRows<3>(3 + 6 * e) = Tinv[e] * dtheta;
-      }
-      Jd.template block<1, 3>(6, 0) = -b.transpose();
-      Jd.template block<1, 3>(6, 6) = b.transpose();
-      return Jd;
-    }
-  };
+  template <class S> using CoRotated = cranesim::CoRotated<S>;
+  template <class S> using CoRotatedTangent = cranesim::CoRotatedTangent<S>;
 
   template <class S>
   CoRotated<S> coRotate(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2, const Mat3T<S>& R2) const {
-    return coRotation<S, false>(r1, R1, r2, R2);
+    return cranesim::coRotation<S, false>(meanFrame<S>(r1, R1, r2, R2), R1, R2, length);
   }
 
   template <class S>
   CoRotatedTangent<S> coRotateWithTangent(const Vec3T<S>& r1, const Mat3T<S>& R1, const Vec3T<S>& r2,
                                           const Mat3T<S>& R2) const {
-    return coRotation<S, true>(r1, R1, r2, R2);
+    return cranesim::coRotation<S, true>(meanFrame<S>(r1, R1, r2, R2), R1, R2, length);
   }
 
   /// Local deformations d(q).
@@ -333,63 +287,6 @@ struct TimoshenkoBeamKernel {
       return K.lazyProduct(x);
   }
 
-  /// R_B and d (3-34), and with kTangent J_d in closed form. With δω_B the variation of R_B in its
-  /// own axes (δR_B = R_B δω̃_B), c = r² − r¹, ℓ = ‖c‖, b = c/ℓ, a = R_m e_x, k = a × b:
-  /// - the chord direction turns the x axis: δω_B,y = −(R_B e_z)·δc/ℓ, δω_B,z = (R_B e_y)·δc/ℓ;
-  /// - the twist about it, from R_B = A(a, b) R_m with A the smallest rotation taking a onto b,
-  ///   whose spatial variation δα satisfies b·δα = −k·(δa + δb)/(1 + a·b):
-  ///     δω_B,x = ((a + b)·R_m δω_m − k·δc/ℓ) / (1 + a·b),
-  ///   δω_m = (Eᵀ − G R_relᵀ) δθ¹ + G δθ², G = ½ T(φ/2) T(φ)⁻¹, E = exp(φ̃/2), R_rel = R¹ᵀR² (B-8);
-  /// - ψᵉ = log(R_Bᵀ Rᵉ): δψᵉ = T(ψᵉ)⁻¹ (δθᵉ − (R_BᵀRᵉ)ᵀ δω_B);
-  /// - u² = R_Bᵀ c − L e_x: δu² = (b·δc, 0, 0), since R_B e_x = b exactly.
-  template <class S, bool kTangent>
-  [[gnu::flatten]] std::conditional_t<kTangent, CoRotatedTangent<S>, CoRotated<S>> coRotation(const Vec3T<S>& r1, const Mat3T<S>& R1,
-                                                                              const Vec3T<S>& r2, const Mat3T<S>& R2) const {
-    using std::sqrt;
-    const Mat3T<S> Rrel = R1.transpose() * R2;
-    const Vec3T<S> phi = rotationLog<S>(Rrel);
-    const Mat3T<S> E = rotationMatrix<S>(Vec3T<S>(S(0.5) * phi));
-    const Mat3T<S> Rm = R1 * E;
-    const Vec3T<S> chord = r2 - r1;
-    const S ell = sqrt(chord.squaredNorm());
-    const Vec3T<S> b = chord / ell;
-    const Vec3T<S> a = Rm.col(0);
-    const Vec3T<S> k = a.cross(b);
-    const S one_plus_ab = S(1.0) + a.dot(b);
-    const Mat3T<S> K = skew<S>(k);
-    // Smallest rotation taking a onto b: I + k̃ + k̃²/(1 + a·b).
-    const Mat3T<S> align = Mat3T<S>::Identity() + K + (K * K) / one_plus_ab;
-    std::conditional_t<kTangent, CoRotatedTangent<S>, CoRotated<S>> c;
-    c.R = align * Rm;
-    const Mat3T<S> Q1 = c.R.transpose() * R1, Q2 = c.R.transpose() * R2;
-    c.d.setZero();
-    c.d.template segment<3>(3) = rotationLog<S>(Q1);
-    c.d.template segment<3>(6) = c.R.transpose() * chord;
-    c.d(6) -= length;
-    c.d.template segment<3>(9) = rotationLog<S>(Q2);
-    if constexpr (kTangent) {
-      // δω_B = W [δr¹, δθ¹, δr², δθ²]; the twist row's δθ² block (a + b)ᵀR_m G / (1 + a·b) as
-      // row-vector products.
-      auto& W = c.W;
-      W.setZero();
-      const Eigen::Matrix<S, 1, 3> twist_of_mid = ((a + b).transpose() * Rm) / one_plus_ab;
-      const Eigen::Matrix<S, 1, 3> twist_of_mid_G =
-          (S(0.5) * (twist_of_mid * angularVelocityMap<S>(Vec3T<S>(S(0.5) * phi)))) * angularVelocityMapInverse<S>(phi);
-      const Eigen::Matrix<S, 1, 3> twist_of_chord = k.transpose() / (ell * one_plus_ab);
-      W.template block<1, 3>(0, 0) = twist_of_chord;
-      W.template block<1, 3>(0, 3) = twist_of_mid * E.transpose() - twist_of_mid_G * Rrel.transpose();
-      W.template block<1, 3>(0, 6) = -twist_of_chord;
-      W.template block<1, 3>(0, 9) = twist_of_mid_G;
-      const Eigen::Matrix<S, 1, 3> ey = c.R.col(1).transpose() / ell, ez = c.R.col(2).transpose() / ell;
-      W.template block<1, 3>(1, 0) = ez, W.template block<1, 3>(1, 6) = -ez;
-      W.template block<1, 3>(2, 0) = -ey, W.template block<1, 3>(2, 6) = ey;
-      c.Q[0] = Q1, c.Q[1] = Q2;
-      for (int e = 0; e < 2; ++e) c.Tinv[e] = angularVelocityMapInverse<S>(Vec3T<S>(c.d.template segment<3>(3 + 6 * e)));
-      c.b = b;
-    }
-    return c;
-  }
-
  public:
   // ---------------------------------------------------------------------------------------------
   // Interpolated section motion (inertia, gravity, output)
@@ -466,18 +363,20 @@ struct TimoshenkoBeamKernel {
   }
 
   /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp): the
-  /// elastic and damping forces by forward AD in end 2's six directions, the inertial and gravity
-  /// forces in its three rotation directions (section_inertia_coordinate_tangent.hpp), the other
-  /// columns by frame indifference.
+  /// elastic and damping forces' columns of end 2 in closed form (corotated_elastic_tangent.hpp),
+  /// the inertial and gravity forces' in its three rotation directions
+  /// (section_inertia_coordinate_tangent.hpp), the other columns by frame indifference.
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
                           const Mat12& M, const Mat12& C) const {
     using D = SectionInertiaCoordinateTangent::D;
     const V<D> vd = v.cast<D>(), ad = a.cast<D>();
-    SectionInertiaCoordinateTangent inertia(rotationMatrix<double>(Vec3(q.segment<3>(3))).cast<D>(),
-                                            rotationMatrix<D>(seededSecondRotation(q)), vd, &ad, gravity, length);
+    const Mat3 R1 = rotationMatrix<double>(Vec3(q.segment<3>(3)));
+    SectionInertiaCoordinateTangent inertia(R1.cast<D>(), rotationMatrix<D>(seededSecondRotation(q)), vd, &ad, gravity, length);
     addMassPoints(inertia);
-    return objectiveCoordinateTangent(
-        {q, v, a, gravity, M, C}, [&]<class S>(const Q<S>& qs) { return elasticForce<S>(qs, v.cast<S>()); }, inertia.forces());
+    CoRotatedElasticTangent elastic = coRotatedElasticTangent(length, damping, q.segment<3>(0), R1, q.segment<3>(6),
+                                                              rotationMatrix<double>(Vec3(q.segment<3>(9))), v, stiffness());
+    elastic.alongRotationVector(q.segment<3>(9));
+    return objectiveCoordinateTangent({q, v, a, gravity, M, C}, elastic.force, elastic.second_end, inertia.forces());
   }
 
   /// ∂(M a + F)/∂dq in closed form (section_inertia_tangent.hpp: the Gauss points as stations

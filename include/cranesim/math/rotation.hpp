@@ -161,6 +161,27 @@ template <class S> Mat3T<S> angularVelocityMapInverse(const Vec3T<S>& phi) {
   return Mat3T<S>::Identity() + S(0.5) * P + detail::cotc(t2) * (P * P);
 }
 
+namespace detail {
+/// ∂(T(φ)⁻¹ x)/∂φ (sign +1) or ∂(T(φ)⁻ᵀ x)/∂φ (sign −1) at x held: with
+/// T(φ)^{-1|-ᵀ} x = x ± ½ φ × x + γ φ × (φ × x), γ = cotc(θ²) and γ′ = dγ/dθ²,
+///   ∓½ x̃ + γ ((φ·x) I + φ xᵀ − 2 x φᵀ) + 2γ′ (φ × (φ × x)) φᵀ.
+inline Mat3 rateMapInverseDerivative(const Vec3& phi, const Vec3& x, double sign) {
+  using P = Dual<double, 1>;
+  const P gamma = cotc<P>(P(phi.squaredNorm(), Eigen::Matrix<double, 1, 1>(1.0)));
+  Mat3 out = (-0.5 * sign) * skew<double>(x) + gamma.value() * (phi * x.transpose() - 2.0 * x * phi.transpose());
+  out.diagonal().array() += gamma.value() * phi.dot(x);
+  out.noalias() += (2.0 * gamma.derivatives()(0)) * phi.cross(Vec3(phi.cross(x))) * phi.transpose();
+  return out;
+}
+}  // namespace detail
+
+/// ∂(T(φ)⁻¹ x)/∂φ at x held.
+inline Mat3 rateMapInverseDerivative(const Vec3& phi, const Vec3& x) { return detail::rateMapInverseDerivative(phi, x, 1.0); }
+/// ∂(T(φ)⁻ᵀ x)/∂φ at x held.
+inline Mat3 rateMapInverseTransposedDerivative(const Vec3& phi, const Vec3& x) {
+  return detail::rateMapInverseDerivative(phi, x, -1.0);
+}
+
 /// Rotation vector of a rotation matrix (inverse of Rodrigues (2-4)), angle in [0, π),
 /// templated and series-safe at the identity. It is a smooth function of all 3×3 matrices near
 /// SO(3): v = vee of the skew part (sin θ n), c = (tr R − 1)/2 (cos θ), φ = θ/sin θ · v.
