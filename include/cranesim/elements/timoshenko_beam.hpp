@@ -27,8 +27,9 @@
 //   section.hpp: I_y = ∫z² dA (bending about y, with ψ_y), I_z = ∫y² dA; the thesis pairs ψ with
 //   EI_z and writes the rotary inertia diag(I_y + I_z, I_z, I_y) (C-56), i.e. names them the
 //   other way round.
-// - Elastic forces F_int = J_dᵀ K d with J_d = ∂d/∂(twist) in closed form (coRotation); the
+// - Elastic forces F_int = J_dᵀ K d with J_d = ∂d/∂(twist) in closed form (corotation.hpp); the
 //   Kelvin–Voigt damping (σ = E(ε + η ε̇), τ = G(γ + η γ̇)) adds η J_dᵀ K ḋ with ḋ = J_d dq.
+//   Their coordinate columns are in closed form too (corotated_elastic_tangent.hpp).
 //
 // Inertia and gravity: the section motion is interpolated between the end frames independently
 // of the elastic model (the thesis uses the same shape functions for both, C.2.7, and then drops
@@ -51,8 +52,8 @@
 // `stiffness_points` = 2 (exact strain energy; no reduced integration is needed).
 //
 // Neither the elastic forces (J_d in closed form, applied through its factors) nor the inertial
-// forces (section_inertia_forces.hpp) use AD, so the Jacobian's forward AD (S a dual number) is
-// one level deep.
+// forces (section_inertia_forces.hpp) use AD, so forward AD through them (S a dual number: the
+// super truss' tubes, the tests' references) is one level deep.
 
 #include <array>
 #include <cmath>
