@@ -42,32 +42,24 @@ struct RotatedEndsBeamKernel {
     return b;
   }
 
+  /// Tᵀ X for a generalized force X of the beam (or columns of them): its rotation rows turned
+  /// into the nodes' axes.
+  template <class Derived> typename Derived::PlainObject nodeRows(const Eigen::MatrixBase<Derived>& X) const {
+    using S = typename Derived::Scalar;
+    typename Derived::PlainObject Y = X;
+    for (int e = 0; e < 2; ++e) Y.template middleRows<3>(6 * e + 3) = offset_[e].template cast<S>() * X.template middleRows<3>(6 * e + 3);
+    return Y;
+  }
   /// Tᵀ X T for a matrix X of the beam (mass, velocity tangent): its rotation rows and columns
   /// turned by the offsets, 3 × 3 block by block (T is the identity elsewhere; as dense 12 × 12
   /// products these took about half of the element's velocity tangent).
   template <class S> Eigen::Matrix<S, 12, 12> toNodeAxes(const Eigen::Matrix<S, 12, 12>& X) const {
-    Eigen::Matrix<S, 12, 12> Y = X;
-    for (int e = 0; e < 2; ++e) {
-      const Mat3T<S> O = offset_[e].template cast<S>();
-      Y.template middleRows<3>(6 * e + 3) = (O * X.template middleRows<3>(6 * e + 3)).eval();
-    }
+    Eigen::Matrix<S, 12, 12> Y = nodeRows(X);
     for (int e = 0; e < 2; ++e) {
       const Mat3T<S> Ot = offset_[e].transpose().template cast<S>();
       Y.template middleCols<3>(6 * e + 3) = (Y.template middleCols<3>(6 * e + 3) * Ot).eval();
     }
     return Y;
-  }
-  /// Tᵀ X for columns X of the beam's generalized forces.
-  Eigen::Matrix<double, 12, 6> nodeRows(const Eigen::Matrix<double, 12, 6>& X) const {
-    Eigen::Matrix<double, 12, 6> Y = X;
-    for (int e = 0; e < 2; ++e) Y.middleRows<3>(6 * e + 3) = offset_[e] * X.middleRows<3>(6 * e + 3);
-    return Y;
-  }
-  /// Tᵀ f for a generalized force f of the beam.
-  template <class S> V<S> nodeForce(const V<S>& f) const {
-    V<S> n = f;
-    for (int e = 0; e < 2; ++e) n.template segment<3>(6 * e + 3) = offset_[e].template cast<S>() * f.template segment<3>(6 * e + 3);
-    return n;
   }
 
   template <class S> typename TimoshenkoBeamKernel::EndFrames<S> endFrames(const Q<S>& q) const {
@@ -83,7 +75,7 @@ struct RotatedEndsBeamKernel {
     const Vec3T<S> r1 = q.template segment<3>(0), r2 = q.template segment<3>(6);
     const Mat3T<S> R1 = sectionRotation<S>(q, 0), R2 = sectionRotation<S>(q, 1);
     const V<S> vb = beamVelocities<S>(v);
-    return nodeForce<S>(V<S>(beam_.inertialAndGravityForce<S>(r1, R1, r2, R2, vb, gravity) +
+    return nodeRows(V<S>(beam_.inertialAndGravityForce<S>(r1, R1, r2, R2, vb, gravity) +
                              beam_.elasticForce<S>(r1, R1, r2, R2, vb, stiffness_)));
   }
 
@@ -116,13 +108,13 @@ struct RotatedEndsBeamKernel {
     CoRotatedElasticTangent elastic = coRotatedElasticTangent(beam_.length, beam_.damping, q.segment<3>(0), R1, q.segment<3>(6),
                                                               sectionRotation<double>(q, 1), vb, stiffness_);
     elastic.alongRotationVector(q.segment<3>(9), offset_[1]);
-    return objectiveCoordinateTangent({q, v, a, gravity, M, C}, nodeForce<double>(elastic.force),
-                                      nodeRows(elastic.second_end), nodeForce<D>(inertia.forces()));
+    return objectiveCoordinateTangent({q, v, a, gravity, M, C}, nodeRows(elastic.force),
+                                      nodeRows(elastic.second_end), nodeRows(inertia.forces()));
   }
 
   /// The beam's damping forces alone (timoshenko_beam.hpp).
   template <class S> V<S> dampingForce(const Q<S>& q, const V<S>& v) const {
-    return nodeForce<S>(V<S>(beam_.dampingForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0), q.template segment<3>(6),
+    return nodeRows(V<S>(beam_.dampingForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0), q.template segment<3>(6),
                                                    sectionRotation<S>(q, 1), beamVelocities<S>(v), stiffness_)));
   }
 
@@ -147,14 +139,14 @@ struct RotatedEndsBeamKernel {
   /// Tᵀ (M_b T a + F_ine,b + F_g,b): the inertial and gravity forces, M a among them.
   template <class S> V<S> inertialAndGravityForce(const Q<S>& q, const V<S>& v, const V<S>& a, const Vec3& gravity) const {
     const V<S> ab = beamVelocities<S>(a);
-    return nodeForce<S>(V<S>(beam_.inertialAndGravityForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0),
+    return nodeRows(V<S>(beam_.inertialAndGravityForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0),
                                                               q.template segment<3>(6), sectionRotation<S>(q, 1),
                                                               beamVelocities<S>(v), gravity, &ab)));
   }
 
   /// Tᵀ F_el,b: the elastic and damping forces.
   template <class S> V<S> elasticForce(const Q<S>& q, const V<S>& v) const {
-    return nodeForce<S>(V<S>(beam_.elasticForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0), q.template segment<3>(6),
+    return nodeRows(V<S>(beam_.elasticForce<S>(q.template segment<3>(0), sectionRotation<S>(q, 0), q.template segment<3>(6),
                                                    sectionRotation<S>(q, 1), beamVelocities<S>(v), stiffness_)));
   }
 
