@@ -42,7 +42,8 @@ struct CoRotatedElasticTangent {
 namespace corotated_detail {
 using D6 = Dual<double, 6>;
 
-/// The mean frame with its derivatives in end 2's directions [δr², δθ²] (file comment).
+/// What chordTwistRow reads of the mean frame, with its derivatives in end 2's directions
+/// [δr², δθ²] (file comment; the chord itself is not needed).
 inline MeanFrame<D6> seededMeanFrame(const MeanFrame<double>& m, const Mat3& R1) {
   MeanFrame<D6> s;
   const Mat3 Tinv = angularVelocityMapInverse<double>(m.phi);
@@ -51,11 +52,9 @@ inline MeanFrame<D6> seededMeanFrame(const MeanFrame<double>& m, const Mat3& R1)
   for (int i = 0; i < 3; ++i) {
     s.phi(i) = D6(m.phi(i));
     s.b(i) = D6(m.b(i));
-    s.chord(i) = D6(m.chord(i));
     for (int j = 0; j < 3; ++j) {
       s.phi(i).derivatives()(3 + j) = Tinv(i, j);
       s.b(i).derivatives()(j) = Pb(i, j);
-      s.chord(i).derivatives()(j) = i == j ? 1.0 : 0.0;
     }
   }
   s.ell = D6(m.ell);
@@ -90,31 +89,35 @@ inline CoRotatedElasticTangent coRotatedElasticTangent(double length, double eta
   const CoRotatedTangent<double> c = coRotation<double, true>(m, R1, R2, length);
   const Eigen::Matrix<double, 12, 12> J = c.matrix();
   const Mat3x6 W2 = c.W.rightCols<6>();  // end 2's columns of W
-  const V12 Jv = c.apply(v);
-  const V12 s = K * (c.d + eta * Jv);
+  const bool damped = eta > 0.0;
+  V12 strain = c.d;
+  if (damped) strain.noalias() += eta * c.apply(v);
+  const V12 s = K * strain;
   CoRotatedElasticTangent out;
   out.force = c.applyTransposed(s);
 
-  // Row x of W in forward AD from the seeded mean frame; its contractions with dq and with y.
+  // Row x of W in forward AD from the seeded mean frame.
   const Eigen::Matrix<D6, 1, 12> Wx = chordTwistRow<D6>(corotated_detail::seededMeanFrame(m, R1));
-  const Vec3 omega = c.W * v;
-  Eigen::Matrix<double, 1, 6> dWx_v = Eigen::Matrix<double, 1, 6>::Zero();
-  for (int j = 0; j < 12; ++j) dWx_v += v(j) * Wx(j).derivatives().transpose();
-
   // Rows y, z of W: ∓(R_B e_z)/ℓ, ±(R_B e_y)/ℓ on δc, and their derivatives.
   const Mat3& RB = c.R;
   const Vec3 ey = RB.col(1), ez = RB.col(2);
   const Mat3 RB_ey = RB * skew<double>(Vec3(Vec3::UnitY())), RB_ez = RB * skew<double>(Vec3(Vec3::UnitZ()));
-  Mat3x6 chord_row = Mat3x6::Zero();  // δℓ's row b·δr², in the first of three equal rows
-  chord_row.block<1, 3>(0, 0) = m.b.transpose();
-  const Vec3 v_delta = v.segment<3>(6) - v.segment<3>(0);
-  Mat3x6 Omega;  // ∂(W dq)/∂[δr², δθ²]
-  Omega.row(0) = dWx_v;
-  Omega.row(1) = (v_delta.transpose() * RB_ez * W2 + (ez.dot(v_delta) / m.ell) * chord_row.row(0)) / m.ell;
-  Omega.row(2) = -(v_delta.transpose() * RB_ey * W2 + (ey.dot(v_delta) / m.ell) * chord_row.row(0)) / m.ell;
+  Eigen::Matrix<double, 1, 6> chord_row = Eigen::Matrix<double, 1, 6>::Zero();  // δℓ = b·δr²
+  chord_row.head<3>() = m.b.transpose();
+  const Mat3 Pb = Mat3::Identity() - m.b * m.b.transpose();
 
-  // Ĵ = ∂(J_d dq)/∂[δr², δθ²] and H.
+  // H, and with damping Ĵ = ∂(J_d dq)/∂[δr², δθ²] (its Ω = ∂(W dq)/∂[δr², δθ²]).
   Mat12x6 Jhat = Mat12x6::Zero(), H = Mat12x6::Zero();
+  Vec3 omega = Vec3::Zero();
+  Mat3x6 Omega = Mat3x6::Zero();
+  if (damped) {
+    omega = c.W * v;
+    const Vec3 v_delta = v.segment<3>(6) - v.segment<3>(0);
+    for (int j = 0; j < 12; ++j) Omega.row(0) += v(j) * Wx(j).derivatives().transpose();
+    Omega.row(1) = (v_delta.transpose() * RB_ez * W2 + (ez.dot(v_delta) / m.ell) * chord_row) / m.ell;
+    Omega.row(2) = -(v_delta.transpose() * RB_ey * W2 + (ey.dot(v_delta) / m.ell) * chord_row) / m.ell;
+    Jhat.block<1, 3>(6, 0) = (Pb * v_delta).transpose() / m.ell;
+  }
   Vec3 y = Vec3::Zero();
   Vec3 z[2];
   Mat3x6 dz[2];
@@ -122,18 +125,18 @@ inline CoRotatedElasticTangent coRotatedElasticTangent(double length, double eta
     const Vec3 psi = c.d.segment<3>(3 + 6 * e);
     const Mat3x6 J_psi = J.block<3, 6>(3 + 6 * e, 6);
     const Mat3& Q = c.Q[e];
-    const Vec3 turned_omega = Q.transpose() * omega;
-    const Vec3 h = v.segment<3>(3 + 6 * e) - turned_omega;
-    Mat3x6 dturned = -Q.transpose() * skew<double>(omega) * W2 + Q.transpose() * Omega;  // δ(Qᵉᵀ ω)
-    if (e == 1) dturned.rightCols<3>() += skew<double>(turned_omega);
-    Jhat.middleRows<3>(3 + 6 * e) = rateMapInverseDerivative(psi, h) * J_psi - c.Tinv[e] * dturned;
+    if (damped) {
+      const Vec3 turned_omega = Q.transpose() * omega;
+      const Vec3 h = v.segment<3>(3 + 6 * e) - turned_omega;
+      Mat3x6 dturned = -Q.transpose() * skew<double>(omega) * W2 + Q.transpose() * Omega;  // δ(Qᵉᵀ ω)
+      if (e == 1) dturned.rightCols<3>() += skew<double>(turned_omega);
+      Jhat.middleRows<3>(3 + 6 * e) = rateMapInverseDerivative(psi, h) * J_psi - c.Tinv[e] * dturned;
+    }
     z[e] = c.Tinv[e].transpose() * s.segment<3>(3 + 6 * e);
     dz[e] = rateMapInverseTransposedDerivative(psi, Vec3(s.segment<3>(3 + 6 * e))) * J_psi;
     H.middleRows<3>(3 + 6 * e) += dz[e];
     y += Q * z[e];
   }
-  const Mat3 Pb = Mat3::Identity() - m.b * m.b.transpose();
-  Jhat.block<1, 3>(6, 0) = (Pb * v_delta).transpose() / m.ell;
 
   Mat3x6 dy = Mat3x6::Zero();  // ∂y/∂[δr², δθ²]
   for (int e = 0; e < 2; ++e) {
@@ -145,7 +148,7 @@ inline CoRotatedElasticTangent coRotatedElasticTangent(double length, double eta
   // ∂(Wᵀ y)/∂x at y held: row x from its AD, rows y, z as n = (y_y e_z − y_z e_y)/ℓ on [δr¹; δr²] = [n; −n].
   for (int j = 0; j < 12; ++j) H.row(j) -= y(0) * Wx(j).derivatives().transpose();
   const Vec3 n = (y(1) * ez - y(2) * ey) / m.ell;
-  const Mat3x6 dn = (y(2) * RB_ey - y(1) * RB_ez) * W2 / m.ell - n * chord_row.row(0) / m.ell;
+  const Mat3x6 dn = (y(2) * RB_ey - y(1) * RB_ez) * W2 / m.ell - n * chord_row / m.ell;
   H.middleRows<3>(0) -= dn;
   H.middleRows<3>(6) += dn;
   // s_u [−b; 0; b; 0]
@@ -160,7 +163,7 @@ inline CoRotatedElasticTangent coRotatedElasticTangent(double length, double eta
   for (int i = 0; i < 7; ++i) {
     J7.row(i) = J.row(rows[i]);
     X7.row(i) = J.block<1, 6>(rows[i], 6);
-    if (eta > 0.0) X7.row(i) += eta * Jhat.row(rows[i]);
+    if (damped) X7.row(i) += eta * Jhat.row(rows[i]);
     for (int j = 0; j < 7; ++j) K7(i, j) = K(rows[i], rows[j]);
   }
   const Eigen::Matrix<double, 7, 6> KX = K7.lazyProduct(X7);
