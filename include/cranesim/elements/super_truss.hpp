@@ -205,60 +205,110 @@ struct SuperTrussKernel {
             {rotationMatrix<S>(Vec3T<S>(q.template segment<3>(3))), rotationMatrix<S>(Vec3T<S>(q.template segment<3>(9)))}};
   }
 
-  template <class T> [[gnu::flatten]] NodeState<T> nodeState(const SectionFrames<T>& s, const NodeModel& n) const {
+  /// What the internal nodes of one chord share: its end nodes rᵏ = r¹ + R₁pₖ, rˡ = r² + R₂pₗ,
+  /// its frame at node k, Rᵏ = R₁R_c, the deformation seen from there (with the chord's stretch s
+  /// as both end stretches), the row of ṡ = row · dq_e, and the end sections' R_i p̃, R_i t̃ and
+  /// R_i t for the chord's end offsets p = pₖ, pₗ and its reference direction t.
+  template <class T> struct ChordState {
+    Vec3T<T> r[2];
+    Mat3T<T> Rk;
+    typename SplineBeamKernel::Relative<T> rel;
+    Eigen::Matrix<T, 1, kNv> stretch_rate;
+    Mat3T<T> Rp[2], Rt[2];
+    Vec3T<T> t[2];
+  };
+
+  template <class T> [[gnu::flatten]] ChordState<T> chordState(const SectionFrames<T>& s, const ChordModel& c) const {
+    ChordState<T> out;
+    for (int i = 0; i < 2; ++i) {
+      out.r[i] = s.r[i] + s.R[i] * c.offset[i];
+      out.Rp[i] = s.R[i] * skew<double>(c.offset[i]);
+      out.Rt[i] = s.R[i] * skew<double>(c.tangent);
+      out.t[i] = s.R[i] * c.tangent;
+    }
+    out.Rk = s.R[0] * c.frame;
+    // Both end tangents are stretched by the chord's stretch s = ‖rˡ − rᵏ‖ / L_c: the chord
+    // keeps no axial degree of freedom of its own, but a uniformly stretched chord is
+    // represented exactly (with s = 1 the spline would stretch as 6ξ(1 − ξ), 25 % too stiff).
+    const Vec3T<T> chord = out.r[1] - out.r[0];
+    const T chord_length = chord.norm();
+    const T stretch = chord_length / c.spline.length;
+    out.rel = {out.Rk.transpose() * chord, out.Rk.transpose() * Mat3T<T>(s.R[1] * c.frame), stretch, stretch};
+    // ṡ = ĉᵀ(ṙˡ − ṙᵏ) / L_c with ṙᵏ = ṙ¹ − R₁ p̃ₖ ω¹, ṙˡ = ṙ² − R₂ p̃ₗ ω².
+    const Eigen::Matrix<T, 1, 3> c_hat = (chord / (chord_length * T(c.spline.length))).transpose();
+    out.stretch_rate.template segment<3>(0) = -c_hat;
+    out.stretch_rate.template segment<3>(3) = c_hat * out.Rp[0];
+    out.stretch_rate.template segment<3>(6) = c_hat;
+    out.stretch_rate.template segment<3>(9) = -(c_hat * out.Rp[1]);
+    return out;
+  }
+
+  /// The chords' shared parts (chordState) in the calling thread's scratch buffer.
+  template <class T> const std::vector<ChordState<T>>& chordStates(const SectionFrames<T>& s) const {
+    std::vector<ChordState<T>>& out = scratch<ChordState<T>>();
+    for (std::size_t c = 0; c < chords.size(); ++c) out[c] = chordState<T>(s, chords[c]);
+    return out;
+  }
+
+  /// Node n's state from the chords' shared parts.
+  template <class T>
+  NodeState<T> nodeState(const SectionFrames<T>& s, const NodeModel& n, const std::vector<ChordState<T>>& chord) const {
+    return nodeState<T>(s, n, n.section >= 0 ? nullptr : &chord[n.chord]);
+  }
+
+  /// A single node's state (its chord's shared part formed for it alone).
+  template <class T> NodeState<T> nodeState(const SectionFrames<T>& s, const NodeModel& n) const {
+    if (n.section >= 0) return nodeState<T>(s, n, nullptr);
+    const ChordState<T> chord = chordState<T>(s, chords[n.chord]);
+    return nodeState<T>(s, n, &chord);
+  }
+
+  /// Node n's state; `chord`: its chord's shared part (internal nodes).
+  template <class T> [[gnu::flatten]] NodeState<T> nodeState(const SectionFrames<T>& s, const NodeModel& n, const ChordState<T>* chord) const {
     NodeState<T> out;
     out.map.setZero();
     if (n.section >= 0) {  // (3-87..3-89)
       const int i = n.section;
-      out.r = s.r[i] + s.R[i] * n.offset.cast<T>();
+      out.r = s.r[i] + s.R[i] * n.offset;
       out.R = s.R[i];
       out.map.template block<3, 3>(0, 6 * i).setIdentity();
-      out.map.template block<3, 3>(0, 6 * i + 3) = -(s.R[i] * skew<T>(Vec3T<T>(n.offset.cast<T>())));
+      out.map.template block<3, 3>(0, 6 * i + 3) = -(s.R[i] * skew<double>(n.offset));
       out.map.template block<3, 3>(3, 6 * i + 3).setIdentity();
       return out;
     }
     const ChordModel& c = chords[n.chord];
-    const Mat3T<T> Rc = c.frame.cast<T>();
-    const Vec3T<T> pk = c.offset[0].cast<T>(), pl = c.offset[1].cast<T>(), t = c.tangent.cast<T>();
-    const Mat3T<T> Rk = s.R[0] * Rc, Rl = s.R[1] * Rc;
-    const Vec3T<T> rk = s.r[0] + s.R[0] * pk, rl = s.r[1] + s.R[1] * pl;
-    // Both end tangents are stretched by the chord's stretch s = ‖rˡ − rᵏ‖ / L_c: the chord
-    // keeps no axial degree of freedom of its own, but a uniformly stretched chord is
-    // represented exactly (with s = 1 the spline would stretch as 6ξ(1 − ξ), 25 % too stiff).
-    const Vec3T<T> chord = rl - rk;
-    const T chord_length = chord.norm();
-    const T stretch = chord_length / c.spline.length;
-    const typename SplineBeamKernel::Relative<T> rel{Rk.transpose() * chord, Rk.transpose() * Rl, stretch, stretch};
+    const ChordState<T>& cs = *chord;
     const HermiteBasis b = hermiteBasis(n.xi, c.spline.length);
-    // Position (3-92 with A-9) and its map.
-    const Vec3T<T> lever1 = T(b.N[0]) * pk + (T(b.N[1]) * stretch) * t, lever2 = T(b.N[2]) * pl + (T(b.N[3]) * stretch) * t;
-    out.r = T(b.N[0]) * s.r[0] + T(b.N[2]) * s.r[1] + s.R[0] * lever1 + s.R[1] * lever2;
+    // Position (3-92 with A-9), r = N₀¹ rᵏ + N₁¹ s R₁t + N₀² rˡ + N₁² s R₂t, and its map: ∂r/∂θⁱ
+    // = −Rᵢ (N pᵢ + N' s t)~, and ∂r/∂s = N₁¹ R₁t + N₁² R₂t along ṡ.
+    const T& stretch = cs.rel.s1;
+    const T w1 = b.N[1] * stretch, w2 = b.N[3] * stretch;
+    out.r = b.N[0] * cs.r[0] + b.N[2] * cs.r[1] + w1 * cs.t[0] + w2 * cs.t[1];
     for (int k = 0; k < 3; ++k) out.map(k, k) = T(b.N[0]), out.map(k, 6 + k) = T(b.N[2]);
-    out.map.template block<3, 3>(0, 3) = -(s.R[0] * skew<T>(lever1));
-    out.map.template block<3, 3>(0, 9) = -(s.R[1] * skew<T>(lever2));
-    // ṡ = ĉᵀ(ṙˡ − ṙᵏ) / L_c with ṙᵏ = ṙ¹ − R₁ p̃ₖ ω¹, ṙˡ = ṙ² − R₂ p̃ₗ ω²; ∂r/∂s = N₁¹ R₁ t + N₁² R₂ t.
-    const Eigen::Matrix<T, 1, 3> c_hat = (chord / (chord_length * T(c.spline.length))).transpose();
-    Eigen::Matrix<T, 1, kNv> stretch_rate;
-    stretch_rate.template segment<3>(0) = -c_hat;
-    stretch_rate.template segment<3>(3) = c_hat * s.R[0] * skew<T>(pk);
-    stretch_rate.template segment<3>(6) = c_hat;
-    stretch_rate.template segment<3>(9) = -(c_hat * s.R[1] * skew<T>(pl));
-    const Vec3T<T> dr_dstretch = T(b.N[1]) * (s.R[0] * t) + T(b.N[3]) * (s.R[1] * t);
-    out.map.template topRows<3>() += dr_dstretch * stretch_rate;
-    // Frame R = Rᵏ C(α) (3-64..3-67) and ω = Cᵀωᵏ + T_C ∂α/∂δ_local Λ dq_chord (3-69).
-    const auto sd = c.spline.template sectionDerivatives<T>(rel, n.xi, false);
-    const Mat3T<T> C = SplineBeamKernel::cardanMatrix<T>(sd.alpha);
-    out.R = Rk * C;
-    const Eigen::Matrix<T, 3, SplineBeamKernel::kLocal> TD = SplineBeamKernel::cardanRateMap<T>(sd.alpha) * sd.dalpha;
+    out.map.template block<3, 3>(0, 3) = -(b.N[0] * cs.Rp[0] + w1 * cs.Rt[0]);
+    out.map.template block<3, 3>(0, 9) = -(b.N[2] * cs.Rp[1] + w2 * cs.Rt[1]);
+    const Vec3T<T> dr_dstretch = b.N[1] * cs.t[0] + b.N[3] * cs.t[1];
+    out.map.template topRows<3>() += dr_dstretch * cs.stretch_rate;
+    // Frame R = Rᵏ C(α) (3-64..3-67) and ω = Cᵀωᵏ + T_C ∂α/∂δ_local Λ dq_chord (3-69), T_C (B-17)
+    // = [1, 0, −sψ; 0, cφ, sφcψ; 0, −sφ, cφcψ] applied row by row.
+    using std::cos, std::sin;
+    const auto sd = c.spline.template sectionDerivatives<T>(cs.rel, n.xi, false);
+    const T sf = sin(sd.alpha(0)), cf = cos(sd.alpha(0)), sp = sin(sd.alpha(1)), cp = cos(sd.alpha(1));
+    const Mat3T<T> C = SplineBeamKernel::cardanMatrix<T>(sf, cf, sp, cp, sin(sd.alpha(2)), cos(sd.alpha(2)));
+    out.R = cs.Rk * C;
+    Eigen::Matrix<T, 3, SplineBeamKernel::kLocal> TD;
+    const T sf_cp = sf * cp, cf_cp = cf * cp;
+    TD.row(0) = sd.dalpha.row(0) - sp * sd.dalpha.row(2);
+    TD.row(1) = cf * sd.dalpha.row(1) + sf_cp * sd.dalpha.row(2);
+    TD.row(2) = cf_cp * sd.dalpha.row(2) - sf * sd.dalpha.row(1);
     const Mat3T<T> Td = TD.template leftCols<3>(), Tchi = TD.template middleCols<3>(3);
-    const Mat3T<T> B = Td * Rk.transpose();
-    const Mat3T<T> BRk = B * s.R[0] * skew<T>(pk), BRl = B * s.R[1] * skew<T>(pl);
+    const Mat3T<T> B = Td * cs.Rk.transpose();
     out.map.template block<3, 3>(3, 0) = -B;
     out.map.template block<3, 3>(3, 3) =
-        BRk + (Mat3T<T>(C.transpose()) + Td * skew<T>(rel.d) - Tchi * rel.R12.transpose()) * Rc.transpose();
+        B * cs.Rp[0] + Mat3T<T>(Mat3T<T>(C.transpose()) + Td * skew<T>(cs.rel.d) - Tchi * cs.rel.R12.transpose()) * c.frame.transpose();
     out.map.template block<3, 3>(3, 6) = B;
-    out.map.template block<3, 3>(3, 9) = Tchi * Rc.transpose() - BRl;
-    out.map.template bottomRows<3>() += Vec3T<T>(TD.col(6) + TD.col(7)) * stretch_rate;
+    out.map.template block<3, 3>(3, 9) = Tchi * c.frame.transpose() - B * cs.Rp[1];
+    out.map.template bottomRows<3>() += Vec3T<T>(TD.col(6) + TD.col(7)) * cs.stretch_rate;
     return out;
   }
 
@@ -274,8 +324,9 @@ struct SuperTrussKernel {
   /// M_e = Σ T_kᵀ M_k T_k (3-97, 3-99, 3-102) + the rigid parts of the end sections.
   template <class S> Eigen::Matrix<S, kNv, kNv> massMatrix(const Q<S>& q, double = 0.0) const {
     const SectionFrames<S> s = sectionFrames<S>(q);
+    const std::vector<ChordState<S>>& chord = chordStates<S>(s);
     std::vector<NodeState<S>>& state = scratch<NodeState<S>>();
-    for (std::size_t n = 0; n < nodes.size(); ++n) state[n] = nodeState<S>(s, nodes[n]);
+    for (std::size_t n = 0; n < nodes.size(); ++n) state[n] = nodeState<S>(s, nodes[n], chord);
     Eigen::Matrix<S, kNv, kNv> M = Eigen::Matrix<S, kNv, kNv>::Zero();
     for (int i = 0; i < 2; ++i) {
       const RigidPart& p = rigid[i];
@@ -348,11 +399,12 @@ struct SuperTrussKernel {
     const SectionFrames<P> path = framesAlongMotion<double>(s, v);
     Mat12 C = Mat12::Zero();  // C(dq_e) u = [dq_e, u]
     for (int i = 0; i < 2; ++i) C.block<3, 3>(6 * i + 3, 6 * i + 3) = skew<double>(Vec3(v.segment<3>(6 * i + 3)));
+    const std::vector<ChordState<P>>& chord = chordStates<P>(path);
     std::vector<NodeTangent>& node = scratch<NodeTangent>();
     const auto nodeTangent = [&](std::size_t n) {
       NodeTangent& out = node[n];
       NodeMap<double> rate;
-      out.state = valuesOf<double>(nodeState<P>(path, nodes[n]), &rate);
+      out.state = valuesOf<double>(nodeState<P>(path, nodes[n], chord), &rate);
       out.v.noalias() = out.state.map * v;
       out.acceleration_tangent.noalias() = 2.0 * rate - out.state.map * C;
       out.acceleration_tangent.bottomRows<3>().noalias() += skew<double>(Vec3(out.v.tail<3>())) * out.state.map.bottomRows<3>();
@@ -454,8 +506,9 @@ struct SuperTrussKernel {
   /// Σ ½ dᵀ K d of the flexible members and, with `gravity`, their gravity potential; every
   /// node's state formed once (a node is shared by several tubes).
   double memberEnergy(const SectionFrames<double>& s, const Vec3* gravity) const {
+    const std::vector<ChordState<double>>& chord = chordStates<double>(s);
     std::vector<NodeState<double>>& state = scratch<NodeState<double>>();
-    for (std::size_t n = 0; n < nodes.size(); ++n) state[n] = nodeState<double>(s, nodes[n]);
+    for (std::size_t n = 0; n < nodes.size(); ++n) state[n] = nodeState<double>(s, nodes[n], chord);
     double V = 0.0;
     for (const MemberModel& m : members) {
       const auto e = memberEndFrames<double>(m, state[m.node[0]], state[m.node[1]]);
@@ -539,14 +592,17 @@ struct SuperTrussKernel {
     const SectionFrames<P> path = framesAlongMotion<S>(s, v);
     const Eigen::Matrix<P, kNv, 1> vp = v.template cast<P>();
     std::vector<NodeMotion<S>>& motion = scratch<NodeMotion<S>>();
+    // The chords' shared parts: at the section frames, or along the motion for all terms.
+    const std::vector<ChordState<S>>* chord = terms == Terms::All ? nullptr : &chordStates<S>(s);
+    const std::vector<ChordState<P>>* chord_path = terms == Terms::All ? &chordStates<P>(path) : nullptr;
     const auto nodeMotion = [&](std::size_t n) {
       NodeMotion<S>& out = motion[n];
       if (terms != Terms::All) {
-        out.state = nodeState<S>(s, nodes[n]);
+        out.state = nodeState<S>(s, nodes[n], *chord);
         out.v = out.state.map * v;
         return;
       }
-      const NodeState<P> p = nodeState<P>(path, nodes[n]);
+      const NodeState<P> p = nodeState<P>(path, nodes[n], *chord_path);
       const Vec6T<P> vn = p.map * vp;
       out.state = valuesOf<S>(p);
       for (int i = 0; i < 6; ++i) {

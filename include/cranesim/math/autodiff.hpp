@@ -272,6 +272,16 @@ template <class T, int N, class BinaryOp> struct ScalarBinaryOpTraits<cranesim::
 template <class T, int N, class BinaryOp> struct ScalarBinaryOpTraits<T, cranesim::Dual<T, N>, BinaryOp> {
   using ReturnType = cranesim::Dual<T, N>;
 };
+// A nested dual with the plain numbers at its core (Dual<Dual<double, M>, N> and double): products
+// with constant matrices cost a third of those with the constants converted to nested duals.
+template <class T, int M, int N, class BinaryOp>
+struct ScalarBinaryOpTraits<cranesim::Dual<cranesim::Dual<T, M>, N>, T, BinaryOp> {
+  using ReturnType = cranesim::Dual<cranesim::Dual<T, M>, N>;
+};
+template <class T, int M, int N, class BinaryOp>
+struct ScalarBinaryOpTraits<T, cranesim::Dual<cranesim::Dual<T, M>, N>, BinaryOp> {
+  using ReturnType = cranesim::Dual<cranesim::Dual<T, M>, N>;
+};
 
 }  // namespace Eigen
 
