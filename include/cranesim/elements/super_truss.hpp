@@ -397,8 +397,8 @@ struct SuperTrussKernel {
     using P = Dual<double, 1>;
     const SectionFrames<double> s = sectionFrames<double>(q);
     const SectionFrames<P> path = framesAlongMotion<double>(s, v);
-    Mat12 C = Mat12::Zero();  // C(dq_e) u = [dq_e, u]
-    for (int i = 0; i < 2; ++i) C.block<3, 3>(6 * i + 3, 6 * i + 3) = skew<double>(Vec3(v.segment<3>(6 * i + 3)));
+    // C(dq_e) u = [dq_e, u]: the blocks ω̃ⁱ on the end sections' rotations, zero elsewhere.
+    const Mat3 W[2] = {skew<double>(Vec3(v.segment<3>(3))), skew<double>(Vec3(v.segment<3>(9)))};
     const std::vector<ChordState<P>>& chord = chordStates<P>(path);
     std::vector<NodeTangent>& node = scratch<NodeTangent>();
     const auto nodeTangent = [&](std::size_t n) {
@@ -406,7 +406,9 @@ struct SuperTrussKernel {
       NodeMap<double> rate;
       out.state = valuesOf<double>(nodeState<P>(path, nodes[n], chord), &rate);
       out.v.noalias() = out.state.map * v;
-      out.acceleration_tangent.noalias() = 2.0 * rate - out.state.map * C;
+      out.acceleration_tangent = 2.0 * rate;
+      for (int i = 0; i < 2; ++i)
+        out.acceleration_tangent.middleCols<3>(6 * i + 3).noalias() -= out.state.map.middleCols<3>(6 * i + 3) * W[i];
       out.acceleration_tangent.bottomRows<3>().noalias() += skew<double>(Vec3(out.v.tail<3>())) * out.state.map.bottomRows<3>();
     };
     // [M_e | ∂r/∂dq_e] of member k, added to MG.
