@@ -11,16 +11,27 @@ Writes benchmarks/results/jacobian_ratio.csv (one row per round, binary and fide
 jacobian_ratio.png (the rounds' ratios per fidelity with their medians and the goal), and prints
 the medians and ranges.
 
+With --instructions it counts instead of timing: callgrind (valgrind) over about a second of
+each benchmark's calls, the instructions per call of the assembler's Jacobian and residual, one
+point per binary and fidelity (noise-free; on one core, so that TBB runs every task on the
+thread that callgrind counts in). Over many calls, so that what runs once
+per process (TBB's first start of a thread, the scratch buffers) does not count: in a profile of
+a single call it added a quarter of a million to a million instructions to the residual.
+Writes jacobian_ratio_instructions.csv beside --out.
+
     python3 benchmarks/jacobian_ratio.py                                   # 6 rounds of build/benchmarks/bench_kernels
     python3 benchmarks/jacobian_ratio.py --baseline /tmp/old/bench_kernels --rounds 8
+    python3 benchmarks/jacobian_ratio.py --instructions --baseline /tmp/old/bench_kernels   # ≈ 3 min
 """
 
 import argparse
 import csv
 import json
+import re
 import statistics
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import matplotlib
@@ -46,6 +57,7 @@ def parse_arguments() -> argparse.Namespace:
     parser.add_argument("--rounds", type=int, default=6, help="processes per binary")
     parser.add_argument("--repetitions", type=int, default=3, help="Google Benchmark repetitions per process (median taken)")
     parser.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "jacobian_ratio.csv"))
+    parser.add_argument("--instructions", action="store_true", help="count instructions per call with callgrind instead of timing")
     args = parser.parse_args()
     if args.repetitions < 2 or args.rounds < 1:
         parser.error("--repetitions must be ≥ 2 (Google Benchmark reports medians of repetitions only) and --rounds ≥ 1")
@@ -70,6 +82,42 @@ def medians(binary: str, repetitions: int) -> dict[str, float]:
     return out
 
 
+def instructions_per_call(binary: str, benchmark: str) -> float:
+    """Instructions per call of the assembler function that `benchmark` times (jacobian or
+    residual), counted by callgrind over the calls of a one-second run (in valgrind's time)."""
+    function = "jacobian" if "acobian" in benchmark else "residual"
+    with tempfile.TemporaryDirectory() as tmp:
+        profile = Path(tmp) / "callgrind.out"
+        # One core: TBB then runs every task on the calling thread, the one the toggle counts in.
+        command = ["taskset", "-c", "0", "valgrind", "--tool=callgrind", f"--toggle-collect=cranesim::Assembler::{function}(*",
+                   f"--callgrind-out-file={profile}", binary, f"--benchmark_filter=^{re.escape(benchmark)}$",
+                   "--benchmark_min_time=1"]
+        try:
+            subprocess.run(command, capture_output=True, text=True, check=True)
+            report = subprocess.run(["callgrind_annotate", "--tree=calling", "--inclusive=yes", str(profile)],
+                                    capture_output=True, text=True, check=True).stdout
+        except (OSError, subprocess.CalledProcessError) as error:
+            sys.exit(f"jacobian_ratio: callgrind of {benchmark} in {binary} failed: {error}")
+    total = re.search(r"^\s*([\d,]+)\s+\(100\.0%\)\s+PROGRAM TOTALS", report, re.M)
+    calls = re.search(rf">\s+\S*cranesim::Assembler::{function}\(.*\(([\d,]+)x\)", report)
+    if not total or not calls:
+        sys.exit(f"jacobian_ratio: no calls of Assembler::{function} in the profile of {benchmark}")
+    return int(total.group(1).replace(",", "")) / int(calls.group(1).replace(",", ""))
+
+
+def count_instructions(binaries: dict[str, str], out: Path) -> None:
+    """--instructions: per-call instructions of every fidelity's Jacobian and residual, CSV and print."""
+    with out.open("w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(["binary", "fidelity", "jacobian_instructions", "residual_instructions", "ratio"])
+        for label, binary in binaries.items():
+            for fidelity, (jacobian, residual) in FIDELITIES.items():
+                j, r = instructions_per_call(binary, jacobian), instructions_per_call(binary, residual)
+                writer.writerow([label, fidelity, f"{j:.0f}", f"{r:.0f}", f"{j / r:.4g}"])
+                f.flush()
+                print(f"{fidelity:12s} {label:8s} Jacobian {j / 1e6:8.3f} M  residual {r / 1e6:7.3f} M  ratio {j / r:6.2f}")
+
+
 def main() -> None:
     args = parse_arguments()
     binaries = {"new": args.bin}
@@ -77,6 +125,9 @@ def main() -> None:
         binaries = {"baseline": args.baseline, "new": args.bin}
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
+    if args.instructions:
+        count_instructions(binaries, out.with_name(out.stem + "_instructions.csv"))
+        return
     rows = []
     with out.open("w", newline="") as f:
         writer = csv.writer(f)
