@@ -45,10 +45,12 @@
 // matrix), whose mass matrix is [[m I, −R s̃], [s̃ Rᵀ, J]] and whose forces are
 // [R(ω × (ω × s)) − m g; ω × Jω − s × Rᵀg].
 //
-// Scalars: templated on S; KernelElement's Jacobian runs everything on Dual<double, 12>. The node
-// kinematics of a call are kept in the calling thread's scratch buffer (allocated on its first
-// call, reused afterwards). Forces evaluate the nodes and then the members in parallel (TBB,
-// in an isolated task arena, summed in a fixed order).
+// Scalars: templated on S; the coordinate tangent runs the forces on Dual<double, 6> (end 2's six
+// directions, objective_tangent.hpp), the node states along the motion on Dual<S, 1> within. The
+// node kinematics of a call, each chord's shared part first (chordState) and then the nodes, are
+// kept in the calling thread's scratch buffers (allocated on its first call, reused afterwards).
+// Forces evaluate the nodes and then the members in parallel (TBB, in an isolated task arena,
+// summed in a fixed order).
 
 #include <algorithm>
 #include <array>
@@ -245,7 +247,7 @@ struct SuperTrussKernel {
 
   /// The chords' shared parts (chordState) in the calling thread's scratch buffer.
   template <class T> const std::vector<ChordState<T>>& chordStates(const SectionFrames<T>& s) const {
-    std::vector<ChordState<T>>& out = scratch<ChordState<T>>();
+    std::vector<ChordState<T>>& out = scratch<ChordState<T>>(chords.size());
     for (std::size_t c = 0; c < chords.size(); ++c) out[c] = chordState<T>(s, chords[c]);
     return out;
   }
@@ -325,7 +327,7 @@ struct SuperTrussKernel {
   template <class S> Eigen::Matrix<S, kNv, kNv> massMatrix(const Q<S>& q, double = 0.0) const {
     const SectionFrames<S> s = sectionFrames<S>(q);
     const std::vector<ChordState<S>>& chord = chordStates<S>(s);
-    std::vector<NodeState<S>>& state = scratch<NodeState<S>>();
+    std::vector<NodeState<S>>& state = scratch<NodeState<S>>(nodes.size());
     for (std::size_t n = 0; n < nodes.size(); ++n) state[n] = nodeState<S>(s, nodes[n], chord);
     Eigen::Matrix<S, kNv, kNv> M = Eigen::Matrix<S, kNv, kNv>::Zero();
     for (int i = 0; i < 2; ++i) {
@@ -400,7 +402,7 @@ struct SuperTrussKernel {
     // C(dq_e) u = [dq_e, u]: the blocks ω̃ⁱ on the end sections' rotations, zero elsewhere.
     const Mat3 W[2] = {skew<double>(Vec3(v.segment<3>(3))), skew<double>(Vec3(v.segment<3>(9)))};
     const std::vector<ChordState<P>>& chord = chordStates<P>(path);
-    std::vector<NodeTangent>& node = scratch<NodeTangent>();
+    std::vector<NodeTangent>& node = scratch<NodeTangent>(nodes.size());
     const auto nodeTangent = [&](std::size_t n) {
       NodeTangent& out = node[n];
       NodeMap<double> rate;
@@ -499,9 +501,10 @@ struct SuperTrussKernel {
     thread_local std::vector<Item> buffer;
     return buffer;
   }
-  template <class Item> std::vector<Item>& scratch() const {
+  /// The calling thread's buffer of at least `count` items (one per node or per chord).
+  template <class Item> std::vector<Item>& scratch(std::size_t count) const {
     std::vector<Item>& buffer = scratchBuffer<Item>();
-    if (buffer.size() < nodes.size()) buffer.resize(nodes.size());
+    if (buffer.size() < count) buffer.resize(count);
     return buffer;
   }
 
@@ -509,7 +512,7 @@ struct SuperTrussKernel {
   /// node's state formed once (a node is shared by several tubes).
   double memberEnergy(const SectionFrames<double>& s, const Vec3* gravity) const {
     const std::vector<ChordState<double>>& chord = chordStates<double>(s);
-    std::vector<NodeState<double>>& state = scratch<NodeState<double>>();
+    std::vector<NodeState<double>>& state = scratch<NodeState<double>>(nodes.size());
     for (std::size_t n = 0; n < nodes.size(); ++n) state[n] = nodeState<double>(s, nodes[n], chord);
     double V = 0.0;
     for (const MemberModel& m : members) {
@@ -593,7 +596,7 @@ struct SuperTrussKernel {
     const SectionFrames<S> s = sectionFrames<S>(q);
     const SectionFrames<P> path = framesAlongMotion<S>(s, v);
     const Eigen::Matrix<P, kNv, 1> vp = v.template cast<P>();
-    std::vector<NodeMotion<S>>& motion = scratch<NodeMotion<S>>();
+    std::vector<NodeMotion<S>>& motion = scratch<NodeMotion<S>>(nodes.size());
     // The chords' shared parts: at the section frames, or along the motion for all terms.
     const std::vector<ChordState<S>>* chord = terms == Terms::All ? nullptr : &chordStates<S>(s);
     const std::vector<ChordState<P>>* chord_path = terms == Terms::All ? &chordStates<P>(path) : nullptr;
