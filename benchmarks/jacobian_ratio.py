@@ -11,17 +11,18 @@ Writes benchmarks/results/jacobian_ratio.csv (one row per round, binary and fide
 jacobian_ratio.png (the rounds' ratios per fidelity with their medians and the goal), and prints
 the medians and ranges.
 
-With --instructions it counts instead of timing: callgrind (valgrind) over about a second of
+With --instructions it counts instead of timing: callgrind (valgrind) over about two seconds of
 each benchmark's calls, the instructions per call of the assembler's Jacobian and residual, one
 point per binary and fidelity (noise-free; on one core, so that TBB runs every task on the
-thread that callgrind counts in). Over many calls, so that what runs once
-per process (TBB's first start of a thread, the scratch buffers) does not count: in a profile of
-a single call it added a quarter of a million to a million instructions to the residual.
+thread that callgrind counts in). Over many calls, so that what runs once per process (TBB's
+first start of a thread, the scratch buffers) does not count: in a profile of a single call it
+added a quarter of a million to a million instructions to the residual; over n calls it adds a
+1/n share (the CSV gives n).
 Writes jacobian_ratio_instructions.csv beside --out.
 
     python3 benchmarks/jacobian_ratio.py                                   # 6 rounds of build/benchmarks/bench_kernels
     python3 benchmarks/jacobian_ratio.py --baseline /tmp/old/bench_kernels --rounds 8
-    python3 benchmarks/jacobian_ratio.py --instructions --baseline /tmp/old/bench_kernels   # ≈ 3 min
+    python3 benchmarks/jacobian_ratio.py --instructions --baseline /tmp/old/bench_kernels   # ≈ 5 min
 """
 
 import argparse
@@ -82,16 +83,16 @@ def medians(binary: str, repetitions: int) -> dict[str, float]:
     return out
 
 
-def instructions_per_call(binary: str, benchmark: str) -> float:
-    """Instructions per call of the assembler function that `benchmark` times (jacobian or
-    residual), counted by callgrind over the calls of a one-second run (in valgrind's time)."""
-    function = "jacobian" if "acobian" in benchmark else "residual"
+def instructions_per_call(binary: str, benchmark: str, function: str) -> tuple[float, int]:
+    """Instructions per call of cranesim::Assembler::<function> (jacobian or residual), which
+    `benchmark` times, counted by callgrind over the calls of a two-second run (valgrind's time),
+    and the number of calls."""
     with tempfile.TemporaryDirectory() as tmp:
         profile = Path(tmp) / "callgrind.out"
         # One core: TBB then runs every task on the calling thread, the one the toggle counts in.
         command = ["taskset", "-c", "0", "valgrind", "--tool=callgrind", f"--toggle-collect=cranesim::Assembler::{function}(*",
                    f"--callgrind-out-file={profile}", binary, f"--benchmark_filter=^{re.escape(benchmark)}$",
-                   "--benchmark_min_time=1"]
+                   "--benchmark_min_time=2"]
         try:
             subprocess.run(command, capture_output=True, text=True, check=True)
             report = subprocess.run(["callgrind_annotate", "--tree=calling", "--inclusive=yes", str(profile)],
@@ -102,20 +103,24 @@ def instructions_per_call(binary: str, benchmark: str) -> float:
     calls = re.search(rf">\s+\S*cranesim::Assembler::{function}\(.*\(([\d,]+)x\)", report)
     if not total or not calls:
         sys.exit(f"jacobian_ratio: no calls of Assembler::{function} in the profile of {benchmark}")
-    return int(total.group(1).replace(",", "")) / int(calls.group(1).replace(",", ""))
+    n = int(calls.group(1).replace(",", ""))
+    return int(total.group(1).replace(",", "")) / n, n
 
 
 def count_instructions(binaries: dict[str, str], out: Path) -> None:
     """--instructions: per-call instructions of every fidelity's Jacobian and residual, CSV and print."""
     with out.open("w", newline="") as f:
         writer = csv.writer(f)
-        writer.writerow(["binary", "fidelity", "jacobian_instructions", "residual_instructions", "ratio"])
+        writer.writerow(["binary", "fidelity", "jacobian_instructions", "jacobian_calls", "residual_instructions",
+                         "residual_calls", "ratio"])
         for label, binary in binaries.items():
             for fidelity, (jacobian, residual) in FIDELITIES.items():
-                j, r = instructions_per_call(binary, jacobian), instructions_per_call(binary, residual)
-                writer.writerow([label, fidelity, f"{j:.0f}", f"{r:.0f}", f"{j / r:.4g}"])
+                j, j_calls = instructions_per_call(binary, jacobian, "jacobian")
+                r, r_calls = instructions_per_call(binary, residual, "residual")
+                writer.writerow([label, fidelity, f"{j:.0f}", j_calls, f"{r:.0f}", r_calls, f"{j / r:.4g}"])
                 f.flush()
-                print(f"{fidelity:12s} {label:8s} Jacobian {j / 1e6:8.3f} M  residual {r / 1e6:7.3f} M  ratio {j / r:6.2f}")
+                print(f"{fidelity:12s} {label:8s} Jacobian {j / 1e6:8.3f} M ({j_calls} calls)  "
+                      f"residual {r / 1e6:7.3f} M ({r_calls} calls)  ratio {j / r:6.2f}")
 
 
 def main() -> None:
