@@ -1,4 +1,4 @@
-"""The lattice fidelities on the whole thesis crane, against the full-member crane (issue 17).
+"""The lattice fidelities on the whole thesis crane, against the full-member crane.
 
 For each fidelity of the eight lattice sections (members — every tube a beam, the reference —,
 condensed, equivalent beam, super truss, and a mixed crane: the middle main-boom section boom3

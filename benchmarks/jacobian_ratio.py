@@ -1,4 +1,4 @@
-"""The crane's DAE Jacobian against its residual, for every lattice fidelity (issue 16: ≤ 5).
+"""The crane's DAE Jacobian against its residual, for every lattice fidelity (the goal: ≤ 5 residuals).
 
 Runs `bench_kernels` (Google Benchmark) once per round for the three fidelities of the thesis
 crane at its drawn state — super truss (configs/crane.yaml), condensed (crane_condensed.yaml) and

@@ -1,5 +1,5 @@
-"""Speed-up of crane-opt's static map from parallelism (thesis 6.2; issue 21: the map on the
-study machinery, across MPI ranks).
+"""Speed-up of crane-opt's static map from parallelism (thesis 6.2: the map's rows on the
+studies' task farm, on threads and across MPI ranks).
 
 Runs `crane-opt map TARGET` for each worker setting — `N` (`--threads N`) or `mpiN` (`mpirun -n
 N`, one thread per rank) — `--reps` times, alternating the settings so that load on the shared

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A crane-sim study on a Slurm cluster: one MPI rank per core, rank 0 hands out the cases and
-# writes the case table (README: Studies). Submit from the repository with the study file and,
+# writes the case table (docs/studies.md). Submit from the repository with the study file and,
 # optionally, the table's path:
 #   sbatch scripts/slurm_study.sh configs/study_rope_swings.yaml out/swings.h5
 # A job stopped by its time limit (Slurm sends SIGTERM, then SIGKILL after KillWait) leaves the

@@ -1,4 +1,4 @@
-// Rope dynamics at scene level (7.2.1, C.5; issue 3): a ball swinging on a steel rope with the
+// Rope dynamics at scene level (7.2.1, C.5): a ball swinging on a steel rope with the
 // period of the elastic compound pendulum, a ball dropped on a slack rope that snaps taut
 // (energy balance, peak force against the massless-rope estimates), and a ball reeled up by
 // the rope's length drive (tracking, rope mass ρA·L(t), the winch's work and the damping).
@@ -309,7 +309,7 @@ TEST_CASE("A ball reeled up by the rope's length drive tracks the length; the ro
           "[scenes][rope][dynamics]") {
   const RopeAndBall c;
   Scene scene = test::loadScene("rope_reeling.yaml");
-  // The README's trapezoid: 10 m → 6 m in 10 s from t = 1 s, accelerating and decelerating 2 s.
+  // rope_reeling.yaml's trapezoid: 10 m → 6 m in 10 s from t = 1 s, accelerating and decelerating 2 s.
   const Profile length(TrapezoidProfile{10.0, -4.0, 1.0, 10.0, 2.0, 2.0});
   scene.members[0].length = length;
   scene.solver.t_end = 12.0;

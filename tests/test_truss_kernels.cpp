@@ -37,7 +37,7 @@ TrussNodePair pair(int a, int b) {
   return p;
 }
 
-/// The thesis' type 2 section (Table D-3, radii; E = 2.06e11, DESIGN §10).
+/// The thesis' type 2 section (Table D-3, radii; E = 2.06e11, docs/thesis-crane.md).
 TrussDescription type2() {
   TrussDescription d;
   d.name = "type2";

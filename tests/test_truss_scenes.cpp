@@ -1,12 +1,13 @@
 // The super truss element and the condensed truss element against the full-member model of the
-// same truss (thesis 8.2, issue 4): the type 2 cantilever's static tip deflection under
-// self-gravity and under end loads, and its first eigenfrequencies. Scene level only (no kernel is instantiated in this file).
+// same truss (thesis 8.2): the type 2 cantilever's static tip deflection under
+// self-gravity and under end loads, and its first eigenfrequencies. Scene level only (no kernel is
+// instantiated in this file).
 //
 // The super truss moves the tubes of the full-member model on a restricted set of shapes (the
 // internal nodes follow the chord splines of the end sections), so by Rayleigh–Ritz it can only
 // be stiffer: smaller static deflections, higher frequencies. How much stiffer is the measure
-// of the reduction's error; the issue's target is 5 %, the thesis' assumptions give about 30 %
-// on this truss (the lacing's shear compliance is lost: README, docs/truss.md). The lower
+// of the reduction's error; the target is 5 %, the thesis' assumptions give about 30 %
+// on this truss (the lacing's shear compliance is lost: docs/truss.md). The lower
 // brackets (half the deflection, 1.5× the frequency) only catch a broken kernel.
 
 #include <catch2/catch.hpp>

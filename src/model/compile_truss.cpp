@@ -1,4 +1,4 @@
-// Truss members (`type: truss`, DESIGN §7): one truss description placed in the scene becomes
+// Truss members (`type: truss`, docs/truss.md): one truss description placed in the scene becomes
 // the super truss element (3.5), the condensed truss element (the full-member model's stiffness
 // condensed onto the end sections, condensed_truss.hpp), the equivalent Timoshenko beam
 // (equivalent_beam.hpp) or the full-member model, in which every tube is its own Timoshenko beam

@@ -309,7 +309,7 @@ def test_plan_reaches_targets_across_the_map(target: tuple, tmp_path: Path):
         assert np.max(f["inversion/error"][...]) < 1e-4
         v = f["verification"]
         assert v.attrs["status"] == "complete"
-        # The quasi-static plan leaves the load swaying (±0.4…3.4 m, issue 20) about a mean
+        # The quasi-static plan leaves the load swaying (±0.4…3.4 m) about a mean
         # that ends within a metre of the target.
         assert v.attrs["final_error"] < 1.0
 

@@ -1,8 +1,8 @@
-"""The lattice fidelities on a crane in small (issue 17): configs/jib_fidelities.yaml, a 15 m
+"""The lattice fidelities on a crane in small: configs/jib_fidelities.yaml, a 15 m
 type 2 jib on a slewing pedestal with a 10 t load on an 8 m rope, run by crane-sim as a full-member
 model (the reference) and as condensed, equivalent-beam and super truss sections.
 
-What each fidelity must reproduce (measured: README, "The lattice fidelities on the crane"):
+What each fidelity must reproduce (measured: docs/thesis-crane.md):
 - condensed: the full-member stiffness between the end sections, so the static tip deflection
   to 0.1 % and the jib's modes to 2 %; the load's path over the 4 s slew to 0.2 mm;
 - beam: the full-member stiffness under end loads (model/equivalent_beam.hpp) with uniform mass,

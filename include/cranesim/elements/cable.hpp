@@ -1,5 +1,5 @@
 #pragma once
-// Two-node cable (issue 18, item 4): a straight, tension-only rope element of variable
+// Two-node cable (docs/scene-format.md): a straight, tension-only rope element of variable
 // unstretched length between two point nodes, q = [r¹, r²], dq = q̇ — what real-time crane
 // simulators use for hoist lines, for ropes whose sag and sideways (string) vibration do not
 // matter. It has no transverse degrees of freedom of its own, so a taut rope's string modes

@@ -1,5 +1,5 @@
 #pragma once
-// The results file of a study (README: Studies): the case table, one dataset per parameter and
+// The results file of a study (docs/study-format.md): the case table, one dataset per parameter and
 // per figure indexed by case, with the study's text. Written as `<path>.partial` and renamed, as
 // every results file.
 

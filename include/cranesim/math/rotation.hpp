@@ -221,12 +221,13 @@ inline Mat3 axisAngle(const Vec3& axis, double angle) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }
 
-/// Angle above which a rotation vector is re-parameterised. DESIGN §4 asks for θ > π; the
-/// margin above π is hysteresis, so a body rocking about θ = π does not trigger a restart of
-/// the integrator at every step (T⁻¹ is singular only at 2π).
+/// Angle above which a rotation vector is re-parameterised
+/// (docs/numerics.md#rotation-vector-re-parameterisation): any θ > π would do; the margin above π
+/// is hysteresis, so a body rocking about θ = π does not trigger a restart of the integrator at
+/// every step (T⁻¹ is singular only at 2π).
 inline constexpr double kReparameterisationAngle = 1.25 * std::numbers::pi;
 
-/// Replaces φ by the rotation vector of the same rotation with angle θ − 2π (DESIGN §4) when
+/// Replaces φ by the rotation vector of the same rotation with angle θ − 2π when
 /// θ exceeds kReparameterisationAngle. Returns whether φ changed.
 inline bool reparameterise(Vec3& phi) {
   const double t = phi.norm();

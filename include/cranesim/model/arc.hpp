@@ -1,5 +1,5 @@
 #pragma once
-// A member drawn along a circular arc (issue 22, item 2): from its start to its end about a
+// A member drawn along a circular arc (docs/scene-format.md): from its start to its end about a
 // centre, turning about an axis (by default the normal of the plane of start, centre and end,
 // the shorter way round). Its nodes lie on the arc at equal angles; each node frame has its x
 // axis along the arc's tangent, its z axis along the arc's axis and its y axis towards the

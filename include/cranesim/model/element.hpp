@@ -5,7 +5,7 @@
 // differentiation, ∂/∂dq by the kernel's closed form or by polarization of the quadratic in dq
 // (exact, see jacobian).
 //
-// Kernel contract (DESIGN §3). A kernel is a small struct with
+// Kernel contract (docs/architecture.md#the-element-kernel-contract). A kernel is a small struct with
 //   static constexpr int kNq, kNv;                       local sizes of q_e and dq_e
 //   template <class S> Matrix<S, kNv, kNv> massMatrix(const Matrix<S, kNq, 1>& q, double t) const;
 //   template <class S> Matrix<S, kNv, 1> force(const Matrix<S, kNq, 1>& q,

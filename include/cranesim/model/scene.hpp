@@ -49,8 +49,8 @@ enum class RopeElement { Spline, Cable };
 /// name the end nodes). Section axes: x along the member, z towards `z_axis`.
 /// A truss member (type Truss) places the truss type `truss` (Scene::trusses) with its axis from
 /// `start` to `end` and its z axis towards `z_axis`; its end sections are the joints
-/// `<name>.start` and `<name>.end`. `segments`, `quadrature` and `damping` apply to every tube (fidelity Members) or to
-/// the equivalent beam (fidelity Beam).
+/// `<name>.start` and `<name>.end`. `segments`, `quadrature` and `damping` apply to every tube
+/// (fidelity Members) or to the equivalent beam (fidelity Beam).
 struct MemberSpec {
   std::string name;
   MemberType type = MemberType::Timoshenko;
@@ -142,7 +142,7 @@ struct SolverSpec {
   double max_step = 0.0;  // 0: unlimited
   /// BDF only: the largest factor by which IDAS may grow the step after a successful one
   /// (IDASetEtaMax; IDAS' own bound is 2). 1.5 ends a chatter at order 1 in which every doubled
-  /// step fails its error test (README, Integrators: step growth).
+  /// step fails its error test (docs/numerics.md#step-growth).
   double max_step_growth = 1.5;
   /// IDAS' variable-order BDF, or the generalized-α method (solvers/generalized_alpha.hpp).
   Integrator integrator = Integrator::Bdf;

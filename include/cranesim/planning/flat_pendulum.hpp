@@ -1,5 +1,5 @@
 #pragma once
-// Differential flatness of a load hanging from the tip of a rigid luffing boom (DESIGN §16; the
+// Differential flatness of a load hanging from the tip of a rigid luffing boom (docs/planning.md; the
 // basis of flatness-based anti-sway, Sawodny et al. 2002), in the crane's vertical plane: a
 // point load on a massless, inextensible rope of length ℓ from the tip of a boom of length R
 // hinged at the foot. The load's path p(t) = (x, z) is a flat output: Newton's law for the load,

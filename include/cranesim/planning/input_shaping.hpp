@@ -1,5 +1,5 @@
 #pragma once
-// Input shaping of a planned end-point path (DESIGN §16, issue 20): the path convolved with a
+// Input shaping of a planned end-point path (docs/planning.md): the path convolved with a
 // few impulses spaced by fractions of the load's sway period, so that the sway each part of the
 // motion excites is cancelled by the next (Singer & Seering 1990; Singhose, Seering & Singer
 // 1994 for ZVD). For an undamped pendulum of period T:

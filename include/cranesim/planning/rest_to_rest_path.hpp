@@ -1,5 +1,5 @@
 #pragma once
-// Rest-to-rest paths for flatness-based planning (DESIGN §16): a path whose derivatives up to
+// Rest-to-rest paths for flatness-based planning (docs/planning.md): a path whose derivatives up to
 // the fourth vanish at both ends starts and ends with a load on a rope hanging plumb and its
 // suspension at rest, so a suspension that follows the path's flat map leaves no sway.
 

@@ -1,5 +1,5 @@
 #pragma once
-// The crane's vertical plane turned about its slewing axis (issue 20, item 4). The static map
+// The crane's vertical plane turned about its slewing axis (docs/planning.md). The static map
 // describes the crane in one vertical plane: the end point at (x, y_m, z), world coordinates at
 // the scene's slewing angle, y_m the plane's constant offset. Slewed by φ about the vertical axis
 // through c, that point lies at

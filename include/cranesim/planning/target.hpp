@@ -15,7 +15,7 @@ namespace cranesim {
 
 /// How the end-point path is planned: the thesis' quasi-static QR trajectory (6.3), that
 /// trajectory input-shaped for the load's sway period (planning/input_shaping.hpp), or a
-/// rest-to-rest path of the load carried by the flat map of its pendulum (DESIGN §16).
+/// rest-to-rest path of the load carried by the flat map of its pendulum (docs/planning.md).
 enum class PlanMethod { QuasiStatic, ZV, ZVD, Flatness };
 
 /// The method's name in a target file.
@@ -29,7 +29,7 @@ inline std::string methodName(PlanMethod method) {
   return "quasi_static";
 }
 
-/// A slewing motion planned with the path (issue 20): the revolute constraint about the vertical
+/// A slewing motion planned with the path (docs/planning.md): the revolute constraint about the vertical
 /// that turns the crane, and the angle it turns by from its value at the scene's start.
 struct SlewingSpec {
   std::string constraint;

@@ -5,8 +5,8 @@
 //
 // The run restarts the integrator (with freshly solved accelerations and multipliers) at
 // every drive breakpoint, where a profile's second derivative jumps, and whenever a rotation
-// vector is re-parameterised (DESIGN §4). The works of the energy balance (WorkTerms: drives,
-// loads, winches, damping) are integrated as quadratures.
+// vector is re-parameterised (docs/numerics.md#rotation-vector-re-parameterisation). The works of
+// the energy balance (WorkTerms: drives, loads, winches, damping) are integrated as quadratures.
 
 #include <atomic>
 #include <functional>

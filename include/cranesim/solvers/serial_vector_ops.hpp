@@ -3,7 +3,7 @@
 // optimisation: its serial N_Vector operations spill every loop variable to the stack, and a
 // weighted RMS norm of 144 entries takes ~760 ns instead of ~70 ns. IDAS calls them many times
 // per step (error test and order selection, Newton's convergence test, prediction), which made
-// them ~20 % of a small beam's step (README, Integrators).
+// them ~20 % of a small beam's step (docs/numerics.md).
 //
 // SUNDIALS dispatches every vector operation through the vector's table of operations, which
 // the N_Vector interface lets a user fill, and which every clone copies (IDAS makes its work

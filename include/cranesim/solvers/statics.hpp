@@ -1,5 +1,6 @@
 #pragma once
-// Static equilibrium (DESIGN §5): Newton's method on the equilibrium KKT system
+// Static equilibrium (docs/numerics.md#newton-on-the-kkt-system): Newton's method on the
+// equilibrium KKT system
 //   F(q, 0, t) + Gᵀ(q) λ = 0,   Φ(q, t) = 0
 // (internal, gravity and applied forces F; the GGL rows of the assembler at dq = 0), with a
 // damped Newton step (Armijo on ‖residual‖, or Deuflhard's natural monotonicity test) and

@@ -2,9 +2,9 @@
 // A time integrator of the multibody DAE F(t, y, ẏ) = 0 (assembler.hpp) as `simulate` drives it:
 // one step at a time, never past a stop time; the state anywhere within the last step, for the
 // output samples; the work quadratures; and a restart from a consistent state at drive
-// breakpoints and re-parameterisations (DESIGN §4). Two implementations: IDAS' variable-order
-// BDF (dynamics.cpp) and the generalized-α method (generalized_alpha.hpp), chosen by
-// solver.integrator.
+// breakpoints and re-parameterisations (docs/numerics.md#breakpoints-and-velocity-jumps). Two
+// implementations: IDAS' variable-order BDF (dynamics.cpp) and the generalized-α method
+// (generalized_alpha.hpp), chosen by solver.integrator.
 
 #include <memory>
 #include <string>

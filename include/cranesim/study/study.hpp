@@ -1,5 +1,5 @@
 #pragma once
-// A study (DESIGN §15): one base scene, parameters varied over grids or drawn at random, one
+// A study (docs/studies.md): one base scene, parameters varied over grids or drawn at random, one
 // analysis per case (static, run or modes) and the figures extracted from each case. Cases are
 // numbered 0 … caseCount() − 1; a case's parameter values are a function of its number alone
 // (grid position, and random draws from the seed and the number), so any worker computes any
