@@ -1,9 +1,11 @@
-"""Command-line behaviour of scripts/plot_element_bending.py on small synthetic CSV files."""
+"""Command-line behaviour of benchmarks/plot_element_bending.py on small synthetic CSV files."""
 
 import subprocess
 import sys
 
 from conftest import SCRIPTS
+
+BENCHMARKS = SCRIPTS.parent / "benchmarks"
 
 HEADER = ("type,segments,K,bend_per_segment_deg,strategy,converged,newton_iterations,load_steps,"
           "wall_time_s_median,cpu_time_s_median,tip_error_rel,rotation_error_rad")
@@ -18,7 +20,7 @@ ROWS = [
 
 
 def run(*arguments):
-    return subprocess.run([sys.executable, str(SCRIPTS / "plot_element_bending.py"), *map(str, arguments)],
+    return subprocess.run([sys.executable, str(BENCHMARKS / "plot_element_bending.py"), *map(str, arguments)],
                           capture_output=True, text=True, timeout=60)
 
 

@@ -13,63 +13,30 @@ are left out of the lines and marked with a cross at the top of the left panel. 
 Example:
 
     build/benchmarks/bench_element_bending
-    python3 scripts/plot_element_bending.py benchmarks/results/element_bending.csv
+    python3 benchmarks/plot_element_bending.py benchmarks/results/element_bending.csv
 """
 
 import argparse
-import csv
 import math
 import os
 import sys
+
+import benchmark_csv
+from benchmark_csv import BadFile
 
 COLUMNS = [
     "type", "segments", "K", "bend_per_segment_deg", "strategy", "converged", "newton_iterations",
     "load_steps", "wall_time_s_median", "cpu_time_s_median", "tip_error_rel", "rotation_error_rad",
 ]
 INTEGER_COLUMNS = {"segments", "converged", "newton_iterations", "load_steps"}
-FLOAT_COLUMNS = {"K", "bend_per_segment_deg", "wall_time_s_median", "cpu_time_s_median", "tip_error_rel", "rotation_error_rad"}
+TEXT_COLUMNS = {"type", "strategy"}
 TYPE_STYLE = {"timoshenko": ("tab:red", "--", "T-beam"), "spline_beam": ("tab:blue", "-", "C-beam")}
 FLOOR = 1e-14
 
 
-class BadFile(Exception):
-    pass
-
-
 def read_rows(path):
-    try:
-        with open(path, newline="") as f:
-            reader = csv.DictReader(f)
-            if reader.fieldnames is None:
-                raise BadFile(f"{path}: empty file, expected a header row")
-            missing = [c for c in COLUMNS if c not in reader.fieldnames]
-            if missing:
-                raise BadFile(f"{path}: missing column(s) {', '.join(missing)}; "
-                              f"expected the header of bench_element_bending: {','.join(COLUMNS)}")
-            rows = []
-            for line, raw in enumerate(reader, start=2):
-                row = {}
-                for c in COLUMNS:
-                    text = (raw.get(c) or "").strip()
-                    try:
-                        if c in INTEGER_COLUMNS:
-                            row[c] = int(text)
-                        elif c in FLOAT_COLUMNS:
-                            row[c] = float(text)  # accepts 'nan'
-                        else:
-                            if not text:
-                                raise ValueError("empty")
-                            row[c] = text
-                    except ValueError:
-                        raise BadFile(f"{path}:{line}: column '{c}' has an invalid value {text!r}") from None
-                rows.append(row)
-    except OSError as e:
-        raise BadFile(f"{path}: cannot read ({e.strerror})") from None
-    except (UnicodeDecodeError, csv.Error) as e:
-        raise BadFile(f"{path}: not a readable CSV file ({e})") from None
-    if not rows:
-        raise BadFile(f"{path}: no data rows")
-    return rows
+    return benchmark_csv.read_rows(path, COLUMNS, "bench_element_bending", INTEGER_COLUMNS, TEXT_COLUMNS)
+
 
 
 def usable(row):
@@ -81,11 +48,7 @@ def floored(x):
 
 
 def plot(rows, out, time_column):
-    # Imported here: --help and bad input answer without paying matplotlib's start-up.
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = benchmark_csv.pyplot()
 
     types = [t for t in TYPE_STYLE if any(r["type"] == t for r in rows)]
     types += sorted({r["type"] for r in rows} - set(types))
@@ -135,7 +98,7 @@ def plot(rows, out, time_column):
 
 def main(argv=None):
     p = argparse.ArgumentParser(description="Plots of bench_element_bending results (thesis 8.1.1).",
-                                epilog="Example: python3 scripts/plot_element_bending.py "
+                                epilog="Example: python3 benchmarks/plot_element_bending.py "
                                        "benchmarks/results/element_bending.csv -o bending.png")
     p.add_argument("csv", help="CSV written by bench_element_bending")
     p.add_argument("-o", "--output", help="image to write (default: CSV with .png)")
@@ -146,11 +109,9 @@ def main(argv=None):
     try:
         rows = read_rows(args.csv)
     except BadFile as e:
-        print(f"plot_element_bending.py: error: {e}", file=sys.stderr)
-        return 2
+        return benchmark_csv.fail("plot_element_bending.py", e)
     if not any(usable(r) for r in rows):
-        print(f"plot_element_bending.py: error: {args.csv}: no converged case to plot", file=sys.stderr)
-        return 2
+        return benchmark_csv.fail("plot_element_bending.py", f"{args.csv}: no converged case to plot")
     plot(rows, out, f"{args.time}_time_s_median")
     print(f"wrote {out}")
     return 0

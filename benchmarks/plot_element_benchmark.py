@@ -7,20 +7,17 @@ values. Runs that did not complete are left out. Exits with status 2 on a missin
 CSV or when no run completed.
 
 Example:
-    python3 scripts/plot_element_benchmark.py benchmarks/results/element_vibration.csv \\
+    python3 benchmarks/plot_element_benchmark.py benchmarks/results/element_vibration.csv \\
         -o benchmarks/results/element_vibration.png
 """
 
 import argparse
-import csv
 import math
 import sys
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import benchmark_csv
+from benchmark_csv import BadFile
 
 COLUMNS = ["case", "element", "segments", "rtol", "damping", "wall_time_s_median", "cpu_time_s", "steps",
            "residual_evals", "jacobian_evals", "error_test_failures", "tip_error_m", "tip_error_cross_m",
@@ -31,42 +28,9 @@ COLORS = {"timoshenko": "tab:blue", "spline_beam": "tab:red"}
 SEGMENT_MARKERS = {1: "o", 3: "s", 5: "^", 10: "D"}
 
 
-class BadFile(Exception):
-    pass
-
-
 def read_rows(path: Path) -> list[dict]:
-    try:
-        with open(path, newline="") as f:
-            reader = csv.DictReader(f)
-            if reader.fieldnames is None:
-                raise BadFile(f"{path}: empty file, expected a header row")
-            missing = [c for c in COLUMNS if c not in reader.fieldnames]
-            if missing:
-                raise BadFile(f"{path}: missing column(s) {', '.join(missing)}; "
-                              f"expected the header of bench_element_vibration")
-            rows = []
-            for line, raw in enumerate(reader, start=2):
-                row = {}
-                for c in COLUMNS:
-                    text = (raw.get(c) or "").strip()
-                    try:
-                        if c in TEXT_COLUMNS:
-                            if not text:
-                                raise ValueError("empty")
-                            row[c] = text
-                        elif c in INTEGER_COLUMNS:
-                            row[c] = int(text)
-                        else:
-                            row[c] = float(text)  # accepts 'nan'
-                    except ValueError:
-                        raise BadFile(f"{path}:{line}: column '{c}' has an invalid value {text!r}") from None
-                rows.append(row)
-    except OSError as e:
-        raise BadFile(f"{path}: cannot read ({e.strerror})") from None
-    except (UnicodeDecodeError, csv.Error) as e:
-        raise BadFile(f"{path}: not a readable CSV file ({e})") from None
-    return rows
+    return benchmark_csv.read_rows(path, COLUMNS, "bench_element_vibration", INTEGER_COLUMNS, TEXT_COLUMNS)
+
 
 
 def usable(row: dict) -> bool:
@@ -78,6 +42,7 @@ def plot(rows: list[dict], output: Path) -> None:
     good = [r for r in rows if usable(r)]
     if not good:
         raise BadFile("no completed case with a finite, positive error and wall time to plot")
+    plt = benchmark_csv.pyplot()
     panels = sorted({(r["case"], r["damping"]) for r in good})
     fig, axes = plt.subplots(1, len(panels), figsize=(6.0 * len(panels), 5.0), squeeze=False)
     for ax, (case, damping) in zip(axes[0], panels):
@@ -109,8 +74,7 @@ def main() -> int:
     try:
         plot(read_rows(args.csv), args.output or args.csv.with_suffix(".png"))
     except BadFile as e:
-        print(f"plot_element_benchmark.py: error: {e}", file=sys.stderr)
-        return 2
+        return benchmark_csv.fail("plot_element_benchmark.py", e)
     return 0
 
 

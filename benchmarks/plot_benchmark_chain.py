@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Work-precision plot of the pendulum-chain benchmark (benchmarks/README.md).
+"""Work-precision plot of the pendulum-chain benchmark, bench_pendulum_chain (benchmarks/README.md).
 
 usage: plot_benchmark_chain.py CSV [-o out.png]
 
@@ -10,67 +10,27 @@ marked with a cross on the right panel. Exits with status 2 on a missing or malf
 """
 
 import argparse
-import csv
 import math
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.ticker  # noqa: E402
-import numpy as np  # noqa: E402
+import benchmark_csv
+from benchmark_csv import BadFile
 
 COLUMNS = [
     "n_links", "formulation", "rtol", "wall_time_s_median", "steps", "residual_evals",
     "jacobian_evals", "tip_error_m", "max_constraint_residual", "energy_drift_rel", "completed",
 ]
 INTEGER_COLUMNS = {"n_links", "steps", "residual_evals", "jacobian_evals", "completed"}
-FLOAT_COLUMNS = {"rtol", "wall_time_s_median", "tip_error_m", "max_constraint_residual", "energy_drift_rel"}
+TEXT_COLUMNS = {"formulation"}
 STYLE = {"ggl": ("tab:blue", "-"), "baumgarte": ("tab:red", "--")}
 RTOL_MARKERS = {1e-3: "o", 1e-4: "s", 1e-5: "^", 1e-6: "D", 1e-7: "v"}
 PANEL_RTOL = 1e-6
 
 
-class BadFile(Exception):
-    pass
-
-
 def read_rows(path):
-    try:
-        with open(path, newline="") as f:
-            reader = csv.DictReader(f)
-            if reader.fieldnames is None:
-                raise BadFile(f"{path}: empty file, expected a header row")
-            missing = [c for c in COLUMNS if c not in reader.fieldnames]
-            if missing:
-                raise BadFile(f"{path}: missing column(s) {', '.join(missing)}; "
-                              f"expected the header of bench_pendulum_chain: {','.join(COLUMNS)}")
-            rows = []
-            for line, raw in enumerate(reader, start=2):
-                row = {}
-                for c in COLUMNS:
-                    text = (raw.get(c) or "").strip()
-                    try:
-                        if c in INTEGER_COLUMNS:
-                            row[c] = int(text)
-                        elif c in FLOAT_COLUMNS:
-                            row[c] = float(text)  # accepts 'nan'
-                        else:
-                            if not text:
-                                raise ValueError("empty")
-                            row[c] = text
-                    except ValueError:
-                        raise BadFile(f"{path}:{line}: column '{c}' has an invalid value {text!r}") from None
-                rows.append(row)
-    except OSError as e:
-        raise BadFile(f"{path}: cannot read ({e.strerror})") from None
-    except (UnicodeDecodeError, csv.Error) as e:
-        raise BadFile(f"{path}: not a readable CSV file ({e})") from None
-    if not rows:
-        raise BadFile(f"{path}: no data rows")
-    return rows
+    return benchmark_csv.read_rows(path, COLUMNS, "bench_pendulum_chain", INTEGER_COLUMNS, TEXT_COLUMNS)
+
 
 
 def usable(row):
@@ -86,6 +46,10 @@ def marker_for(rtol):
 
 
 def plot(rows, out):
+    plt = benchmark_csv.pyplot()
+    import matplotlib.ticker
+    import numpy as np
+
     formulations = [f for f in STYLE if any(r["formulation"] == f for r in rows)]
     formulations += sorted({r["formulation"] for r in rows} - set(formulations))
     sizes = sorted({r["n_links"] for r in rows})
@@ -157,7 +121,9 @@ def plot(rows, out):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(description="Work-precision plot of bench_pendulum_chain results.")
+    p = argparse.ArgumentParser(description="Work-precision plot of bench_pendulum_chain results.",
+                                epilog="Example: python3 benchmarks/plot_benchmark_chain.py "
+                                       "benchmarks/results/pendulum_chain.csv")
     p.add_argument("csv", help="CSV written by bench_pendulum_chain")
     p.add_argument("-o", "--output", help="image to write (default: CSV with .png)")
     args = p.parse_args(argv)
@@ -165,12 +131,9 @@ def main(argv=None):
     try:
         rows = read_rows(args.csv)
     except BadFile as e:
-        print(f"plot_benchmark_chain.py: error: {e}", file=sys.stderr)
-        return 2
+        return benchmark_csv.fail("plot_benchmark_chain.py", e)
     if not any(usable(r) for r in rows):
-        print(f"plot_benchmark_chain.py: error: {args.csv}: no completed run with a finite tip error to plot",
-              file=sys.stderr)
-        return 2
+        return benchmark_csv.fail("plot_benchmark_chain.py", f"{args.csv}: no completed run with a finite tip error to plot")
     plot(rows, out)
     print(f"wrote {out}")
     return 0
