@@ -4,7 +4,8 @@
 // For every N a reference run (GGL, rtol 1e-10, atol 1e-12) gives the tip trajectory of the
 // last link; every case (N, formulation, rtol) is then run `repetitions` times and one CSV row
 // records the median wall time, the solver counters and the accuracy measures. A failed or
-// timed-out run is recorded with completed = 0 and never stops the study.
+// timed-out run is recorded with completed = 0 and never stops the study;
+// the exit status is 1 when any run failed.
 
 #include <fmt/format.h>
 
@@ -360,5 +361,5 @@ int main(int argc, char** argv) {
   }
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - study_start).count();
   std::fprintf(stderr, "done: %d cases, %d failed, %.1f s; wrote %s\n", done, failed, elapsed, opt.out.c_str());
-  return 0;
+  return failed == 0 ? 0 : 1;
 }

@@ -356,7 +356,7 @@ def test_static_refuses_an_unstable_equilibrium(method: str, code: int, tmp_path
         assert status == "complete"
 
 
-# Output and signals (issue 19): the output path is checked before any work, a failed write never
+# Output and signals : the output path is checked before any work, a failed write never
 # replaces an older result, and SIGTERM / SIGHUP end a run as Ctrl-C does, results kept.
 
 def test_output_that_is_the_scene_is_refused(short_pendulum: Path, tmp_path: Path):
@@ -404,9 +404,16 @@ def test_a_failed_write_keeps_the_older_results(short_pendulum: Path, tmp_path: 
     assert not Path(f"{out}.partial").exists()
 
 
-def signalled_long_run(tmp_path: Path, number: int, after: float) -> tuple[int, str, Path]:
-    """configs/pendulum.yaml run for 1e4 s (about a minute), sent signal `number` `after` seconds in:
-    the exit code, stderr and the results path."""
+def cpu_seconds(pid: int) -> float:
+    """The CPU time a process has used (user + system), from /proc: unlike the wall clock, it does not
+    depend on how loaded the machine is."""
+    fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def signalled_long_run(tmp_path: Path, number: int, ready) -> tuple[int, str, Path]:
+    """configs/pendulum.yaml run for 1e4 s (about a minute), sent signal `number` once `ready(pid, out)`
+    holds (polled; at most 120 s): the exit code, stderr and the results path."""
     import time
 
     text, count = re.subn(r"^(\s+t_end:).*$", r"\1 1.0e4", PENDULUM.read_text(encoding="utf-8"), flags=re.MULTILINE)
@@ -416,9 +423,13 @@ def signalled_long_run(tmp_path: Path, number: int, after: float) -> tuple[int, 
     out = tmp_path / "long.h5"
     process = subprocess.Popen([str(BINARY), "run", str(scene), "-o", str(out), "--quiet"], stderr=subprocess.PIPE,
                                text=True, cwd=tmp_path)
-    time.sleep(after)
+    deadline = time.monotonic() + 120.0
+    while not ready(process.pid, out):
+        assert process.poll() is None, "the run ended before it was signalled"
+        assert time.monotonic() < deadline, "the run never got ready to be signalled"
+        time.sleep(0.05)
     process.send_signal(number)
-    _, stderr = process.communicate(timeout=30)
+    _, stderr = process.communicate(timeout=60)
     return process.returncode, stderr, out
 
 
@@ -427,7 +438,8 @@ def test_a_signal_ends_the_run_with_its_results(signal_name: str, tmp_path: Path
     import signal
 
     number = getattr(signal, signal_name)
-    returncode, stderr, out = signalled_long_run(tmp_path, number, after=1.0)
+    # After a second of CPU time the run has integrated far more than 10 output intervals.
+    returncode, stderr, out = signalled_long_run(tmp_path, number, lambda pid, _: cpu_seconds(pid) >= 1.0)
     assert returncode == 128 + number, stderr
     attributes = results_attributes(out)
     assert attributes["status"] == "incomplete"
@@ -440,7 +452,8 @@ def test_a_run_killed_outright_leaves_its_last_checkpoint(tmp_path: Path):
     import signal
     import sys
 
-    _, _, out = signalled_long_run(tmp_path, signal.SIGKILL, after=13.0)  # the first checkpoint comes 10 s in
+    # Killed as soon as its first checkpoint (10 s of wall time in) is in place.
+    _, _, out = signalled_long_run(tmp_path, signal.SIGKILL, lambda _, out: out.exists())
     attributes = results_attributes(out)
     assert attributes["status"] == "incomplete"
     assert attributes["message"].startswith("checkpoint at t = ")
