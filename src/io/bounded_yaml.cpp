@@ -2,8 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -47,6 +50,38 @@ class GraphCheck {
   std::vector<YAML::Node> ancestors_;
 };
 
+/// Where flow collections ('[', '{') first nest deeper than the limit, outside quotes and comments;
+/// empty when they do not. yaml-cpp refuses very deep flow nesting itself, with a message ("bad
+/// file") that gives a reader nothing to act on.
+std::optional<SourceLocation> flowNestingBeyondLimit(const std::string& text) {
+  int depth = 0, line = 1, column = 0;
+  char quote = 0;
+  bool comment = false;
+  char previous = '\n';
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    ++column;
+    if (c == '\n') {
+      ++line, column = 0, comment = false;
+    } else if (comment) {
+      continue;
+    } else if (quote) {
+      if (c == '\\' && quote == '"') ++i, ++column;
+      else if (c == quote) quote = 0;
+    } else if (c == '"' || c == '\'') {
+      quote = c;
+    } else if (c == '#' && std::isspace(static_cast<unsigned char>(previous))) {
+      comment = true;
+    } else if ((c == '[' || c == '{') && (depth > 0 || (previous != '\0' && std::strchr(" \t\n:-,", previous)))) {
+      if (++depth > kMaxNestingDepth) return SourceLocation{"<document>", line, column};
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+    previous = c;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::string readInputFile(const std::string& path, const std::string& what, const SourceLocation& location) {
@@ -71,6 +106,8 @@ YAML::Node loadBoundedYaml(const std::string& text) {
   try {
     root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
+    if (const auto deep = flowNestingBeyondLimit(text))
+      throw SceneError(*deep, fmt::format("the YAML nests deeper than {} levels", kMaxNestingDepth));
     throw SceneError({"<document>", e.mark.line + 1, e.mark.column + 1}, "not valid YAML: " + e.msg);
   }
   GraphCheck().visit(root);

@@ -81,6 +81,8 @@ ComposedScene compose(const std::string& text, const std::string& path, const Ba
     if (out.root["modify"]) YamlField(out.root["modify"], "modify").fail("'modify' needs a 'base' scene");
     return out;
   }
+  // The base takes this file's keys one by one, so a duplicate key would win silently.
+  YamlField(out.root, "").rejectDuplicateKeys();
   const YamlField base_field(out.root["base"], "base");
   if (depth >= kMaxBaseDepth) base_field.fail(fmt::format("more than {} nested base scenes (a cycle?)", kMaxBaseDepth));
   const std::filesystem::path base_path = std::filesystem::path(path).parent_path() / base_field.text();
@@ -102,6 +104,7 @@ ComposedScene compose(const std::string& text, const std::string& path, const Ba
   if (const YAML::Node modify = out.root["modify"]) {
     const YamlField field(modify, "modify");
     if (!modify.IsMap()) field.fail("expected a mapping of <path>: <value>");
+    field.rejectDuplicateKeys();
     for (const auto& kv : modify) {
       const std::string key = kv.first.as<std::string>();
       modifyScene(base.root, YamlField(kv.second, "modify." + key), key, kv.second);

@@ -1,5 +1,7 @@
 #include "yaml_field.hpp"
 
+#include "cranesim/model/closest_name.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,21 +11,6 @@
 
 namespace cranesim {
 namespace {
-
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t next = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-      diagonal = row[j];
-      row[j] = next;
-    }
-  }
-  return row[b.size()];
-}
 
 std::string typeName(const YAML::Node& n) {
   switch (n.Type()) {
@@ -66,32 +53,37 @@ std::string displayed(const std::string& key) {
     out += c < 0x20 || c == 0x7f ? fmt::format("\\x{:02x}", c) : std::string(1, static_cast<char>(c));
   return out;
 }
+
+/// Where a key of this mapping is: a key set by a composing scene (base + its own keys or `modify`)
+/// is a new node without a place in any file; its value keeps the place where the composing scene
+/// wrote it.
+SourceLocation keyLocation(const std::string& path, const std::string& key, const YAML::Node& key_node,
+                           const YAML::Node& value) {
+  const YAML::Mark mark = key_node.Mark().is_null() ? value.Mark() : key_node.Mark();
+  return {path.empty() ? key : path + "." + key, mark.line + 1, mark.column + 1};
+}
 }  // namespace
 
-void YamlField::allowKeys(const std::vector<const char*>& allowed) const {
+void YamlField::rejectDuplicateKeys() const {
   if (!node_.IsMap()) fail(fmt::format("expected a mapping, found {}", typeName(node_)));
   std::vector<std::string> seen;
   for (const auto& kv : node_) {
     const std::string key = displayed(kv.first.as<std::string>());
-    // A key set by a composing scene (base + its own keys or `modify`) is a new node without a
-    // place in any file; its value keeps the place where the composing scene wrote it.
-    const YAML::Mark mark = kv.first.Mark().is_null() ? kv.second.Mark() : kv.first.Mark();
-    if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
-      throw SceneError({path_.empty() ? key : path_ + "." + key, mark.line + 1, mark.column + 1},
-                       fmt::format("duplicate key '{}'", key));
-    }
+    if (std::find(seen.begin(), seen.end(), key) != seen.end())
+      throw SceneError(keyLocation(path_, key, kv.first, kv.second), fmt::format("duplicate key '{}'", key));
     seen.push_back(key);
+  }
+}
+
+void YamlField::allowKeys(const std::vector<const char*>& allowed) const {
+  rejectDuplicateKeys();
+  for (const auto& kv : node_) {
+    const std::string key = displayed(kv.first.as<std::string>());
     if (std::any_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) continue;
-    std::string best;
-    std::size_t best_distance = 3;
-    for (const char* a : allowed) {
-      const std::size_t d = editDistance(key, a);
-      if (d < best_distance) best_distance = d, best = a;
-    }
-    const SourceLocation at{path_.empty() ? key : path_ + "." + key, mark.line + 1, mark.column + 1};
+    const std::string best = closestName(key, std::vector<std::string>(allowed.begin(), allowed.end()));
     std::string allowed_list;
     for (const char* a : allowed) allowed_list += (allowed_list.empty() ? "" : ", ") + std::string(a);
-    throw SceneError(at, best.empty() ? fmt::format("unknown key '{}' (allowed: {})", key, allowed_list)
+    throw SceneError(keyLocation(path_, key, kv.first, kv.second), best.empty() ? fmt::format("unknown key '{}' (allowed: {})", key, allowed_list)
                                       : fmt::format("unknown key '{}'; did you mean '{}'?", key, best));
   }
 }

@@ -32,6 +32,8 @@ class YamlField {
   std::optional<YamlField> find(const std::string& key) const;
   /// Fails on any key not in `allowed`, suggesting the closest allowed key.
   void allowKeys(const std::vector<const char*>& allowed) const;
+  /// Fails at the second occurrence of a key in this mapping (yaml-cpp keeps both).
+  void rejectDuplicateKeys() const;
 
   double number() const;
   double positive() const;

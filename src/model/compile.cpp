@@ -13,6 +13,7 @@
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/rotation.hpp"
 #include "cranesim/model/arc.hpp"
+#include "cranesim/model/closest_name.hpp"
 #include "compile_truss.hpp"
 #include "model_building.hpp"
 
@@ -157,6 +158,32 @@ void keepDrawnPose(Model& model, Constraint& c, const ConstraintSpec& cs) {
   moved = static_cast<int>(model.joints.size()) - 1;
 }
 
+/// Why a joint name is unknown: the closest known name, and the joints the named part has.
+std::string unknownJoint(const Model& model, const std::string& name) {
+  constexpr std::size_t kListed = 12;
+  const std::string part = name.substr(0, name.find('.'));
+  std::vector<std::string> names, of_part;
+  for (const Joint& joint : model.joints) {
+    names.push_back(joint.name);
+    if (joint.name.size() > part.size() && joint.name.compare(0, part.size() + 1, part + ".") == 0)
+      of_part.push_back(joint.name);
+  }
+  std::string message = fmt::format("unknown joint '{}'", name);
+  if (const std::string closest = closestName(name, names); !closest.empty())
+    message += fmt::format("; did you mean '{}'?", closest);
+  if (of_part.empty()) {
+    message += fmt::format(" (no body, member or ground joint is named '{}.<joint>')", part);
+  } else {
+    std::string listed;
+    for (std::size_t i = 0; i < std::min(of_part.size(), kListed); ++i) listed += (i ? ", " : "") + of_part[i];
+    if (of_part.size() > kListed) listed += fmt::format(" and {} more", of_part.size() - kListed);
+    message += fmt::format(" ('{}' has {}: {})", part, of_part.size() == 1 ? std::string("one joint")
+                                                                          : fmt::format("{} joints", of_part.size()),
+                           listed);
+  }
+  return message;
+}
+
 }  // namespace
 
 Model compileModel(const Scene& scene) {
@@ -200,9 +227,7 @@ Model compileModel(const Scene& scene) {
   const auto resolve = [&](const std::string& name, const SourceLocation& where) {
     const int j = model.findJoint(name);
     if (j >= 0) return j;
-    std::string known;
-    for (const Joint& joint : model.joints) known += (known.empty() ? "" : ", ") + joint.name;
-    throw SceneError(where, fmt::format("unknown joint '{}' (known joints: {})", name, known));
+    throw SceneError(where, unknownJoint(model, name));
   };
 
   for (const ConstraintSpec& cs : scene.constraints) {

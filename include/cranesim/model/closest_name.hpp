@@ -1,0 +1,17 @@
+#pragma once
+// "Did you mean": the known name closest to a misspelt one, for error messages.
+
+#include <string>
+#include <vector>
+
+namespace cranesim {
+
+/// Levenshtein distance: the fewest single-character insertions, deletions and substitutions
+/// that turn `a` into `b`.
+std::size_t editDistance(const std::string& a, const std::string& b);
+
+/// The candidate closest to `name` by edit distance, if it is close enough to be a likely typo
+/// (at most 2 edits, or a quarter of the name's length for long names); empty otherwise.
+std::string closestName(const std::string& name, const std::vector<std::string>& candidates);
+
+}  // namespace cranesim
