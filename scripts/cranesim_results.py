@@ -144,6 +144,13 @@ class Results:
     def time(self) -> np.ndarray:
         return self.dataset("time")[()]
 
+    def tipping_moments(self) -> dict[str, np.ndarray]:
+        """The moments about the scene's tipping lines (output.tipping_lines), N·m: > 0 holds the
+        structure on its footprint."""
+        if "tipping_moments" not in self.file or self.time().size == 0:
+            return {}
+        return {name: dataset[()] for name, dataset in self.file["tipping_moments"].items()}
+
     def sampled_time(self) -> np.ndarray:
         """The output times of a file that has samples; one without is an error."""
         time = self.time()

@@ -60,6 +60,9 @@ def summary_lines(results: Results) -> list[str]:
             f"max velocity residual: {np.max(results.get('residual/velocity')):.6e}",
             f"relative energy drift: {relative_energy_drift(results):.6e}",
         ]
+    for name, moment in results.tipping_moments().items():
+        lines.append(f"tipping moment about '{name}': min {np.min(moment):.6g} N·m "
+                     f"({'held on its footprint' if np.min(moment) > 0 else 'tips over the line'}; > 0 holds it)")
     lines.append("solver:")
     lines += [f"  {name}: {value}" for name, value in results.solver_statistics().items()]
     return lines

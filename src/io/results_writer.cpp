@@ -14,6 +14,11 @@
 namespace cranesim {
 namespace {
 
+/// What a tipping moment's sign means, stored with each one (the line is directed, right hand).
+constexpr const char* kTippingMomentSign =
+    "> 0: the supports hold the structure on its footprint (the stability margin about the line); "
+    "<= 0: it tips over the line";
+
 void append(std::vector<double>& out, const double* data, int n) { out.insert(out.end(), data, data + n); }
 
 /// Row-major copy of a rotation matrix, so that h5py reads R[i, j] as Eigen's R(i, j).
@@ -278,6 +283,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
       std::string supports;
       for (const std::string& s : line.supports) supports += (supports.empty() ? "" : ", ") + s;
       file.attribute(path, "supports", supports);
+      file.attribute(path, "sign", kTippingMomentSign);
     }
     file.writeDoubles("/residual/position", {N}, residual_position_.data());
     file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());

@@ -75,3 +75,12 @@ def test_tipping_moment_about_a_line_beside_the_hinge(tmp_path):
         assert np.abs(edge + back).max() < 1e-9 * WEIGHT
         assert f["tipping_moments/edge"].attrs["min"] == pytest.approx(edge.min())
         assert f["tipping_moments/edge"].attrs["supports"] == "hinge"
+        assert f["tipping_moments/edge"].attrs["sign"].startswith("> 0: the supports hold the structure on its footprint")
+        minima = {"edge": edge.min(), "back": back.min()}
+    # The report states each line's smallest moment and what its sign means.
+    report = subprocess.run(["python3", str(SOURCE_DIR / "scripts" / "report.py"), str(tmp_path / "tipping.h5")],
+                            capture_output=True, text=True, timeout=60)
+    assert report.returncode == 0, report.stderr
+    for name, minimum in minima.items():
+        verdict = "held on its footprint" if minimum > 0 else "tips over the line"
+        assert f"tipping moment about '{name}': min {minimum:.6g} N·m ({verdict}; > 0 holds it)" in report.stdout
