@@ -126,7 +126,8 @@ def plot_comparison(plans: list, names: list) -> plt.Figure:
 
 
 def panel_map(ax, plan: h5py.File) -> None:
-    """(a) End points of the grid (mesh lines, coloured by luffing rope length) and the planned path."""
+    """(a) End points of the grid (mesh lines, coloured by luffing rope length) and the path the controls
+    follow, labelled by the plan's method (with the QR trajectory dotted when the method is another)."""
     m = plan["map"]
     x, z, luffing = m["end_x"][()], m["end_z"][()], m["luffing_length"][()]
     ax.plot(x, z, color="0.8", lw=0.6, zorder=1)
@@ -136,8 +137,12 @@ def panel_map(ax, plan: h5py.File) -> None:
     points = ax.scatter(x, z, c=luffing, s=14, cmap="viridis", zorder=2, label=label)
     plt.colorbar(points, ax=ax, label="luffing rope length [m]")
     if "trajectory" in plan:
-        path = plan["trajectory/origin"][()] + plan["trajectory/state"][:, :2]
-        ax.plot(path[:, 0], path[:, 1], "r-", lw=2, zorder=3, label="planned path")
+        origin = plan["trajectory/origin"][()]
+        if method(plan) != "quasi_static":  # the controls follow another path than the QR trajectory
+            qr = origin + plan["trajectory/state"][:, :2]
+            ax.plot(qr[:, 0], qr[:, 1], "r:", lw=1, zorder=3, label="QR trajectory (not followed)")
+        path = origin + planned_path(plan)[1][:, :2]
+        ax.plot(path[:, 0], path[:, 1], "r-", lw=2, zorder=3, label=f"planned path ({method(plan)})")
         ax.plot(*path[0], "go", zorder=4, label="start")
         ax.plot(*path[-1], "ks", zorder=4, label="target")
     ax.set(xlabel="end point x [m]", ylabel="end point z [m]", title="(a) static map: end points")

@@ -167,3 +167,21 @@ def test_comparison_figure_of_several_plans(plot_plan, tmp_path):
     assert plot_plan.main([str(p) for p in plans]) == 0
     assert_png(tmp_path / "quasi_static_compare.png")
     assert plot_plan.main([str(plans[0]), str(tmp_path / "absent.h5")]) == 2
+
+
+def test_map_panel_draws_the_path_the_controls_follow(plot_plan, tmp_path):
+    """A shaped or flatness plan's controls follow /path, not the QR trajectory: panel (a) draws that
+    path under the method's name, and the QR trajectory only dotted, as not followed."""
+    import matplotlib.pyplot as plt
+
+    for plan_file, expected in ((write_plan(tmp_path / "quasi_static.h5"), ["planned path (quasi_static)"]),
+                                (write_shaped_plan(tmp_path / "zvd.h5", 1.0),
+                                 ["QR trajectory (not followed)", "planned path (zvd)"])):
+        fig, ax = plt.subplots()
+        with h5py.File(plan_file, "r") as plan:
+            plot_plan.panel_map(ax, plan)
+            drawn = {line.get_label(): line for line in ax.get_lines()}
+            assert [label for label in drawn if "path" in label or "trajectory" in label] == expected
+            t, state = plot_plan.planned_path(plan)
+            np.testing.assert_array_equal(drawn[expected[-1]].get_xydata(), plan["trajectory/origin"][()] + state[:, :2])
+        plt.close(fig)
