@@ -121,7 +121,7 @@ model at BDF order 5, rtol 1e-8. Sway kept: the load's sway amplitude after the 
 
 {body}
 
-{r.source("python3 benchmarks/crane_work_precision.py --integrators bdf2 --rtols 1e-4,3e-4", "crane_work_precision.csv", rows, "crane_work_precision.png")}
+{r.source("python3 benchmarks/crane_work_precision.py --integrators bdf2,bdf5,ga0.8 --rtols 1e-4,1e-5", "crane_work_precision.csv", rows, "crane_work_precision.png")}
 """
 
 
@@ -150,8 +150,8 @@ the thesis' initial controls: the equilibrium (`crane-sim static`), the modes ab
 (`crane-sim modes`) and the 60 s combined motion at the main scene's setting (BDF order ≤ 2,
 rtol 1e-4, atol 1e-5; wall: median of 3 runs). The hook path is compared with the full-member
 crane's at rtol 1e-5; the full-member row is its own rtol 1e-4 run against that reference, the
-integrator's share of every row. The runs shared the 2 cores with other builds (load average
-3–5), so the walls scatter by up to 2.5× between runs; steps and distances do not.
+integrator's share of every row. Walls vary by 10–30 % between runs on this shared machine;
+steps and distances do not.
 
 {body}
 
