@@ -1,9 +1,9 @@
 #pragma once
-// The task farm across MPI ranks (docs/architecture.md#task-farm), built when CMake finds MPI: rank
-// 0 is the master. It keeps the queue and its own LocalWorkers, and hands the queue's tasks to
-// ranks 1 … N−1 one at a time as each sends back the result of its last task, as bytes; rank 0
-// alone decodes and records them (and writes files: Debian's HDF5 is the serial library). Only rank
-// 0's main thread calls MPI (MPI_THREAD_FUNNELED).
+// The task farm across MPI ranks (docs/architecture.md#task-farm), built when CMake finds MPI:
+// rank 0 is the master. It keeps the queue and its own LocalWorkers, and hands the queue's tasks
+// to ranks 1 … N−1 one at a time as each sends back the result of its last task, as bytes; rank 0
+// alone decodes and records them (and writes files: Debian's HDF5 is the serial library). Only
+// rank 0's main thread calls MPI (MPI_THREAD_FUNNELED).
 
 #include <functional>
 #include <string>

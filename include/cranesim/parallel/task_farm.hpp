@@ -1,8 +1,9 @@
 #pragma once
-// A farm of numbered tasks (docs/architecture.md#task-farm): a queue hands out task numbers one at a time to
-// whichever worker asks next — threads of this process here, MPI ranks in mpi_farm.hpp — so
-// that tasks of very different length balance themselves, and each task is computed exactly
-// once. crane-sim study farms its cases, crane-opt its static map's rows of boom angle.
+// A farm of numbered tasks (docs/architecture.md#task-farm): a queue hands out task numbers one
+// at a time to whichever worker asks next — threads of this process here, MPI ranks in
+// mpi_farm.hpp — so that tasks of very different length balance themselves, and each task is
+// computed exactly once. crane-sim study farms its cases, crane-opt its static map's rows of
+// boom angle.
 
 #include <atomic>
 #include <functional>

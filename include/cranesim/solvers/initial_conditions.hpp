@@ -1,6 +1,6 @@
 #pragma once
-// Consistent initial conditions (docs/architecture.md#consistent-initial-state): positions on Φ =
-// 0, velocities on Φ̇ = 0, and accelerations and multipliers from the saddle-point system (4-3)
+// Consistent initial conditions (docs/architecture.md#consistent-initial-state): positions on
+// Φ = 0, velocities on Φ̇ = 0, and accelerations and multipliers from the saddle-point system (4-3)
 //   [M  Gᵀ] [d(dq)/dt]   [−F + Q]
 //   [G  0 ] [   λ    ] = [  −Γ  ].
 

@@ -8,8 +8,8 @@
 // winches would; everything else is held at t_start. Released at the target lengths instead, a
 // crane's ropes start metres slack or stretched by tens of per cent (3e8 N in the thesis crane's
 // hoist rope shortened to 40 m), and the motion that follows is no path to an equilibrium. Every
-// underdamped mode decays like exp(−αt/2), a mode of angular frequency ω < α/2 like exp(−ω²t/α): α
-// ≈ 2ω of the slowest mode relaxes fastest.
+// underdamped mode decays like exp(−αt/2), a mode of angular frequency ω < α/2 like
+// exp(−ω²t/α): α ≈ 2ω of the slowest mode relaxes fastest.
 //
 // It finds equilibria that Newton started far away does not: a slack rope hanging straight
 // between its supports has no transverse stiffness, a mechanism released far from its rest
