@@ -6,13 +6,11 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include <algorithm>
-#include <array>
-#include <chrono>
 #include <cstring>
 
-#include "cranesim/math/rotation.hpp"
 #include "cranesim/solvers/generalized_alpha.hpp"
 #include "cranesim/solvers/serial_vector_ops.hpp"
+#include "cranesim/solvers/simulation.hpp"
 #include "cranesim/solvers/sparse_lu_linear_solver.hpp"
 
 namespace cranesim {
@@ -187,32 +185,6 @@ class IdasStepper final : public TimeStepper {
   void* mem_ = nullptr;
 };
 
-constexpr double kStallFraction = 1e-12;  // a step shorter than this (relative to t) makes no progress
-constexpr long kMaxStalledSteps = 1000;
-
-DynamicState stateOf(const Assembler& assembler, double t, const double* y) {
-  const Model& model = assembler.model();
-  DynamicState s;
-  s.t = t;
-  s.q = Eigen::Map<const VecX>(y, model.nq);
-  s.v = Eigen::Map<const VecX>(y + assembler.vOffset(), model.nv);
-  return s;
-}
-
-/// Re-parameterises every rotation vector beyond the threshold; returns how many changed.
-int reparameterise(const Model& model, double* q) {
-  int changed = 0;
-  for (const Node& n : model.nodes) {
-    if (!n.hasRotation()) continue;
-    Vec3 phi(q + n.q + 3);
-    if (cranesim::reparameterise(phi)) {
-      std::copy(phi.data(), phi.data() + 3, q + n.q + 3);
-      ++changed;
-    }
-  }
-  return changed;
-}
-
 }  // namespace
 
 void stateVectors(const Assembler& assembler, const DynamicState& s, double* y, double* yp) {
@@ -226,98 +198,18 @@ void stateVectors(const Assembler& assembler, const DynamicState& s, double* y, 
   std::copy(s.a.data(), s.a.data() + model.nv, yp + assembler.vOffset());
 }
 
+std::unique_ptr<TimeStepper> makeTimeStepper(const Assembler& assembler, const DynamicState& initial) {
+  const SolverSpec& solver = assembler.model().solver;
+  if (solver.integrator == Integrator::GeneralizedAlpha)
+    return makeGeneralizedAlphaStepper(assembler, initial, solver.rho_inf);
+  return std::make_unique<IdasStepper>(assembler, initial);
+}
+
 SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initial, SampleSink& sink,
                            const SimulationControl& control) {
-  const auto wall_start = std::chrono::steady_clock::now();
-  const Model& model = assembler.model();
-  const double t_end = model.solver.t_end, dt_out = model.output.interval;
-  const std::vector<double> breakpoints = model.breakpoints();
-
-  const std::unique_ptr<TimeStepper> stepper =
-      model.solver.integrator == Integrator::GeneralizedAlpha
-          ? makeGeneralizedAlphaStepper(assembler, initial, model.solver.rho_inf)
-          : std::unique_ptr<TimeStepper>(std::make_unique<IdasStepper>(assembler, initial));
-  SolverStatistics counts;  // what the stepper does not count itself
-  std::vector<double> sample(assembler.size());
-  std::array<double, WorkTerms::kCount> work{};
-  double drive_impulses = 0.0;  // the drives' work in velocity jumps (jumpVelocities), J
-
-  double t = initial.t;
-  long stalled_steps = 0;
-  long next_sample = 1;
-  bool sampled_end = false;
-  sink.sample(t, stepper->state(), WorkTerms{});
-  std::size_t next_break = 0;
-  while (next_break < breakpoints.size() && breakpoints[next_break] <= t) ++next_break;
-
-  const auto finish = [&](bool complete, std::string message) {
-    SimulationOutcome outcome;
-    outcome.complete = complete;
-    outcome.message = std::move(message);
-    outcome.t_reached = t;
-    outcome.statistics = stepper->statistics();
-    outcome.statistics.reparameterisations = counts.reparameterisations;
-    outcome.statistics.restarts = counts.restarts;
-    outcome.statistics.max_step_constraint_residual = counts.max_step_constraint_residual;
-    outcome.statistics.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    return outcome;
-  };
-
-  while (t < t_end) {
-    const double t_stop = next_break < breakpoints.size() ? breakpoints[next_break] : t_end;
-    const StepOutcome step = stepper->step(t_stop);
-    if (!step.failure.empty()) return finish(false, fmt::format("solver failure at t = {:.6g} s: {}", t, step.failure));
-    const double t_ret = stepper->time();
-    // Samples up to t_ret, interpolated within the step; the last one exactly at t_end.
-    const double eps = 1e-12 * std::max(1.0, std::abs(t_ret));
-    while (!sampled_end) {
-      double ts = initial.t + static_cast<double>(next_sample) * dt_out;
-      if (ts > t_end - eps) ts = t_end;
-      if (ts > t_ret + eps) break;
-      stepper->interpolate(std::min(ts, t_ret), sample.data(), work.data());
-      WorkTerms works = WorkTerms::fromArray(work.data());
-      works.drive += drive_impulses;
-      sink.sample(ts, sample.data(), works);
-      ++next_sample;
-      sampled_end = ts == t_end;
-    }
-    // The integrators' step limits do not apply step by step: stop a run whose step size collapsed.
-    stalled_steps = t_ret - t > kStallFraction * std::max(1.0, std::abs(t_ret)) ? 0 : stalled_steps + 1;
-    if (stalled_steps > kMaxStalledSteps) {
-      t = t_ret;
-      return finish(false, fmt::format("solver failure at t = {:.6g} s: the step size collapsed to {:.3g} s for {} "
-                                       "steps (a locked mechanism or a discontinuity the model cannot follow)",
-                                       t, t_ret - t, kMaxStalledSteps));
-    }
-    t = t_ret;
-    double* y = stepper->state();
-    if (model.m > 0)
-      counts.max_step_constraint_residual = std::max(counts.max_step_constraint_residual, assembler.constraintResidual(t, y));
-    if (control.on_step) control.on_step(t);
-    if (control.stop_requested && control.stop_requested->load())
-      return finish(false, fmt::format("interrupted at t = {:.6g} s", t));
-
-    const int changed = reparameterise(model, y);
-    if ((step.reached_stop || changed > 0) && t < t_end) {
-      if (step.reached_stop) ++next_break;
-      counts.reparameterisations += changed;
-      ++counts.restarts;
-      DynamicState s = stateOf(assembler, t, y);
-      try {
-        // A drive's velocity may jump at a breakpoint: the masses' response to the impulse,
-        // whose work is the drives', then the coming segment's accelerations and multipliers.
-        if (step.reached_stop && model.m > 0) {
-          const ConstraintState C = assembler.constraints(t, s.q.data(), s.v.data(), Limit::Right);
-          if (C.phi_dot.cwiseAbs().maxCoeff() > 0.0) drive_impulses += jumpVelocities(assembler, s, C);
-        }
-        solveAccelerations(assembler, s, Limit::Right);
-      } catch (const std::exception& e) {
-        return finish(false, e.what());
-      }
-      stepper->restart(s);
-    }
-  }
-  return finish(true, "");
+  Simulation simulation(assembler, initial, sink);
+  simulation.advanceTo(assembler.model().solver.t_end, control);
+  return simulation.outcome();
 }
 
 }  // namespace cranesim

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "cranesim/solvers/time_stepper.hpp"
@@ -37,7 +38,11 @@ struct SimulationControl {
   const std::atomic<bool>* stop_requested = nullptr;
 };
 
+/// Runs the scene from `initial` to solver.t_end in one call (a Simulation advanced to t_end).
 SimulationOutcome simulate(const Assembler& assembler, const DynamicState& initial, SampleSink& sink,
                            const SimulationControl& control = {});
+
+/// The integrator that solver.integrator names, started from a consistent state.
+std::unique_ptr<TimeStepper> makeTimeStepper(const Assembler& assembler, const DynamicState& initial);
 
 }  // namespace cranesim
