@@ -236,11 +236,11 @@ TEST_CASE("QR problem validation names the offending entry", "[planning][qr]") {
 
     problem = thesisProblem();
     problem.start[0] = -60.0;
-    CHECK_THROWS_WITH(validate(problem), Contains("start x = -60 lies outside [-50, -5]"));
+    CHECK_THROWS_WITH(validate(problem), Contains("start x = -60 lies outside the trajectory's state bounds [-50, -5] (state_min, state_max)"));
 
     problem = thesisProblem();
     problem.target[1] = 40.0;
-    CHECK_THROWS_WITH(validate(problem), Contains("target z = 40 lies outside [0, 30]"));
+    CHECK_THROWS_WITH(validate(problem), Contains("target z = 40 lies outside the trajectory's state bounds [0, 30]"));
 
     problem = unconstrainedProblem(10);
     problem.start[3] = std::numeric_limits<double>::infinity();

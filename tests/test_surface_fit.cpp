@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -222,6 +224,21 @@ TEST_CASE("Inverting the end point surfaces recovers (u, v) inside the map and r
       CHECK_THROWS_AS(invertSurfaces(fx, fz, data_x, data_z, outside.x(), outside.y()), std::domain_error);
       CHECK_THROWS_WITH(invertSurfaces(fx, fz, data_x, data_z, outside.x(), outside.y()),
                         Catch::Contains("outside the static map"));
+      // The error says where the inversion ended: a point of the rectangle, its end point, and no
+      // farther from the asked-for point than the end point of (u, v) clamped to the rectangle.
+      try {
+        invertSurfaces(fx, fz, data_x, data_z, outside.x(), outside.y());
+      } catch (const OutsideMap& e) {
+        CHECK(e.uv.x() >= 45.0 - 1e-6);
+        CHECK(e.uv.x() <= 85.0 + 1e-6);
+        CHECK(e.uv.y() >= -1e-6);
+        CHECK(e.uv.y() <= 20.0 + 1e-6);
+        CHECK(e.xz.x() == fx(e.uv.x(), e.uv.y()));
+        CHECK(e.xz.y() == fz(e.uv.x(), e.uv.y()));
+        const Eigen::Vector2d clamped(fx(std::clamp(u, 45.0, 85.0), std::clamp(v, 0.0, 20.0)),
+                                      fz(std::clamp(u, 45.0, 85.0), std::clamp(v, 0.0, 20.0)));
+        CHECK((e.xz - outside).norm() <= (clamped - outside).norm() + 1e-9);
+      }
     }
     CHECK_THROWS_WITH(invertSurfaces(fx, fz, data_x, data_z, 1000.0, 0.0), Catch::Contains("outside the static map"));
   }

@@ -59,7 +59,8 @@ void requireWithinStateBounds(const char* name, const EndState& state, const QrP
     const std::string entry = std::string(name) + " " + kStateNames[i] + " = " + format(state[i]);
     if (!std::isfinite(state[i])) fail(entry + " is not finite");
     if (state[i] < problem.state_min[i] || state[i] > problem.state_max[i])
-      fail(entry + " lies outside [" + format(problem.state_min[i]) + ", " + format(problem.state_max[i]) + "]");
+      fail(entry + " lies outside the trajectory's state bounds [" + format(problem.state_min[i]) + ", " +
+           format(problem.state_max[i]) + "] (state_min, state_max); widen them to plan there");
   }
 }
 

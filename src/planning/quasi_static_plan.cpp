@@ -132,7 +132,18 @@ MapFit fitStaticMap(const StaticMap& map, const SurfaceSpec& spec) {
 }
 
 ControlPoint controlsAt(const MapFit& fit, const StaticMap& map, double x, double z) {
-  const Eigen::Vector2d uv = invertSurfaces(fit.fx, fit.fz, fit.x, fit.z, x, z);
+  Eigen::Vector2d uv;
+  try {
+    uv = invertSurfaces(fit.fx, fit.fz, fit.x, fit.z, x, z);
+  } catch (const OutsideMap& e) {  // in the crane's terms: where the load can go, and how far off this is
+    throw OutsideMap(
+        fmt::format("(x, z) = ({:.4g}, {:.4g}) m is beyond the map of boom angles {:g}…{:g}° and hoist rope taken in "
+                    "by {:g}…{:g} m: the nearest end point is ({:.4g}, {:.4g}) m, {:.3g} m away, at boom angle {:.4g}° "
+                    "with {:.4g} m taken in; move the point or widen the map",
+                    x, z, fit.x.u.front(), fit.x.u.back(), fit.x.v.front(), fit.x.v.back(), e.xz.x(), e.xz.y(),
+                    (e.xz - Eigen::Vector2d(x, z)).norm(), e.uv.x(), e.uv.y()),
+        e.uv, e.xz);
+  }
   ControlPoint c;
   c.boom_angle_deg = uv(0);
   c.hoist_change = uv(1);

@@ -259,7 +259,7 @@ Eigen::Vector2d invertSurfaces(const FittedSurface& fx, const FittedSurface& fz,
   message << "end point (x, z) = (" << x << ", " << z << ") lies outside the static map: the closest (u, v) = ("
           << point.x() << ", " << point.y() << ") in [" << data_x.u.front() << ", " << data_x.u.back() << "] × ["
           << data_x.v.front() << ", " << data_x.v.back() << "] misses it by " << r.norm();
-  throw std::domain_error(message.str());
+  throw OutsideMap(message.str(), point, Eigen::Vector2d(fx(point.x(), point.y()), fz(point.x(), point.y())));
 }
 
 }  // namespace cranesim

@@ -7,6 +7,8 @@
 #include <Eigen/Dense>
 
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -67,13 +69,22 @@ class FittedSurface {
   double max_residual_ = 0.0, rms_residual_ = 0.0;
 };
 
+/// An end point the fitted surfaces do not reach inside the grid's rectangle: where the
+/// inversion ended (the rectangle's point whose end point came nearest) and how far it missed.
+struct OutsideMap : std::domain_error {
+  OutsideMap(const std::string& message, Eigen::Vector2d nearest_uv, Eigen::Vector2d nearest_xz)
+      : std::domain_error(message), uv(nearest_uv), xz(nearest_xz) {}
+  Eigen::Vector2d uv;  // (u, v) where the inversion ended
+  Eigen::Vector2d xz;  // the surfaces' end point there
+};
+
 /// Inverts two fitted surfaces (8.4): finds (u, v) in the grid's rectangle with
 /// (fx(u, v), fz(u, v)) = (x, z) by damped Newton iterations on the 2×2 system, started from
 /// the grid point whose data (data_x, data_z) is nearest to (x, z) and clamped to the
 /// rectangle (enlarged by 1e-9 of its size, so end points on the map's edge are found).
-/// Throws std::invalid_argument when data_x and data_z do not share a grid, and
-/// std::domain_error ("... lies outside the static map ...") when |residual| < tolerance is
-/// not reached inside the rectangle.
+/// Throws std::invalid_argument when data_x and data_z do not share a grid, and OutsideMap
+/// ("... lies outside the static map ...") when |residual| < tolerance is not reached inside the
+/// rectangle.
 Eigen::Vector2d invertSurfaces(const FittedSurface& fx, const FittedSurface& fz, const GridData& data_x,
                                const GridData& data_z, double x, double z, double tolerance = 1e-10);
 
