@@ -17,6 +17,28 @@ inline Scene loadScene(const std::string& name) { return readScene(configPath(na
 
 inline Model loadYaml(const std::string& yaml) { return compileModel(parseScene(yaml, "<test>")); }
 
+/// A 1 kg, 1 m rod hung from a hinge at its top (joints rod.top, rod.tip), turned about y by
+/// `drive` (a profile in YAML); 5 s at rtol 1e-8, a sample every 10 ms.
+inline Scene drivenRod(const std::string& drive) {
+  std::string yaml = R"(
+name: driven rod
+ground:
+  joints: [{name: pivot}]
+bodies:
+  - name: rod
+    mass: 1.0
+    inertia: [0.08333333333333333, 0.08333333333333333, 1.0e-4]
+    position: [0, 0, -0.5]
+    joints: [{name: top, position: [0, 0, 0.5]}, {name: tip, position: [0, 0, -0.5]}]
+constraints:
+  - {name: hinge, type: revolute, joints: [ground.pivot, rod.top], axis: y, drive: DRIVE}
+solver: {t_end: 5, rtol: 1.0e-8, atol: 1.0e-10}  # tanh starts 2.5e-5 off 0: posed there
+output: {interval: 0.01}
+)";
+  yaml.replace(yaml.find("DRIVE"), 5, drive);
+  return parseScene(yaml, "<test>");
+}
+
 /// Where `joint` stands in the static equilibrium of the scene `yaml` at t = 0 (solveEquilibrium);
 /// throws with the solver's message when none is found.
 inline Vec3 equilibriumJointPosition(const std::string& yaml, const std::string& joint) {

@@ -13,22 +13,6 @@ using namespace cranesim;
 
 namespace {
 
-const char* kDrivenRod = R"(
-name: driven rod
-ground:
-  joints: [{name: pivot}]
-bodies:
-  - name: rod
-    mass: 1.0
-    inertia: [0.08333333333333333, 0.08333333333333333, 1.0e-4]
-    position: [0, 0, -0.5]
-    joints: [{name: top, position: [0, 0, 0.5]}, {name: tip, position: [0, 0, -0.5]}]
-constraints:
-  - {name: hinge, type: revolute, joints: [ground.pivot, rod.top], axis: y, drive: DRIVE}
-solver: {t_end: 5, rtol: 1.0e-8, atol: 1.0e-10}  # tanh starts 2.5e-5 off 0: posed there
-output: {interval: 0.01}
-)";
-
 /// A free 2 kg ball pushed along x by a 10 N force scaled by SCALE, no gravity.
 const char* kPushedBall = R"(
 name: pushed ball
@@ -85,9 +69,7 @@ TEST_CASE("A driven revolute follows every profile, from t = 0 and across breakp
       "{type: ramp, value: 0, rate: 0.5, t_start: 2}",
   };
   for (const std::string& drive : drives) {
-    std::string yaml = kDrivenRod;
-    yaml.replace(yaml.find("DRIVE"), 5, drive);
-    const Scene scene = parseScene(yaml, "<test>");
+    const Scene scene = test::drivenRod(drive);
     const test::SimulationRun run(scene);
     INFO(drive << ": " << run.outcome.message);
     REQUIRE(run.outcome.complete);

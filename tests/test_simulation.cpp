@@ -74,30 +74,14 @@ void requireSameRun(const Run& chunked, const Run& whole) {
   CHECK(chunked.outcome.t_reached == whole.outcome.t_reached);
 }
 
-// A rod hung from a hinge, turned by a ramp that starts at 0.5 s (its velocity jumps from 0 to
-// 5 rad/s there) and spins it on: its rotation vector is re-parameterised about every 1.3 s.
-const char* kSpunRod = R"(
-name: spun rod
-ground:
-  joints: [{name: pivot}]
-bodies:
-  - name: rod
-    mass: 1.0
-    inertia: [0.08333333333333333, 0.08333333333333333, 1.0e-4]
-    position: [0, 0, -0.5]
-    joints: [{name: top, position: [0, 0, 0.5]}]
-constraints:
-  - {name: hinge, type: revolute, joints: [ground.pivot, rod.top], axis: y,
-     drive: {type: ramp, value: 0, rate: 5, t_start: 0.5}}
-solver: {t_end: 4, rtol: 1.0e-8, atol: 1.0e-10}
-output: {interval: 0.01}
-)";
-
 }  // namespace
 
 TEST_CASE("A simulation advanced in chunks is the run advanced at once, across a velocity jump and "
           "re-parameterisations", "[simulation]") {
-  const Scene scene = parseScene(kSpunRod, "<test>");
+  // The rod turned by a ramp that starts at 0.5 s (its velocity jumps from 0 to 5 rad/s there) and
+  // spins it on: its rotation vector is re-parameterised about every 1.3 s.
+  Scene scene = test::drivenRod("{type: ramp, value: 0, rate: 5, t_start: 0.5}");
+  scene.solver.t_end = 4.0;
   const Run whole = advanced(scene, {4.0});
   REQUIRE(whole.outcome.statistics.reparameterisations >= 2);
   REQUIRE(whole.outcome.statistics.restarts >= 3);
