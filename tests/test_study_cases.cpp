@@ -111,3 +111,23 @@ TEST_CASE("grid cases are numbered with the last grid parameter fastest, then th
   CHECK(v[1] == randomDraw(*study.parameters[1].random, 9, (1 * 3 + 2) * 4 + 3, 1));
   CHECK(study.parameterValues(0) == std::vector<double>{1.0, randomDraw(RandomDistribution{}, 9, 0, 1), 10.0});
 }
+
+TEST_CASE("a parameter that scales with another follows it in proportion in every case", "[study]") {
+  // The rope pendulum's 1000 kg ball (inertia 39.14 kg·m² about each axis) at three masses, its
+  // inertia following the mass (the same ball, denser) and a random rope modulus beside them.
+  const std::string path = std::string(CRANESIM_SOURCE_DIR) + "/configs/study_linked_ball.yaml";
+  const Study study = readStudy(path);
+  REQUIRE(study.parameters.size() == 3);
+  REQUIRE(study.parameters[1].scales_with == std::optional<std::size_t>(0));
+  REQUIRE(study.cases == 6);  // the following parameter adds no cases
+  for (long i = 0; i < study.cases; ++i) {
+    const std::vector<double> values = study.parameterValues(i);
+    const Scene scene = caseScene(study, i);
+    const RigidBodySpec& ball = scene.bodies[0];
+    INFO("case " << i);
+    CHECK(ball.mass == values[0]);
+    CHECK(values[1] == values[0] / 1000.0);
+    for (int axis = 0; axis < 3; ++axis) CHECK(ball.inertia(axis, axis) == Approx(39.14 * values[0] / 1000.0).epsilon(1e-15));
+    CHECK(scene.members[0].material.youngs_modulus == values[2]);
+  }
+}

@@ -29,10 +29,8 @@ std::vector<std::string> splitDots(const std::string& key) {
   return parts;
 }
 
-}  // namespace
-
-void modifyScene(YAML::Node base, const YamlField& entry, const std::string& key, const YAML::Node& value,
-                 bool require_field) {
+/// The mapping that holds the last part of `key` in `base`, and that part.
+std::pair<YAML::Node, std::string> fieldParent(YAML::Node base, const YamlField& entry, const std::string& key) {
   const std::vector<std::string> parts = splitDots(key);
   if (parts.size() < 2 || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
     entry.fail("expected <list>.<item name>.<field> or <mapping>.<field>");
@@ -60,9 +58,24 @@ void modifyScene(YAML::Node base, const YamlField& entry, const std::string& key
     target.reset(child);
   }
   if (!target.IsMap()) entry.fail(fmt::format("'{}' is not a mapping in the base scene", parts[next - 1]));
-  if (require_field && !static_cast<const YAML::Node&>(target)[parts.back()])
-    entry.fail(fmt::format("the base scene has no field '{}' here (known: {})", parts.back(), keysOf(target)));
-  target[parts.back()] = value;
+  return {target, parts.back()};
+}
+
+}  // namespace
+
+void modifyScene(YAML::Node base, const YamlField& entry, const std::string& key, const YAML::Node& value,
+                 bool require_field) {
+  auto [parent, field] = fieldParent(base, entry, key);
+  if (require_field && !static_cast<const YAML::Node&>(parent)[field])
+    entry.fail(fmt::format("the base scene has no field '{}' here (known: {})", field, keysOf(parent)));
+  parent[field] = value;
+}
+
+YAML::Node sceneField(YAML::Node base, const YamlField& entry, const std::string& key) {
+  const auto [parent, field] = fieldParent(base, entry, key);
+  const YAML::Node value = static_cast<const YAML::Node&>(parent)[field];
+  if (!value) entry.fail(fmt::format("the base scene has no field '{}' here (known: {})", field, keysOf(parent)));
+  return value;
 }
 
 namespace {

@@ -34,6 +34,10 @@ class YamlField;
 void modifyScene(YAML::Node base, const YamlField& entry, const std::string& key, const YAML::Node& value,
                  bool require_field = false);
 
+/// The field `key` (a `modify` key) of `base`; fails at `entry` as modifyScene does, and when the
+/// base lacks the field itself.
+YAML::Node sceneField(YAML::Node base, const YamlField& entry, const std::string& key);
+
 /// Reads a composed scene, throwing SceneError on bad content (the scene reader).
 using BaseValidator = std::function<void(const ComposedScene& base, const std::string& base_path)>;
 

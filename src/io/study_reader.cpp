@@ -7,6 +7,7 @@
 #include <set>
 
 #include "bounded_yaml.hpp"
+#include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/study/random_draw.hpp"
 #include "cranesim/study/study.hpp"
@@ -231,13 +232,60 @@ StudyCriterion readCriterion(const YamlField& f, const std::vector<FigureSpec>& 
   return c;
 }
 
-StudyParameter readParameter(const YamlField& f, YAML::Node scene_root, std::vector<YamlField>& paths) {
-  f.allowKeys({"path", "values", "range", "random"});
+/// `node` (a number, or a list of numbers or of such lists) with every number times `factor`;
+/// throws std::invalid_argument on anything else.
+YAML::Node scaled(const YAML::Node& node, double factor) {
+  if (node.IsSequence()) {
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (const YAML::Node& item : node) out.push_back(scaled(item, factor));
+    return out;
+  }
+  double value = 0.0;
+  if (!node.IsScalar() || !YAML::convert<double>::decode(node, value) || !std::isfinite(value))
+    throw std::invalid_argument("not a number or a list of numbers");
+  return YAML::Node(fmt::format("{}", value * factor));
+}
+
+/// A parameter's `scales_with`: the earlier parameter it follows, and that parameter's value in
+/// the base scene, which must be a non-zero number.
+void readLeader(StudyParameter& p, const YamlField& path, const YamlField& leader_field,
+                const std::vector<StudyParameter>& earlier, const std::vector<YamlField>& earlier_paths,
+                YAML::Node scene_root) {
+  const std::string leader = leader_field.text();
+  std::vector<std::string> names;
+  for (const StudyParameter& e : earlier) names.push_back(e.path);
+  const auto found = std::find(names.begin(), names.end(), leader);
+  if (found == names.end()) {
+    const std::string closest = closestName(leader, names);
+    leader_field.fail(fmt::format("no parameter above this one varies '{}'{}", leader,
+                                  closest.empty() ? "" : fmt::format("; did you mean '{}'?", closest)));
+  }
+  const std::size_t k = static_cast<std::size_t>(found - names.begin());
+  if (earlier[k].scales_with) leader_field.fail(fmt::format("'{}' follows another parameter itself: follow that one", leader));
+  double base = 0.0;
+  const YAML::Node base_node = sceneField(scene_root, earlier_paths[k], leader);
+  if (!base_node.IsScalar() || !YAML::convert<double>::decode(base_node, base) || !std::isfinite(base) || base == 0.0)
+    leader_field.fail(fmt::format("the base scene's '{}' must be a non-zero number to scale by", leader));
+  try {
+    scaled(sceneField(scene_root, path, p.path), 1.0);
+  } catch (const std::invalid_argument&) {
+    path.fail(fmt::format("the base scene's '{}' must be a number or a list of numbers to scale", p.path));
+  }
+  p.scales_with = k;
+  p.leader_base = base;
+}
+
+StudyParameter readParameter(const YamlField& f, YAML::Node scene_root, const std::vector<StudyParameter>& earlier,
+                             std::vector<YamlField>& paths) {
+  f.allowKeys({"path", "values", "range", "random", "scales_with"});
   StudyParameter p;
   const YamlField path = f.at("path");
   p.path = path.text();
-  if (f.has("values") + f.has("range") + f.has("random") != 1) f.fail("give exactly one of values, range or random");
-  if (const auto values = f.find("values")) {
+  if (f.has("values") + f.has("range") + f.has("random") + f.has("scales_with") != 1)
+    f.fail("give exactly one of values, range, random or scales_with");
+  if (const auto leader = f.find("scales_with")) {
+    readLeader(p, path, *leader, earlier, paths, scene_root);
+  } else if (const auto values = f.find("values")) {
     if (!values->isSequence()) values->fail("expected a list of numbers");
     p.values = values->numbers();
     if (p.values.empty()) values->fail("an empty grid: give at least one value");
@@ -266,6 +314,7 @@ std::vector<double> Study::parameterValues(long index) const {
   long grid = index / samples;
   for (std::size_t k = parameters.size(); k-- > 0;) {
     const StudyParameter& p = parameters[k];
+    if (p.scales_with) continue;  // below, from the value it follows
     if (p.random) {
       values[k] = randomDraw(*p.random, seed, static_cast<std::uint64_t>(index), k);
     } else {
@@ -274,6 +323,8 @@ std::vector<double> Study::parameterValues(long index) const {
       grid /= n;
     }
   }
+  for (std::size_t k = 0; k < parameters.size(); ++k)
+    if (const auto leader = parameters[k].scales_with) values[k] = values[*leader] / parameters[k].leader_base;
   return values;
 }
 
@@ -314,7 +365,7 @@ Study readStudy(const std::string& path) {
   if (const auto parameters = f.find("parameters")) {
     std::set<std::string> seen;
     for (const YamlField& p : parameters->items()) {
-      study.parameters.push_back(readParameter(p, source->base.root, source->parameter_paths));
+      study.parameters.push_back(readParameter(p, source->base.root, study.parameters, source->parameter_paths));
       if (!seen.insert(study.parameters.back().path).second) p.at("path").fail("this path is varied twice");
       random = random || study.parameters.back().random.has_value();
       cases *= static_cast<double>(std::max<std::size_t>(1, study.parameters.back().values.size()));
@@ -363,8 +414,13 @@ Scene caseScene(const Study& study, long index) {
   const StudySceneSource& source = *study.source;
   const std::lock_guard<std::mutex> lock(source.lock);
   ComposedScene composed{YAML::Clone(source.base.root), header + "\n" + source.base.text};
-  for (std::size_t k = 0; k < values.size(); ++k)
-    modifyScene(composed.root, source.parameter_paths[k], study.parameters[k].path, YAML::Node(fmt::format("{}", values[k])));
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const StudyParameter& p = study.parameters[k];
+    const YamlField& where = source.parameter_paths[k];
+    const YAML::Node value = p.scales_with ? scaled(sceneField(source.base.root, where, p.path), values[k])
+                                           : YAML::Node(fmt::format("{}", values[k]));
+    modifyScene(composed.root, where, p.path, value);
+  }
   return sceneFromComposed(composed, study.scene_path);
 }
 

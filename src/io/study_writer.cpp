@@ -20,7 +20,9 @@ const char* analysisName(StudyAnalysis analysis) {
   return "";
 }
 
-std::string describe(const StudyParameter& p) {
+std::string describe(const Study& study, const StudyParameter& p) {
+  if (p.scales_with)
+    return fmt::format("scales with {}: the factor on the base scene's value", study.parameters[*p.scales_with].path);
   if (!p.random) return "grid";
   const RandomDistribution& d = *p.random;
   switch (d.kind) {
@@ -58,7 +60,7 @@ void writeStudyResults(const std::string& path, const Study& study, const std::v
     for (std::size_t k = 0; k < study.parameters.size(); ++k) {
       const std::string dataset = "/parameters/" + study.parameters[k].path;
       file.writeDoubles(dataset, {n}, parameters[k].data());
-      file.attribute(dataset, "values", describe(study.parameters[k]));
+      file.attribute(dataset, "values", describe(study, study.parameters[k]));
     }
     std::vector<double> column(n);
     file.ensureGroup("/parameters");

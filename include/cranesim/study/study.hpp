@@ -28,8 +28,13 @@ struct RandomDistribution {
 
 struct StudyParameter {
   std::string path;            // a `modify` key into the scene, e.g. bodies.load.mass
-  std::vector<double> values;  // a grid parameter's values; empty for a random one
+  std::vector<double> values;  // a grid parameter's values; empty for a random or following one
   std::optional<RandomDistribution> random;
+  /// A parameter that follows an earlier one (`scales_with`, its index): the base scene's value
+  /// (a number or a list of numbers, e.g. an inertia following a mass) times that parameter's
+  /// value over its base value, `leader_base`. Its value in a case is that factor.
+  std::optional<std::size_t> scales_with;
+  double leader_base = 1.0;
 };
 
 /// What a figure measures. Time series (all but frequency) are reduced over the samples at
