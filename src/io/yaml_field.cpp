@@ -83,8 +83,9 @@ void YamlField::allowKeys(const std::vector<const char*>& allowed) const {
     const std::string best = closestName(key, std::vector<std::string>(allowed.begin(), allowed.end()));
     std::string allowed_list;
     for (const char* a : allowed) allowed_list += (allowed_list.empty() ? "" : ", ") + std::string(a);
-    throw SceneError(keyLocation(path_, key, kv.first, kv.second), best.empty() ? fmt::format("unknown key '{}' (allowed: {})", key, allowed_list)
-                                      : fmt::format("unknown key '{}'; did you mean '{}'?", key, best));
+    throw SceneError(keyLocation(path_, key, kv.first, kv.second),
+                     best.empty() ? fmt::format("unknown key '{}' (allowed: {})", key, allowed_list)
+                                  : fmt::format("unknown key '{}'; did you mean '{}'?", key, best));
   }
 }
 
