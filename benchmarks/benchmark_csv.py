@@ -4,6 +4,7 @@ its columns checked, matplotlib without a display, and the error convention of t
 
 import csv
 import sys
+from pathlib import Path
 
 
 class BadFile(Exception):
@@ -63,3 +64,12 @@ def fail(script, message):
     """Reports a bad input the way every plotter does; returns the exit status."""
     print(f"{script}: error: {message}", file=sys.stderr)
     return 2
+
+
+def write_rows(path, rows):
+    """Writes dict rows (the first row's keys as the header) to `path`, making its directory."""
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what cranesim needs on Debian (bookworm) when it is missing: the C++ toolchain and
-# libraries from Debian's packages, the Python plotting stack from PyPI. Safe to run repeatedly.
+# libraries from Debian's packages, the Python plotting stack and the Python package's build tools from PyPI. Safe to run repeatedly.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 
@@ -26,7 +26,7 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}"
 fi
 
-if ! python3 -c "import numpy, h5py, matplotlib, pytest, yaml" 2>/dev/null; then
+if ! python3 -c "import numpy, h5py, matplotlib, pytest, yaml, nanobind, scikit_build_core, gymnasium" 2>/dev/null; then
   echo "installing Python packages from scripts/requirements.txt"
   python3 -m pip install --quiet -r "$here/requirements.txt" ||
     python3 -m pip install --quiet --break-system-packages -r "$here/requirements.txt"

@@ -2,7 +2,8 @@
 # The README's main command: installs what is missing, builds, runs the thesis crane's combined
 # motion (configs/crane_combined.yaml, thesis 8.3.2) from its equilibrium and leaves the results,
 # the load's position and velocity plot, a snapshot, an animation and a 3-D replay page of the
-# whole crane in out/main/. Another scene: scripts/run_main.sh configs/<scene>.yaml
+# whole crane in out/main/, and installs the Python package cranesim.
+# Another scene: scripts/run_main.sh configs/<scene>.yaml
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 scene="${1:-$root/configs/crane_combined.yaml}"
@@ -15,6 +16,7 @@ end_phase() { echo "$1,$((SECONDS - phase_start))" >> "$times.partial"; phase_st
 "$root/scripts/install_deps.sh"
 end_phase install
 "$root/scripts/build.sh" crane-sim   # only what the main job runs; the tests build everything
+"$root/scripts/install_python.sh"    # the Python package cranesim, on the same build
 end_phase build
 name="$(basename "$scene" .yaml)"
 results="$out/$name.h5"

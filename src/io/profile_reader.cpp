@@ -6,12 +6,47 @@
 
 namespace cranesim {
 
+namespace {
+
+/// `{type: input, value, command: speed | value, order: 1 | 2, time_constant, limits: {speed,
+/// acceleration, min, max}}`: a drive its caller commands while the model runs.
+InputProfile readInput(const YamlField& f) {
+  f.allowKeys({"type", "unit", "value", "command", "order", "time_constant", "limits"});
+  InputProfile p;
+  InputSpec& s = p.spec;
+  s.value = f.at("value").number();
+  if (const auto c = f.find("command")) s.command = c->choice({"speed", "value"}) == "speed" ? InputCommand::Speed : InputCommand::Value;
+  if (const auto o = f.find("order")) {
+    s.order = o->integer();
+    if (s.order != 1 && s.order != 2) o->fail(fmt::format("an input's order is 1 or 2 (lags in series), found {}", s.order));
+  }
+  if (const auto tau = f.find("time_constant")) s.time_constant = tau->within(1e-4, 100.0, "s");
+  if (const auto l = f.find("limits")) {
+    l->allowKeys({"speed", "acceleration", "min", "max"});
+    if (const auto v = l->find("speed")) s.max_speed = v->positive();
+    if (const auto a = l->find("acceleration")) {
+      if (s.command == InputCommand::Value)
+        a->fail("an acceleration limit belongs to a speed command; a value command's drive is limited by limits.speed");
+      s.max_acceleration = a->positive();
+    }
+    s.min = l->number("min", s.min);
+    s.max = l->number("max", s.max);
+    if (!(s.min < s.max)) l->fail(fmt::format("limits.min ({}) must lie below limits.max ({})", s.min, s.max));
+    if (!(s.value >= s.min && s.value <= s.max))
+      f.at("value").fail(fmt::format("the starting value {} lies outside limits [{}, {}]", s.value, s.min, s.max));
+  }
+  return p;
+}
+
+}  // namespace
+
 Profile readProfile(const YamlField& f) {
   if (f.isScalar()) return Profile(ConstantProfile{f.number()});
   const std::string type =
-      f.at("type").choice({"constant", "ramp", "trapezoid", "cosine_step", "cosine_full", "tanh", "table"});
+      f.at("type").choice({"constant", "ramp", "trapezoid", "cosine_step", "cosine_full", "tanh", "table", "input"});
   double scale = 1.0;
   if (const auto unit = f.find("unit")) scale = unit->choice({"deg", "rad", "m"}) == "deg" ? std::numbers::pi / 180.0 : 1.0;
+  if (type == "input") return Profile(readInput(f), scale);
   if (type == "constant") {
     f.allowKeys({"type", "unit", "value"});
     return Profile(ConstantProfile{f.at("value").number()}, scale);

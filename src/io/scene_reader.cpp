@@ -283,13 +283,16 @@ void readMemberEnd(const YamlField& f, Vec3& position, std::string& joint, Sourc
   else position = f.position();
 }
 
-/// A drive's or a rope length's profile: any but a step table, whose jump would have to move a
-/// joint or reel a rope in no time (a load's `scale` may step).
+/// A drive's or a rope length's profile: any but a step table or a first-order value input,
+/// whose jumps would have to move a joint or reel a rope in no time (a load's `scale` may step).
 Profile readDrive(const YamlField& f) {
   Profile p = readProfile(f);
   if (p.jumps())
     f.at("interpolation").fail("a drive or a rope length cannot jump (it would move a joint or reel a rope in no "
                                "time): use interpolation: linear or cubic");
+  if (const InputProfile* input = p.input(); input && input->spec.command == InputCommand::Value && input->spec.order == 1)
+    f.fail("a drive or a rope length that follows value commands needs order: 2 (through one lag its speed would jump "
+           "at every command); or command its speed");
   return p;
 }
 

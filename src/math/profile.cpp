@@ -45,6 +45,7 @@ std::vector<double> Profile::breakpoints() const {
     std::vector<double> operator()(const CosineStepProfile& p) const { return {p.t_start, p.t_end}; }
     std::vector<double> operator()(const CosineFullProfile& p) const { return {p.t_start, p.t_end}; }
     std::vector<double> operator()(const TanhProfile&) const { return {}; }
+    std::vector<double> operator()(const InputProfile&) const { return {}; }  // commands stop the integrator, never restart it
     std::vector<double> operator()(const TableProfile& p) const {
       if (p.interpolation == Interpolation::Cubic) return {p.t.front(), p.t.back()};
       return p.t;  // a linear table's slope, a step table's value jumps at every knot

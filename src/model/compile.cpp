@@ -216,7 +216,9 @@ Model compileModel(const Scene& scene) {
 
   for (const MemberSpec& m : scene.members) {
     if (m.type != MemberType::Truss) {
-      compileMember(model, m);
+      MemberSpec member = m;
+      if (member.length) member.length = model.attachInput(*m.length, m.name, "rope length", m.where);
+      compileMember(model, member);
       continue;
     }
     const auto type = std::find_if(scene.trusses.begin(), scene.trusses.end(), [&](const TrussDescription& d) { return d.name == m.truss; });
@@ -243,7 +245,7 @@ Model compileModel(const Scene& scene) {
                                                       model.nodes[n1].name));
     if (cs.keep_drawn_pose) keepDrawnPose(model, c, cs);
     c.axis = cs.axis;
-    c.drive = cs.drive;
+    if (cs.drive) c.drive = model.attachInput(*cs.drive, cs.name, "drive", cs.where);
     c.where = cs.where;
     addConstraint(model, std::move(c));
   }
@@ -256,7 +258,7 @@ Model compileModel(const Scene& scene) {
     l.force = ls.force;
     l.torque = ls.torque;
     l.frame = ls.frame;
-    l.scale = ls.scale;
+    l.scale = model.attachInput(ls.scale, ls.name, "load scale", ls.where);
     model.loads.push_back(std::move(l));
   }
 

@@ -1,5 +1,7 @@
 #include "cranesim/model/model.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "cranesim/math/rotation.hpp"
@@ -53,6 +55,25 @@ int Model::findConstraint(const std::string& name) const {
   for (std::size_t k = 0; k < constraints.size(); ++k)
     if (constraints[k].name == name) return static_cast<int>(k);
   return -1;
+}
+
+int Model::findInput(const std::string& name) const {
+  for (std::size_t k = 0; k < inputs.size(); ++k)
+    if (inputs[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
+Profile Model::attachInput(const Profile& profile, const std::string& name, const std::string& what,
+                           const SourceLocation& where) {
+  if (!profile.input()) return profile;
+  if (const int k = findInput(name); k >= 0)
+    throw SceneError(where, fmt::format("a {} and a {} are both inputs named '{}': an input's name must be unique",
+                                        inputs[k].what, what, name));
+  Profile attached = profile;
+  InputProfile& input = *attached.input();
+  input.signal = std::make_shared<InputSignal>(input.spec, solver.t_start);
+  inputs.push_back({name, what, input.signal});
+  return attached;
 }
 
 std::vector<double> Model::breakpoints() const {

@@ -149,6 +149,20 @@ class IdasStepper final : public TimeStepper {
     check(IDAQuadReInit(mem_, yq_), "IDAQuadReInit");
   }
 
+  void setWork(const double* work) override {
+    std::copy_n(work, WorkTerms::kCount, N_VGetArrayPointer(yq_));
+    check(IDAQuadReInit(mem_, yq_), "IDAQuadReInit");
+  }
+
+  void setMaxStep(double h) override {
+    const double scene_limit = data_.assembler->model().solver.max_step;
+    const double limit = h > 0.0 && scene_limit > 0.0 ? std::min(h, scene_limit) : h > 0.0 ? h : scene_limit;
+    check(IDASetMaxStep(mem_, limit), "IDASetMaxStep");
+    // IDAS holds the limit only where it raises the step; raising it whenever the error allows
+    // (not only when it allows doubling) brings a longer step down to the limit at once.
+    check(IDASetEtaFixedStepBounds(mem_, 1.0, 1.0), "IDASetEtaFixedStepBounds");
+  }
+
   /// IDAS' counters restart with IDAReInit; they are summed over the segments.
   SolverStatistics statistics() override {
     SolverStatistics s = before_restarts_;

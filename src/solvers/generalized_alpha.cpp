@@ -119,6 +119,16 @@ class GeneralizedAlphaStepper final : public TimeStepper {
     has_history_ = false;
   }
 
+  void setWork(const double* work) override {
+    std::copy(work, work + WorkTerms::kCount, work_.begin());
+    work_old_ = work_;
+  }
+
+  void setMaxStep(double h) override {
+    const double scene_limit = assembler_.model().solver.max_step;
+    max_step_ = h > 0.0 && scene_limit > 0.0 ? std::min(h, scene_limit) : h > 0.0 ? h : scene_limit;
+  }
+
   SolverStatistics statistics() override {
     SolverStatistics s = stats_;
     s.last_step_size = t_ - t_old_;

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include "cranesim/math/rotation.hpp"
 
@@ -43,6 +46,7 @@ Simulation::Simulation(const Assembler& assembler, const DynamicState& initial, 
   const auto wall_start = std::chrono::steady_clock::now();
   stepper_ = makeTimeStepper(assembler, initial);
   breakpoints_ = assembler.model().breakpoints();
+  stops_at_targets_ = !assembler.model().inputs.empty();
   while (next_break_ < breakpoints_.size() && breakpoints_[next_break_] <= t_) ++next_break_;
   sink_.sample(t_, stepper_->state(), WorkTerms{});
   wall_ += std::chrono::steady_clock::now() - wall_start;
@@ -55,8 +59,19 @@ bool Simulation::advanceTo(double t, const SimulationControl& control) {
   const auto wall_start = std::chrono::steady_clock::now();
   const double t_end = assembler_.model().solver.t_end;
   const double target = std::min(t, t_end);
+  if (stops_at_targets_ && target > t_) limitSteps(target);
+  const double from = t_;
   bool going = true;
-  while (going && t_ < target) going = step(control);
+  long taken = 0;
+  double longest = 0.0, last = 0.0;  // longest: of the steps before the last, which lands on t
+  while (going && t_ < target) {
+    const double before = t_;
+    going = step(target, control);
+    ++taken;
+    longest = std::max(longest, last);
+    last = t_ - before;
+  }
+  if (stops_at_targets_ && going) countSteps(taken, target - from, longest);
   if (going && t_ >= t_end) {
     stopped_ = complete_ = true;
     going = false;
@@ -65,17 +80,125 @@ bool Simulation::advanceTo(double t, const SimulationControl& control) {
   return going;
 }
 
+void Simulation::stateAt(double t, double* y) const {
+  std::array<double, WorkTerms::kCount> work{};
+  stepper_->interpolate(t, y, work.data());
+}
+
+void Simulation::limitSteps(double target) {
+  const double span = target - t_;
+  sharing_.steps = std::max(sharing_.steps, fewestSteps(span));
+  const double h = span / static_cast<double>(sharing_.steps);
+  if (std::abs(h - max_step_) > 1e-9 * h) {  // the same limit for advances of the same span
+    max_step_ = h;
+    stepper_->setMaxStep(h);
+  }
+}
+
+long Simulation::fewestSteps(double span) const {
+  const double limit = assembler_.model().solver.max_step;
+  return limit > 0.0 ? std::max(1L, static_cast<long>(std::ceil(span / limit - 1e-9))) : 1L;
+}
+
+void Simulation::countSteps(long taken, double span, double longest) {
+  constexpr long kFirstWait = 64, kLongestWait = 1024, kSettle = 3;
+  StepSharing& s = sharing_;
+  if (s.settling > 0) {
+    --s.settling;
+    return;
+  }
+  if (taken > s.steps) {
+    if (s.trial > 1) {  // the integrator is still growing its step towards the trial's
+      --s.trial;
+      return;
+    }
+    if (s.trial == 1) {  // the trial failed: back, and wait twice as long for the next
+      s.steps = s.before_trial;
+      s.wait = std::min(2 * s.wait, kLongestWait);
+    } else {  // the integrator shortened its steps (its error, Newton's convergence)
+      s.steps = std::max(s.steps, static_cast<long>(std::ceil(span / longest - 1e-9)));
+    }
+    s.trial = 0;
+    s.clean = 0;
+    return;
+  }
+  if (s.trial > 0) s.wait = kFirstWait;
+  s.trial = 0;
+  if (++s.clean < s.wait) return;
+  s.clean = 0;
+  const double growth = assembler_.model().solver.max_step_growth;
+  const long fewer = std::max(fewestSteps(span), static_cast<long>(std::ceil(s.steps / growth - 1e-9)));
+  if (fewer < s.steps) {
+    s.before_trial = s.steps;
+    s.steps = fewer;
+    s.trial = kSettle;
+  }
+}
+
+void Simulation::restartAt(DynamicState s) {
+  solveAccelerations(assembler_, s, Limit::Right);
+  stepper_->restart(s);
+  sharing_.settling = StepSharing{}.settling;
+}
+
+SimulationState Simulation::save() {
+  if (stopped_) throw std::logic_error("a run that has stopped cannot be saved");
+  const Model& model = assembler_.model();
+  const DynamicState s = stateOf(assembler_, t_, stepper_->state());
+  restartAt(s);
+  ++counts_.restarts;
+  SimulationState saved;
+  saved.t = t_;
+  saved.q = s.q;
+  saved.v = s.v;
+  stepper_->work(saved.work.data());
+  saved.drive_impulses = drive_impulses_;
+  for (const ModelInput& input : model.inputs) saved.inputs.push_back(input.signal->state());
+  saved.next_break = next_break_;
+  saved.next_sample = next_sample_;
+  saved.sampled_end = sampled_end_;
+  saved.sharing = sharing_;
+  return saved;
+}
+
+void Simulation::restore(const SimulationState& saved) {
+  const Model& model = assembler_.model();
+  if (saved.q.size() != model.nq || saved.v.size() != model.nv || saved.inputs.size() != model.inputs.size() ||
+      saved.next_break > breakpoints_.size())
+    throw std::invalid_argument(fmt::format("the saved state ({} coordinates, {} inputs) is not one of this model "
+                                            "({} coordinates, {} inputs)",
+                                            saved.q.size(), saved.inputs.size(), model.nq, model.inputs.size()));
+  for (std::size_t k = 0; k < saved.inputs.size(); ++k) model.inputs[k].signal->restore(saved.inputs[k]);
+  DynamicState s;
+  s.t = saved.t;
+  s.q = saved.q;
+  s.v = saved.v;
+  restartAt(s);
+  stepper_->setWork(saved.work.data());
+  ++counts_.restarts;
+  t_ = saved.t;
+  drive_impulses_ = saved.drive_impulses;
+  next_break_ = saved.next_break;
+  next_sample_ = saved.next_sample;
+  sampled_end_ = saved.sampled_end;
+  sharing_ = saved.sharing;
+  stalled_steps_ = 0;
+  stopped_ = complete_ = false;
+  message_.clear();
+}
+
 bool Simulation::stop(std::string message) {
   stopped_ = true;
   message_ = std::move(message);
   return false;
 }
 
-bool Simulation::step(const SimulationControl& control) {
+bool Simulation::step(double target, const SimulationControl& control) {
   const Model& model = assembler_.model();
   const double t_end = model.solver.t_end, dt_out = model.output.interval;
-  const double t_stop = next_break_ < breakpoints_.size() ? breakpoints_[next_break_] : t_end;
-  const StepOutcome step = stepper_->step(t_stop);
+  const double t_break = next_break_ < breakpoints_.size() ? breakpoints_[next_break_] : t_end;
+  const bool to_target = stops_at_targets_ && target < t_break;
+  const StepOutcome step = stepper_->step(to_target ? target : t_break);
   if (!step.failure.empty()) return stop(fmt::format("solver failure at t = {:.6g} s: {}", t_, step.failure));
   const double t_ret = stepper_->time();
   // Samples up to t_ret, interpolated within the step; the last one exactly at t_end.
@@ -111,23 +234,23 @@ bool Simulation::step(const SimulationControl& control) {
     return stop(fmt::format("interrupted at t = {:.6g} s", t_));
 
   const int changed = reparameterise(model, y);
-  if ((step.reached_stop || changed > 0) && t_ < t_end) {
-    if (step.reached_stop) ++next_break_;
+  const bool at_break = step.reached_stop && !to_target;
+  if ((at_break || changed > 0) && t_ < t_end) {
+    if (at_break) ++next_break_;
     counts_.reparameterisations += changed;
     ++counts_.restarts;
     DynamicState s = stateOf(assembler_, t_, y);
     try {
       // A drive's velocity may jump at a breakpoint: the masses' response to the impulse, whose
       // work is the drives', then the coming segment's accelerations and multipliers.
-      if (step.reached_stop && model.m > 0) {
+      if (at_break && model.m > 0) {
         const ConstraintState C = assembler_.constraints(t_, s.q.data(), s.v.data(), Limit::Right);
         if (C.phi_dot.cwiseAbs().maxCoeff() > 0.0) drive_impulses_ += jumpVelocities(assembler_, s, C);
       }
-      solveAccelerations(assembler_, s, Limit::Right);
+      restartAt(s);
     } catch (const std::exception& e) {
       return stop(e.what());
     }
-    stepper_->restart(s);
   }
   return true;
 }

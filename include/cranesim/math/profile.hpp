@@ -3,10 +3,12 @@
 // tabulated cubic splines. Templated on the scalar so drives get exact time derivatives.
 
 #include <cmath>
+#include <memory>
 #include <variant>
 #include <vector>
 
 #include "cranesim/math/autodiff.hpp"
+#include "cranesim/math/input_signal.hpp"
 
 namespace cranesim {
 
@@ -52,6 +54,14 @@ struct TableProfile {
   Interpolation interpolation = Interpolation::Cubic;
 };
 
+/// A drive its caller commands while the model runs (math/input_signal.hpp). A scene holds the
+/// spec only and reads as the drive's value at rest; a compiled model gives each input its
+/// signal, shared by every copy of the profile within that model (Model::inputs).
+struct InputProfile {
+  InputSpec spec;
+  std::shared_ptr<InputSignal> signal;
+};
+
 /// λ(c) of Table E-1: atanh(c), the argument at which tanh reaches the confidence c.
 inline double tanhConfidenceCoefficient(double confidence) { return std::atanh(confidence); }
 
@@ -71,7 +81,7 @@ enum class ParameterRates { Left, Right, Held };
 class Profile {
  public:
   using Kind = std::variant<ConstantProfile, RampProfile, TrapezoidProfile, CosineStepProfile,
-                            CosineFullProfile, TanhProfile, TableProfile>;
+                            CosineFullProfile, TanhProfile, TableProfile, InputProfile>;
 
   Profile() = default;
   explicit Profile(Kind kind, double scale = 1.0) : kind_(std::move(kind)), scale_(scale) {}
@@ -84,6 +94,10 @@ class Profile {
   std::vector<double> breakpoints() const;
 
   bool isConstant() const { return std::holds_alternative<ConstantProfile>(kind_); }
+
+  /// The input this profile is, or null.
+  const InputProfile* input() const { return std::get_if<InputProfile>(&kind_); }
+  InputProfile* input() { return std::get_if<InputProfile>(&kind_); }
 
   /// Whether the value itself jumps somewhere (a step table).
   bool jumps() const {
@@ -142,6 +156,16 @@ class Profile {
     return 0.5 * (p.from + p.to) +
            0.5 * (p.to - p.from) *
                tanh(p.lambda * (2.0 * t - (p.t_start + p.t_end)) / (p.t_end - p.t_start));
+  }
+
+  /// The signal's value and derivatives at t's value, carried to t's derivative parts by their
+  /// Taylor polynomial (exact up to the third derivative).
+  template <class S> static S evaluate(const InputProfile& p, const S& t, Limit limit) {
+    const double tv = valueOf(t);
+    if (!p.signal) return S(p.spec.value);
+    const std::array<double, 4> d = p.signal->derivatives(tv, limit == Limit::Left);
+    const S h = t - tv;
+    return d[0] + h * (d[1] + h * (0.5 * d[2] + h * (d[3] / 6.0)));
   }
 
   template <class S> static S evaluate(const TableProfile& p, const S& t, Limit limit) {

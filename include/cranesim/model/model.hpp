@@ -81,6 +81,14 @@ struct Load {
   Profile scale;
 };
 
+/// A drive the model's caller commands while it runs (math/input_signal.hpp): a rope's length,
+/// a driven constraint, a load's scale. Its signal is the model's mutable part: one run at a time.
+struct ModelInput {
+  std::string name;  // the rope's, constraint's or load's name
+  std::string what;  // "rope length", "drive", "load scale"
+  std::shared_ptr<InputSignal> signal;
+};
+
 struct Model {
   std::string name;
   std::vector<Node> nodes;
@@ -91,6 +99,8 @@ struct Model {
   /// Pairs of joints joined by a straight line when the mechanism is drawn (members' elements,
   /// truss tubes); rigid bodies are drawn from their origin to each of their joints.
   std::vector<std::array<int, 2>> drawing_lines;
+  /// The inputs, in the scene's order: ropes, constraints, loads.
+  std::vector<ModelInput> inputs;
   /// Time-dependent element parameters (rope lengths): their breakpoints restart the integrator.
   std::vector<Profile> parameter_profiles;
   Vec3 gravity = Vec3::Zero();
@@ -119,6 +129,11 @@ struct Model {
   Frame jointFrame(const double* q, int joint) const;
   int findJoint(const std::string& name) const;  // −1 if absent
   int findConstraint(const std::string& name) const;  // −1 if absent
+  int findInput(const std::string& name) const;       // −1 if absent
+  /// An input profile with its own signal, at rest from solver.t_start and listed in `inputs`
+  /// under `name`; any other profile as it is.
+  Profile attachInput(const Profile& profile, const std::string& name, const std::string& what,
+                      const SourceLocation& where);
   /// All times where a drive, load or element-parameter profile has a kink or jump in its
   /// second derivative.
   std::vector<double> breakpoints() const;

@@ -55,6 +55,11 @@ class TimeStepper {
   /// Starts afresh from a consistent state (its accelerations and multipliers solved), keeping
   /// the work integrals and the statistics.
   virtual void restart(const DynamicState& s) = 0;
+  /// Replaces the work integrals (in the order of WorkTerms::toArray) right after a restart: a
+  /// restored run's.
+  virtual void setWork(const double* work) = 0;
+  /// Limits the steps to come to h (0: back to solver.max_step, or none).
+  virtual void setMaxStep(double h) = 0;
   virtual SolverStatistics statistics() = 0;
 };
 

@@ -1,0 +1,79 @@
+"""Throughput of the Gymnasium lift environment (cranesim/CraneLift-v0) on the condensed crane.
+
+Steps the environment with random actions (the roughest commands a learning agent sends: every
+drive's speed command jumps at every 20 ms step), on one process and in Gymnasium's
+AsyncVectorEnv on 1 and 2 worker processes. Reports environment steps per second (the median of --reps runs) and the scaling from
+1 to 2 workers.
+
+Writes benchmarks/results/gym_throughput.csv.
+
+    python3 benchmarks/gym_throughput.py            # ≈ 2 min on 2 cores
+"""
+
+import argparse
+import statistics
+import time
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+
+import cranesim.gym  # noqa: F401  (registers the environment)
+from benchmark_csv import write_rows
+
+ROOT = Path(__file__).resolve().parents[1]
+ENV_ID = "cranesim/CraneLift-v0"
+
+
+def single(steps, seed):
+    env = gym.make(ENV_ID)
+    env.action_space.seed(seed)
+    env.reset(seed=seed)
+    start = time.perf_counter()
+    for _ in range(steps):
+        _, _, terminated, truncated, _ = env.step(env.action_space.sample())
+        if terminated or truncated:
+            env.reset()
+    return steps / (time.perf_counter() - start)
+
+
+def vector(workers, steps, seed):
+    envs = gym.vector.AsyncVectorEnv([lambda: gym.make(ENV_ID) for _ in range(workers)])
+    envs.action_space.seed(seed)
+    envs.reset(seed=seed)
+    envs.step(envs.action_space.sample())  # the workers' first step outside the timing
+    start = time.perf_counter()
+    for _ in range(steps // workers):
+        envs.step(envs.action_space.sample())
+    rate = (steps // workers) * workers / (time.perf_counter() - start)
+    envs.close()
+    return rate
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--steps", type=int, default=6000, help="environment steps per measurement")
+    parser.add_argument("--reps", type=int, default=3)
+    parser.add_argument("-o", "--out", default=str(ROOT / "benchmarks" / "results" / "gym_throughput.csv"))
+    args = parser.parse_args()
+    results = {"one process": [], "AsyncVectorEnv, 1 worker": [], "AsyncVectorEnv, 2 workers": []}
+    for rep in range(args.reps):
+        results["one process"].append(single(args.steps, rep))
+        results["AsyncVectorEnv, 1 worker"].append(vector(1, args.steps, rep))
+        results["AsyncVectorEnv, 2 workers"].append(vector(2, args.steps, rep))
+    rows = []
+    for setup, rates in results.items():
+        rate = statistics.median(rates)
+        rows.append({"setup": setup, "steps": args.steps, "reps": args.reps, "steps_per_s": f"{rate:.0f}",
+                     "real_time_factor": f"{rate * 0.02:.1f}"})
+    scaling = statistics.median(results["AsyncVectorEnv, 2 workers"]) / statistics.median(results["AsyncVectorEnv, 1 worker"])
+    for row in rows:
+        row["scaling_1_to_2"] = f"{scaling:.2f}"
+    write_rows(args.out, rows)
+    for row in rows:
+        print(f"{row['setup']:28} {row['steps_per_s']:>6} steps/s  ({row['real_time_factor']}× real time)")
+    print(f"scaling from 1 to 2 workers: {scaling:.2f}   results: {args.out}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,85 @@
+#pragma once
+// A run of a scene that its caller drives step by step (docs/session.md): a controller, an
+// operator's commands or a learning agent sets the scene's inputs, advances the crane by its own
+// sampling time and reads where it is. The scene, its model and its starting state are those of
+// `crane-sim run`; the integration is the Simulation that `crane-sim run` advances in one call.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cranesim/assembly/assembler.hpp"
+#include "cranesim/model/scene.hpp"
+#include "cranesim/solvers/simulation.hpp"
+
+namespace cranesim {
+
+class Session {
+ public:
+  /// Reads and compiles the scene file (SceneError naming the file, key path and line on bad
+  /// input) and solves its starting state as `crane-sim run` does (solver.initial_state).
+  explicit Session(const std::string& scene_path);
+  explicit Session(const Scene& scene);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  const Scene& scene() const { return scene_; }
+  const Model& model() const { return *model_; }
+  const Assembler& assembler() const { return *assembler_; }
+
+  /// Back to the starting state at solver.t_start, every input at rest at its scene value.
+  void reset();
+
+  /// The index of the input (Model::inputs) named `name`; std::invalid_argument naming the
+  /// scene's inputs when there is none.
+  int input(const std::string& name) const;
+  /// Holds `command` on input `index` from time() on, clipped to its limits (InputSignal::command);
+  /// returns the command as held. std::invalid_argument for a command that is not finite.
+  double setInput(int index, double command);
+  /// The input's drive now: its value and its rate (scene units, per second).
+  double inputValue(int index) const;
+  double inputRate(int index) const;
+
+  /// Integrates to t; false once the run has stopped: at solver.t_end, or for the reason in
+  /// outcome().message. With inputs the integrator stops exactly at t; without, it may step past
+  /// t, as `crane-sim run` does, and the observations are interpolated at t.
+  bool advanceTo(double t);
+  bool step(double dt) { return advanceTo(time() + dt); }
+  /// The time the observations are at: the last advance's t.
+  double time() const { return observed_t_; }
+  SimulationOutcome outcome() const { return simulation_->outcome(); }
+
+  /// The run's state now, to go on from later in this session or another of the same scene: the
+  /// integrator restarts here, so that this run and every restore of the state go on alike, bit
+  /// for bit (Simulation::save).
+  SimulationState save();
+  void restore(const SimulationState& state);
+  /// The same through a file (HDF5), for a run that goes on in another process.
+  void saveFile(const std::string& path);
+  void restoreFile(const std::string& path);
+
+  /// The state at time(): the DAE vector [q, dq, λ(, μ)] (Assembler::vOffset, lambdaOffset),
+  /// valid until the next advance.
+  const double* state() const { return interpolated_ ? observed_.data() : simulation_->state(); }
+  /// The index of the joint named `name`; std::invalid_argument (with "did you mean") otherwise.
+  int joint(const std::string& name) const;
+  /// A joint's position and velocity in the inertial frame now.
+  Vec3 jointPosition(int joint) const;
+  Vec3 jointVelocity(int joint) const;
+
+ private:
+  void start();
+
+  Scene scene_;
+  std::unique_ptr<Model> model_;
+  std::unique_ptr<Assembler> assembler_;
+  DynamicState initial_;
+  std::unique_ptr<SampleSink> sink_;
+  std::unique_ptr<Simulation> simulation_;
+  double observed_t_ = 0.0;
+  bool interpolated_ = false;    // the integrator is past observed_t_: observed_ holds the state there
+  std::vector<double> observed_;
+};
+
+}  // namespace cranesim

@@ -1,0 +1,23 @@
+"""cranesim: dynamics and control of lattice boom cranes as rigid-flexible multibody systems.
+
+Drive a crane step by step from Python::
+
+    import cranesim
+
+    sim = cranesim.Simulation("configs/crane_inputs.yaml")
+    print(sim.inputs)                        # ('luffing_rope', 'hoist_rope', 'slewing')
+    hook = sim.joint("load.origin")
+    for _ in range(500):                     # 10 s at 50 Hz
+        sim.set_inputs({"hoist_rope": -0.3, "slewing": 2.0})
+        sim.step(0.02)
+        position, velocity = sim.joint_position(hook), sim.joint_velocity(hook)
+
+``help(cranesim.Simulation)`` lists what a run offers; docs/python.md in the repository says
+more, and docs/session.md what inputs are and what they cost.
+"""
+
+from ._core import __version__
+from .errors import SceneError
+from .simulation import Simulation
+
+__all__ = ["Simulation", "SceneError", "__version__"]

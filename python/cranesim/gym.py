@@ -1,0 +1,145 @@
+"""Gymnasium environments on the flexible crane.
+
+``import cranesim.gym`` registers:
+
+- ``cranesim/CraneLift-v0``: a point-to-point lift on the thesis crane (condensed lattice
+  sections, controls as inputs): bring the load to a random target and hold it there at rest.
+
+::
+
+    import gymnasium as gym
+    import cranesim.gym
+
+    env = gym.make("cranesim/CraneLift-v0")
+    observation, info = env.reset(seed=1)
+    observation, reward, terminated, truncated, info = env.step(env.action_space.sample())
+
+docs/python.md in the repository describes the spaces, the reward and the speed.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from typing import Any, Optional
+
+import gymnasium
+import numpy as np
+from gymnasium import spaces
+
+from .simulation import Scene, Simulation
+
+_SCENES = os.path.join(os.path.dirname(__file__), "scenes")
+
+
+def default_scene() -> str:
+    """The thesis crane with its controls as inputs (configs/crane_inputs.yaml)."""
+    return os.path.join(_SCENES, "crane_inputs.yaml")
+
+
+class CraneLiftEnv(gymnasium.Env):
+    """Lift the load to a target and hold it there at rest, with little sway.
+
+    **Actions** (Box [-1, 1]^n, float32): each input's speed command as a fraction of its speed
+    limit, in the order of ``action_names`` (for the thesis crane: luffing rope, hoist rope,
+    slewing). Actions beyond ±1 are clipped; NaN raises ValueError. Every input must take speed
+    commands and have a speed limit.
+
+    **Observations** (Box, float32, 10 + 2n): the load's position relative to the target (m, 3)
+    and its velocity (m/s, 3); the hoist rope's angles from the vertical at the boom head,
+    radial and across the boom (rad, 2), and their rates (rad/s, 2); each input's value and speed.
+
+    **Reward** per step of ``dt``: −dt · (distance / 10 m + (sway / 0.05 rad)²), and +10 when the
+    load is within ``tolerance`` of the target, moving slower than 0.05 m/s with less than 0.01 rad
+    of sway: the episode then terminates. It also terminates, with −10, if the integrator fails
+    (``info["message"]`` says why); it is truncated after ``episode_time`` seconds.
+
+    **Resets** start the crane from its equilibrium; the target is drawn from ``reset``'s seed:
+    slewed by up to ±``slew`` degrees, lifted by ``lift`` metres, moved out or in by up to
+    ``reach`` metres from the load's starting place.
+    """
+
+    metadata = {"render_modes": []}
+
+    def __init__(self, scene: Optional[Scene] = None, *, dt: float = 0.02, episode_time: float = 60.0,
+                 hook: str = "load.origin", sheave: str = "head.sheave", slew: float = 40.0,
+                 lift: tuple[float, float] = (2.0, 15.0), reach: float = 1.0, tolerance: float = 0.2):
+        self.sim = Simulation(scene if scene is not None else default_scene())
+        self.dt, self.episode_time, self.tolerance = dt, episode_time, tolerance
+        self.slew, self.lift, self.reach = slew, lift, reach
+        self.action_names = self.sim.inputs
+        speeds = []
+        for name in self.action_names:
+            limits = self.sim.input_limits(name)
+            if not limits["speed_command"] or not math.isfinite(limits["speed"]):
+                raise ValueError(f"input '{name}' must take speed commands and have limits.speed to be an action")
+            speeds.append(limits["speed"])
+        self._speeds = np.array(speeds)
+        self._hook, self._sheave = self.sim.joint(hook), self.sim.joint(sheave)
+        n = len(self.action_names)
+        self.action_space = spaces.Box(-1.0, 1.0, shape=(n,), dtype=np.float32)
+        self.observation_space = spaces.Box(-np.inf, np.inf, shape=(10 + 2 * n,), dtype=np.float32)
+        self._start = self.sim.joint_position(self._hook)
+        self._target = self._start.copy()
+
+    @property
+    def target(self) -> np.ndarray:
+        """Where the load is to be brought (m, inertial frame), drawn by the last reset."""
+        return self._target.copy()
+
+    @property
+    def speed_limits(self) -> np.ndarray:
+        """Each input's speed limit: an action of ±1 commands it."""
+        return self._speeds.copy()
+
+    # -- the Gymnasium API -------------------------------------------------------------------
+    def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
+        super().reset(seed=seed)
+        self.sim.reset()
+        rng = self.np_random
+        angle = math.radians(rng.uniform(-self.slew, self.slew))
+        radius = math.hypot(self._start[0], self._start[1])
+        scale = (radius + rng.uniform(-self.reach, self.reach)) / radius
+        c, s = math.cos(angle), math.sin(angle)
+        x, y = self._start[0] * scale, self._start[1] * scale
+        self._target = np.array([c * x - s * y, s * x + c * y, self._start[2] + rng.uniform(*self.lift)])
+        return self._observation(), {"target": self._target.copy()}
+
+    def step(self, action):
+        action = np.asarray(action, dtype=np.float64).reshape(-1)
+        if not np.all(np.isfinite(action)):
+            raise ValueError(f"the action {action} is not finite")
+        self.sim.set_inputs(np.clip(action, -1.0, 1.0) * self._speeds)
+        going = self.sim.step(self.dt)
+        observation = self._observation()
+        if not going and not self.sim.complete:
+            return observation, -10.0, True, False, {"message": self.sim.message, "target": self._target.copy()}
+        distance = float(np.linalg.norm(observation[0:3]))
+        speed = float(np.linalg.norm(observation[3:6]))
+        sway = float(np.hypot(observation[6], observation[7]))
+        reward = -self.dt * (distance / 10.0 + (sway / 0.05) ** 2)
+        arrived = distance < self.tolerance and speed < 0.05 and sway < 0.01
+        if arrived:
+            reward += 10.0
+        truncated = not arrived and (self.sim.time >= self.episode_time - 1e-9 or not going)
+        return observation, float(reward), arrived, truncated, {"target": self._target.copy()}
+
+    # -- observations ------------------------------------------------------------------------
+    def _observation(self) -> np.ndarray:
+        hook, hook_v = self.sim.joint_position(self._hook), self.sim.joint_velocity(self._hook)
+        head, head_v = self.sim.joint_position(self._sheave), self.sim.joint_velocity(self._sheave)
+        rope, rope_v = hook - head, hook_v - head_v
+        radial = np.array([head[0], head[1], 0.0])
+        radial /= max(np.linalg.norm(radial), 1e-9)
+        across = np.array([-radial[1], radial[0], 0.0])
+        down, down_v = -rope[2], -rope_v[2]
+        angles, rates = np.empty(2), np.empty(2)
+        for k, axis in enumerate((radial, across)):
+            a, a_v = rope @ axis, rope_v @ axis
+            angles[k] = math.atan2(a, down)
+            rates[k] = (a_v * down - a * down_v) / (a * a + down * down)
+        return np.concatenate([hook - self._target, hook_v, angles, rates, self.sim.input_values(),
+                               self.sim.input_rates()]).astype(np.float32)
+
+
+gymnasium.register(id="cranesim/CraneLift-v0", entry_point="cranesim.gym:CraneLiftEnv")

@@ -1,0 +1,159 @@
+// cranesim._core: the library's session for Python (python/cranesim/). The Python layer only
+// adapts: scenes from dicts, inputs by name, numpy arrays; the logic is the C++ Session's.
+
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include "cranesim/io/scene_reader.hpp"
+#include "cranesim/session/session.hpp"
+#include "cranesim/version.hpp"
+
+namespace nb = nanobind;
+using namespace cranesim;
+
+namespace {
+
+using Vector = nb::ndarray<nb::numpy, double, nb::shape<-1>>;
+using Commands = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+
+/// A numpy array that owns a copy of `values`.
+Vector vector(const double* values, std::size_t n) {
+  double* data = new double[n];
+  std::copy(values, values + n, data);
+  nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<double*>(p); });
+  return Vector(data, {n}, owner);
+}
+
+Vector vector(const Vec3& v) { return vector(v.data(), 3); }
+
+/// Raises cranesim.SceneError(file, path, line, message) for a scene error in `file`.
+[[noreturn]] void raiseSceneError(const std::string& file, const SceneError& e) {
+  const nb::object type = nb::module_::import_("cranesim.errors").attr("SceneError");
+  const nb::object error = type(file, e.where().path, e.where().line, std::string(e.what()));
+  PyErr_SetObject(type.ptr(), error.ptr());
+  throw nb::python_error();
+}
+
+template <class Open> Session* opened(const std::string& file, const Open& open) {
+  try {
+    return open();
+  } catch (const SceneError& e) {
+    raiseSceneError(file, e);
+  }
+}
+
+}  // namespace
+
+NB_MODULE(_core, m) {
+  m.doc() = "cranesim's engine: a scene's run driven step by step (cranesim.Simulation wraps it).";
+  m.attr("__version__") = std::string(kVersion);
+
+  nb::class_<SimulationState>(m, "State", "A run's state, saved to go on from later (Simulation.save_state).")
+      .def_prop_ro("time", [](const SimulationState& s) { return s.t; }, "The time it was saved at, s.")
+      .def("__repr__", [](const SimulationState& s) { return "<cranesim.State at t = " + std::to_string(s.t) + " s>"; });
+
+  nb::class_<Session>(m, "Session", "A run of a compiled scene, advanced by its caller (cranesim.Simulation).")
+      .def_static(
+          "from_file", [](const std::string& path) { return opened(path, [&] { return new Session(path); }); },
+          nb::arg("path"), nb::rv_policy::take_ownership, "Reads, compiles and starts the scene file at `path`.")
+      .def_static(
+          "from_text",
+          [](const std::string& text, const std::string& name) {
+            return opened(name, [&] { return new Session(parseScene(text, name)); });
+          },
+          nb::arg("text"), nb::arg("name"), nb::rv_policy::take_ownership,
+          "Reads, compiles and starts a scene given as YAML text; `name` stands for its file in messages.")
+      .def_prop_ro("name", [](const Session& s) { return s.model().name; })
+      .def_prop_ro("time", &Session::time)
+      .def_prop_ro("t_end", [](const Session& s) { return s.model().solver.t_end; })
+      .def_prop_ro("input_names",
+                   [](const Session& s) {
+                     std::vector<std::string> names;
+                     for (const ModelInput& input : s.model().inputs) names.push_back(input.name);
+                     return names;
+                   })
+      .def_prop_ro("input_kinds",
+                   [](const Session& s) {
+                     std::vector<std::string> kinds;
+                     for (const ModelInput& input : s.model().inputs) kinds.push_back(input.what);
+                     return kinds;
+                   })
+      .def("input_limits",
+           [](const Session& s, int index) {
+             const InputSpec& spec = s.model().inputs.at(static_cast<std::size_t>(index)).signal->spec();
+             const double limits[] = {spec.max_speed, spec.max_acceleration, spec.min, spec.max};
+             return vector(limits, 4);
+           },
+           nb::arg("index"), "[speed, acceleration, min, max] of input `index` (inf where none).")
+      .def("input_command_is_speed",
+           [](const Session& s, int index) {
+             return s.model().inputs.at(static_cast<std::size_t>(index)).signal->spec().command == InputCommand::Speed;
+           },
+           nb::arg("index"))
+      .def("input", &Session::input, nb::arg("name"), "The index of the input named `name`.")
+      .def("joint", &Session::joint, nb::arg("name"), "The index of the joint named `name`.")
+      .def("set_inputs",
+           [](Session& s, Commands commands) {
+             const std::size_t n = s.model().inputs.size();
+             if (commands.shape(0) != n)
+               throw std::invalid_argument("set_inputs takes " + std::to_string(n) + " commands, one per input, not " +
+                                           std::to_string(commands.shape(0)));
+             std::vector<double> held(n);
+             for (std::size_t k = 0; k < n; ++k) held[k] = s.setInput(static_cast<int>(k), commands(k));
+             return vector(held.data(), n);
+           },
+           nb::arg("commands"), "Holds one command per input from now on; returns them as held (clipped to the limits).")
+      .def("set_input", &Session::setInput, nb::arg("index"), nb::arg("command"))
+      .def("input_values",
+           [](const Session& s) {
+             std::vector<double> v(s.model().inputs.size());
+             for (std::size_t k = 0; k < v.size(); ++k) v[k] = s.inputValue(static_cast<int>(k));
+             return vector(v.data(), v.size());
+           })
+      .def("input_rates",
+           [](const Session& s) {
+             std::vector<double> v(s.model().inputs.size());
+             for (std::size_t k = 0; k < v.size(); ++k) v[k] = s.inputRate(static_cast<int>(k));
+             return vector(v.data(), v.size());
+           })
+      .def("advance_to",
+           [](Session& s, double t) {
+             nb::gil_scoped_release released;
+             return s.advanceTo(t);
+           },
+           nb::arg("t"), "Integrates to time t; False once the run has stopped (at t_end, or `message` says why).")
+      .def("reset", &Session::reset, "Back to the starting state, every input at rest.")
+      .def("save", &Session::save, "The run's state now; the integrator restarts here.")
+      .def("restore", &Session::restore, nb::arg("state"), "Goes on from a saved state of this scene.")
+      .def("save_file", &Session::saveFile, nb::arg("path"), "save(), written to an HDF5 file.")
+      .def("restore_file", &Session::restoreFile, nb::arg("path"), "restore() from a file save_file wrote.")
+      .def("held_commands",
+           [](const Session& s) {
+             std::vector<double> v(s.model().inputs.size());
+             for (std::size_t k = 0; k < v.size(); ++k) v[k] = s.model().inputs[k].signal->held();
+             return vector(v.data(), v.size());
+           },
+           "Each input's command as held now.")
+      .def_prop_ro("complete", [](const Session& s) { return s.outcome().complete; })
+      .def_prop_ro("message", [](const Session& s) { return s.outcome().message; })
+      .def("statistics",
+           [](const Session& s) {
+             const SolverStatistics st = s.outcome().statistics;
+             nb::dict d;
+             d["steps"] = st.steps;
+             d["residual_evaluations"] = st.residual_evaluations;
+             d["jacobian_evaluations"] = st.jacobian_evaluations;
+             d["error_test_failures"] = st.error_test_failures;
+             d["nonlinear_failures"] = st.nonlinear_failures;
+             d["restarts"] = st.restarts;
+             d["last_step_size"] = st.last_step_size;
+             d["last_order"] = st.last_order;
+             d["wall_time_s"] = st.wall_time_s;
+             return d;
+           },
+           "The solver's counters and the wall time spent advancing.")
+      .def("joint_position", [](const Session& s, int j) { return vector(s.jointPosition(j)); }, nb::arg("joint"))
+      .def("joint_velocity", [](const Session& s, int j) { return vector(s.jointVelocity(j)); }, nb::arg("joint"));
+}

@@ -1,0 +1,200 @@
+"""The Python package cranesim as a user installs it (scripts/install_python.sh): a scene's run
+driven step by step, its errors, and the Gymnasium environment."""
+
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import cranesim
+
+ROOT = Path(__file__).resolve().parents[2]
+CRANE_INPUTS = ROOT / "configs" / "crane_inputs.yaml"
+
+
+def test_the_package_is_the_projects_version():
+    cmake = (ROOT / "CMakeLists.txt").read_text()
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    version = re.search(r"project\(cranesim VERSION ([0-9.]+)", cmake).group(1)
+    assert cranesim.__version__ == version
+    assert f'version = "{version}"' in pyproject
+
+
+def test_help_tells_a_user_what_to_call():
+    text = subprocess.run([sys.executable, "-c", "import cranesim; help(cranesim.Simulation)"],
+                          capture_output=True, text=True, check=True).stdout
+    for method in ("set_inputs", "step", "reset", "joint_position", "inputs"):
+        assert method in text
+
+
+@pytest.fixture(scope="module")
+def crane():
+    return cranesim.Simulation(CRANE_INPUTS)
+
+
+def test_a_crane_is_driven_step_by_step(crane):
+    crane.reset()
+    assert crane.inputs == ("luffing_rope", "hoist_rope", "slewing")
+    anchor = crane.joint("pedestal.sub_cable_anchor")  # on the slewing pedestal, 11 m out
+    start = crane.joint_position(anchor)
+    for _ in range(250):  # 5 s at 50 Hz: slew at 1 °/s after the drive's acceleration limit
+        crane.set_inputs({"slewing": 1.0})
+        assert crane.step(0.02)
+    assert crane.time == pytest.approx(5.0, abs=1e-12)
+    angle = crane.input_values()[2]
+    assert crane.input_rates()[2] == pytest.approx(1.0, abs=1e-6)
+    # The drive's reference ramps to 1 °/s at 2 °/s² (0.5 s: 0.25° short of a jump to 1 °/s), and
+    # the speed follows through two lags of τ = 50 ms, each τ behind once settled (e^{−90} later).
+    expected = 5.0 - 0.25 - 2 * 0.05
+    assert angle == pytest.approx(expected, abs=1e-9)
+    moved = crane.joint_position(anchor)
+    turned = math.degrees(math.atan2(moved[1], moved[0]) - math.atan2(start[1], start[0]))
+    assert turned == pytest.approx(angle, abs=1e-6)  # the pedestal turns with its drive
+    assert crane.statistics()["restarts"] == 0
+
+
+def test_commands_are_clipped_to_the_limits_or_refused(crane):
+    crane.reset()
+    held = crane.set_inputs([0.0, 5.0, 0.0])  # 5 m/s on the hoist rope: its limit is 1.2 m/s
+    assert held[1] == 1.2
+    with pytest.raises(ValueError, match="input 'slewing'.*not a finite number"):
+        crane.set_inputs({"slewing": float("nan")})
+    with pytest.raises(ValueError, match="no input named 'hoist'; the scene's inputs: luffing_rope, hoist_rope, slewing"):
+        crane.set_inputs({"hoist": 0.1})
+    with pytest.raises(ValueError, match="no input named 'hoist_rop' \\(did you mean 'hoist_rope'\\?\\)"):
+        crane.set_inputs({"hoist_rop": 0.1})
+    with pytest.raises(ValueError, match="takes 3 commands"):
+        crane.set_inputs([0.1, 0.2])
+    with pytest.raises(ValueError, match="did you mean 'load.origin'"):
+        crane.joint("load.orgin")
+    with pytest.raises(IndexError):
+        crane.joint_position(10**6)
+
+
+def test_a_bad_scene_raises_naming_file_path_and_line(tmp_path):
+    scene = tmp_path / "winch.yaml"
+    scene.write_text(CRANE_INPUTS.read_text().replace("time_constant: 0.05, limits: {speed: 1.2",
+                                                      "time_constant: -1, limits: {speed: 1.2"))
+    scene_dir_bases = tmp_path / "crane_condensed.yaml"
+    scene_dir_bases.write_text((ROOT / "configs" / "crane_condensed.yaml").read_text())
+    (tmp_path / "crane.yaml").write_text((ROOT / "configs" / "crane.yaml").read_text())
+    with pytest.raises(cranesim.SceneError) as error:
+        cranesim.Simulation(scene)
+    assert error.value.file == str(scene)
+    assert error.value.path == "members[12].length.time_constant"  # the hoist rope in the composed scene
+    line = next(k for k, text in enumerate(scene.read_text().splitlines(), 1) if "time_constant: -1" in text)
+    assert error.value.line == line
+    assert str(error.value).startswith(f"{scene}: members[12].length.time_constant (line {line}")
+    with pytest.raises(cranesim.SceneError) as error:
+        cranesim.Simulation({"name": "ball", "bodies": [{"name": "ball", "mass": -1}]})
+    assert error.value.path == "bodies[0].mass"
+
+
+def test_a_scene_given_as_a_dict_runs_as_its_file_would():
+    scene = {"base": str(CRANE_INPUTS), "name": "from a dict", "modify": {"solver.t_end": 1.0}}
+    sim = cranesim.Simulation(scene)
+    assert sim.name == "from a dict" and sim.t_end == 1.0
+    while sim.step(0.1):
+        pass
+    assert sim.complete and sim.time == pytest.approx(1.0)
+    assert not sim.step(0.1)
+
+
+gymnasium = pytest.importorskip("gymnasium")
+
+
+def test_the_lift_environment_passes_gymnasiums_checks():
+    from gymnasium.utils.env_checker import check_env
+    import cranesim.gym
+
+    env = gymnasium.make("cranesim/CraneLift-v0")
+    check_env(env.unwrapped, skip_render_check=True)
+    first, info = env.reset(seed=7)
+    again, info_again = env.reset(seed=7)
+    assert np.array_equal(first, again) and np.array_equal(info["target"], info_again["target"])
+    other, info_other = env.reset(seed=8)
+    assert not np.array_equal(info["target"], info_other["target"])
+    with pytest.raises(ValueError, match="not finite"):
+        env.step(np.array([0.0, np.nan, 0.0], dtype=np.float32))
+    observation, reward, terminated, truncated, _ = env.step(np.array([5.0, -5.0, 5.0], dtype=np.float32))
+    assert env.observation_space.contains(observation)
+    assert np.all(np.abs(env.unwrapped.sim.input_rates()) <= np.array([0.7, 1.2, 6.0]) + 1e-12)
+
+
+def test_random_actions_run_without_an_exception():
+    import cranesim.gym
+
+    env = gymnasium.make("cranesim/CraneLift-v0", episode_time=20.0)
+    env.action_space.seed(3)
+    env.reset(seed=3)
+    episodes = 0
+    for _ in range(10_000):
+        observation, reward, terminated, truncated, info = env.step(env.action_space.sample())
+        assert np.all(np.isfinite(observation)) and math.isfinite(reward)
+        if terminated or truncated:
+            assert "message" not in info, info.get("message")
+            episodes += 1
+            env.reset()
+    assert episodes >= 9
+
+
+def run_example(name, *args):
+    return subprocess.run([sys.executable, str(ROOT / "examples" / name), *args], capture_output=True, text=True,
+                          check=True, timeout=600).stdout
+
+
+def test_the_sway_damping_example_brings_the_load_to_rest():
+    out = run_example("sway_damping.py", "--seconds", "60")
+    sway = {m.group(1): float(m.group(2)) for m in re.finditer(r"^(open loop|sway feedback)\s+largest swing in the "
+                                                               r"last 20 s: ([0-9.]+) m", out, re.M)}
+    assert set(sway) == {"open loop", "sway feedback"}, out
+    assert sway["open loop"] > 0.5, out
+    assert sway["sway feedback"] < 0.4 * sway["open loop"], out
+
+
+def test_the_rollout_example_brings_the_load_near_its_target():
+    out = run_example("gym_rollout.py", "--seed", "1", "--seconds", "60")
+    start, closest = map(float, re.search(r"started ([0-9.]+) m from the target, came within ([0-9.]+) m", out).groups())
+    assert closest < 0.2 * start, out
+
+
+def test_a_saved_state_goes_on_alike_here_and_in_another_process(tmp_path):
+    sim = cranesim.Simulation(CRANE_INPUTS)
+    hook = sim.joint("load.origin")
+
+    def lift(seconds):
+        path = []
+        for _ in range(int(round(seconds / 0.02))):
+            sim.set_inputs({"slewing": 2.0 * math.sin(0.5 * sim.time), "hoist_rope": -0.3})
+            sim.step(0.02)
+            path.append(sim.joint_position(hook))
+        return np.array(path)
+
+    lift(2.0)
+    state = sim.save_state()
+    assert state.time == pytest.approx(2.0)
+    first = lift(2.0)
+    sim.restore_state(state)
+    assert np.array_equal(lift(2.0), first)
+
+    sim.restore_state(state)
+    sim.save_state(tmp_path / "state.h5")
+    script = (f"import cranesim, numpy as np, math\n"
+              f"sim = cranesim.Simulation({str(CRANE_INPUTS)!r})\n"
+              f"sim.restore_state({str(tmp_path / 'state.h5')!r})\n"
+              f"hook = sim.joint('load.origin')\n"
+              f"path = []\n"
+              f"for _ in range(100):\n"
+              f"    sim.set_inputs({{'slewing': 2.0 * math.sin(0.5 * sim.time), 'hoist_rope': -0.3}})\n"
+              f"    sim.step(0.02)\n"
+              f"    path.append(sim.joint_position(hook))\n"
+              f"np.save({str(tmp_path / 'path.npy')!r}, np.array(path))\n")
+    subprocess.run([sys.executable, "-c", script], check=True, timeout=300)
+    # In another process the same to rounding: the linear solver's pivot history is not saved.
+    assert np.abs(np.load(tmp_path / "path.npy") - first).max() < 1e-9
+    with pytest.raises(RuntimeError, match="state.h5.*inputs"):
+        cranesim.Simulation(ROOT / "configs" / "crane_condensed.yaml").restore_state(tmp_path / "state.h5")

@@ -1,0 +1,271 @@
+// A session driven step by step (session/session.hpp): inputs commanded at every sample do not
+// restart the integrator, the run is as accurate as its tolerances, a reset starts the same run
+// again, and bad names and commands are refused with messages that say what exists.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "cranesim/io/results_writer.hpp"
+#include "cranesim/io/scene_reader.hpp"
+#include "cranesim/model/compile.hpp"
+#include "cranesim/session/session.hpp"
+#include "cranesim/solvers/scene_equilibrium.hpp"
+
+using namespace cranesim;
+
+namespace {
+
+const std::string kCraneInputs = std::string(CRANESIM_SOURCE_DIR) + "/configs/crane_inputs.yaml";
+
+/// The commands of one sample: slewing rate (°/s), hoist and luffing rope speeds (m/s).
+struct Commands {
+  double slewing = 0.0, hoist = 0.0, luffing = 0.0;
+};
+
+/// A lift on the thesis crane commanded at 50 Hz: the hoist rope reels in, the luffing rope
+/// out and the crane slews at speeds that start smoothly, and the slewing rate also follows the
+/// load's sway across the boom (the head moves at 0.44 1/s × the hook's offset across it, which
+/// damps the swing).
+struct Lift {
+  Session& session;
+  int slewing, hoist, luffing, hook, head;
+  explicit Lift(Session& s)
+      : session(s), slewing(s.input("slewing")), hoist(s.input("hoist_rope")), luffing(s.input("luffing_rope")),
+        hook(s.joint("load.origin")), head(s.joint("head.sheave")) {}
+
+  Commands feedback(double t) const {
+    const double ramp = 0.5 - 0.5 * std::cos(std::numbers::pi * std::min(t / 5.0, 1.0));
+    const Vec3 r = session.jointPosition(head);
+    const double radius = std::hypot(r.x(), r.y());
+    const Vec3 across(-r.y() / radius, r.x() / radius, 0.0);
+    const double sway = (session.jointPosition(hook) - r).dot(across);
+    return {2.0 * ramp + 0.44 * sway / radius * 180.0 / std::numbers::pi, -0.4 * ramp, 0.1 * ramp};
+  }
+  void apply(const Commands& c) {
+    session.setInput(slewing, c.slewing);
+    session.setInput(hoist, c.hoist);
+    session.setInput(luffing, c.luffing);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("Inputs commanded at every sample move the crane without restarting the integrator, as "
+          "accurately as its tolerances", "[session]") {
+  const double dt = 0.02, t_end = 12.0;
+  Session session(kCraneInputs);
+  Lift lift(session);
+  std::vector<Commands> commands;
+  std::vector<Vec3> hook_path;
+  while (session.time() < t_end - 1e-9) {
+    commands.push_back(lift.feedback(session.time()));
+    lift.apply(commands.back());
+    REQUIRE(session.step(dt));
+    CHECK(session.time() == Approx(commands.size() * dt).margin(1e-12));
+    hook_path.push_back(session.jointPosition(lift.hook));
+  }
+  const SimulationOutcome outcome = session.outcome();
+  INFO("steps " << outcome.statistics.steps << ", Jacobians " << outcome.statistics.jacobian_evaluations
+                << ", error-test failures " << outcome.statistics.error_test_failures);
+  CHECK(outcome.statistics.restarts == 0);
+  CHECK(outcome.statistics.steps < 3 * static_cast<long>(commands.size()));
+  // The crane did move: slewed, hoisted, luffed.
+  CHECK(session.inputValue(lift.slewing) > 10.0);
+  // Reeled in at 0.4 m/s after a 5 s cosine start, behind the commands by the two lags' 2 × 50 ms
+  // and half a sample.
+  CHECK(session.inputValue(lift.hoist) == Approx(53.9937 - 0.4 * (t_end - 2.5 - 0.1 - 0.01)).margin(0.002));
+  CHECK(session.inputRate(lift.hoist) == Approx(-0.4).margin(1e-6));
+
+  // The same commands at rtol 1e-8: the hook's path within the error rtol 1e-4 allows.
+  Scene tight = readScene(kCraneInputs);
+  tight.solver.rtol = 1e-8;
+  tight.solver.atol = AbsoluteTolerance::uniform(1e-9);
+  Session reference(tight);
+  Lift replay(reference);
+  double largest = 0.0;
+  for (std::size_t k = 0; k < commands.size(); ++k) {
+    replay.apply(commands[k]);
+    REQUIRE(reference.step(dt));
+    largest = std::max(largest, (reference.jointPosition(replay.hook) - hook_path[k]).norm());
+  }
+  INFO("largest hook distance " << largest << " m");
+  CHECK(largest < 0.01);
+  CHECK(reference.outcome().statistics.restarts == 0);
+}
+
+TEST_CASE("A session reset runs the same run again, bit for bit", "[session]") {
+  Session session(kCraneInputs);
+  Lift lift(session);
+  std::vector<Vec3> first;
+  for (int k = 0; k < 100; ++k) {
+    lift.apply(lift.feedback(session.time()));
+    session.step(0.02);
+    first.push_back(session.jointPosition(lift.hook));
+  }
+  session.reset();
+  CHECK(session.time() == 0.0);
+  CHECK(session.inputValue(lift.hoist) == 53.9937);
+  CHECK(session.inputRate(lift.slewing) == 0.0);
+  for (int k = 0; k < 100; ++k) {
+    lift.apply(lift.feedback(session.time()));
+    session.step(0.02);
+    REQUIRE(session.jointPosition(lift.hook) == first[static_cast<std::size_t>(k)]);
+  }
+}
+
+TEST_CASE("A joint's velocity is the rate of its position", "[session]") {
+  Session session(kCraneInputs);
+  Lift lift(session);
+  const double dt = 0.005;
+  std::vector<Vec3> head, head_velocity, hook, hook_velocity;
+  for (int k = 0; k < 800; ++k) {
+    lift.apply(lift.feedback(session.time()));
+    session.step(dt);
+    head.push_back(session.jointPosition(lift.head));
+    head_velocity.push_back(session.jointVelocity(lift.head));
+    hook.push_back(session.jointPosition(lift.hook));
+    hook_velocity.push_back(session.jointVelocity(lift.hook));
+  }
+  // Central differences over ±5 ms, from 3 s on (the head slews at about 0.35 m/s, off its body's
+  // origin: the ω × r term).
+  for (std::size_t k = 600; k + 1 < head.size(); k += 20) {
+    const Vec3 head_rate = (head[k + 1] - head[k - 1]) / (2.0 * dt), hook_rate = (hook[k + 1] - hook[k - 1]) / (2.0 * dt);
+    CHECK((head_rate - head_velocity[k]).norm() < 1e-3 * head_velocity[k].norm());
+    CHECK((hook_rate - hook_velocity[k]).norm() < 1e-3 * hook_velocity[k].norm());
+  }
+  CHECK(head_velocity.back().norm() > 0.1);
+}
+
+TEST_CASE("A session refuses unknown names and commands that are not numbers", "[session]") {
+  Session session(kCraneInputs);
+  CHECK_THROWS_WITH(session.input("hoist"), Catch::Contains("no input named 'hoist'") &&
+                                                Catch::Contains("the scene's inputs: luffing_rope, hoist_rope, slewing"));
+  CHECK_THROWS_WITH(session.input("hoist_rop"), Catch::Contains("did you mean 'hoist_rope'?"));
+  CHECK_THROWS_WITH(session.joint("load.orign"), Catch::Contains("did you mean 'load.origin'?"));
+  CHECK_THROWS_WITH(session.setInput(session.input("slewing"), std::numeric_limits<double>::quiet_NaN()),
+                    Catch::Contains("input 'slewing' (drive)") && Catch::Contains("not a finite number"));
+  // The limits clip: the slewing drive's 6 °/s (its ramp then keeps it within 2 °/s²).
+  CHECK(session.setInput(session.input("slewing"), 100.0) == 6.0);
+}
+
+TEST_CASE("A scene's input is checked where it is written", "[session]") {
+  const auto scene = [](const std::string& length) {
+    return "name: winch\nground:\n  joints: [{name: top}]\nbodies:\n  - {name: ball, mass: 1, inertia: [1, 1, 1], "
+           "position: [0, 0, -1]}\nmembers:\n  - {name: rope, type: rope, start: [0, 0, 0], end: [0, 0, -1], "
+           "section: {radius: 0.01}, material: {density: 7800, youngs_modulus: 2.0e11}, length: " + length + "}\nconstraints:\n  - {name: top, type: spherical, joints: "
+           "[ground.top, rope.start]}\n  - {name: hook, type: spherical, joints: [rope.end, ball.origin]}\nsolver: {t_end: 1}\n";
+  };
+  CHECK_NOTHROW(parseScene(scene("{type: input, value: 1, command: speed}"), "winch.yaml"));
+  CHECK_THROWS_WITH(parseScene(scene("{type: input, value: 1, command: value}"), "winch.yaml"),
+                    Catch::Contains("members[0].length") && Catch::Contains("needs order: 2"));
+  CHECK_THROWS_WITH(parseScene(scene("{type: input, value: 1, order: 3}"), "winch.yaml"),
+                    Catch::Contains("members[0].length.order") && Catch::Contains("order is 1 or 2"));
+  CHECK_THROWS_WITH(parseScene(scene("{type: input, value: 1, command: value, order: 2, limits: {acceleration: 1}}"),
+                               "winch.yaml"),
+                    Catch::Contains("limits.acceleration") && Catch::Contains("belongs to a speed command"));
+  CHECK_THROWS_WITH(parseScene(scene("{type: input, value: 1, limits: {min: 2}}"), "winch.yaml"),
+                    Catch::Contains("members[0].length.value") && Catch::Contains("outside limits"));
+}
+
+TEST_CASE("Save, step, restore, step again: the same continuation, bit for bit", "[session]") {
+  Session session(kCraneInputs);
+  Lift lift(session);
+  for (int k = 0; k < 100; ++k) {
+    lift.apply(lift.feedback(session.time()));
+    session.step(0.02);
+  }
+  const double hoist_at_save = session.inputValue(lift.hoist);
+  const SimulationState saved = session.save();
+  CHECK(saved.t == Approx(2.0).margin(1e-12));
+  const auto continuation = [&] {
+    std::vector<Vec3> path;
+    for (int k = 0; k < 100; ++k) {
+      lift.apply(lift.feedback(session.time()));
+      session.step(0.02);
+      path.push_back(session.jointPosition(lift.hook));
+    }
+    return path;
+  };
+  const std::vector<Vec3> first = continuation();
+  session.restore(saved);
+  CHECK(session.time() == saved.t);
+  CHECK(session.inputValue(lift.hoist) == hoist_at_save);
+  REQUIRE(continuation() == first);
+}
+
+TEST_CASE("A state saved to a file goes on in another session within the integrator's error", "[session]") {
+  Scene scene = readScene(kCraneInputs);
+  scene.solver.rtol = 1e-9;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-10);
+  // Commands that depend on time only, so that every run gets the same.
+  const auto commands = [](Session& s) {
+    const double t = s.time();
+    s.setInput(s.input("slewing"), 3.0 * std::sin(0.5 * t));
+    s.setInput(s.input("hoist_rope"), -0.3 * std::sin(0.7 * t));
+  };
+  const auto run = [&](Session& s, double until, std::vector<Vec3>* path) {
+    const int hook = s.joint("load.origin");
+    while (s.time() < until - 1e-9) {
+      commands(s);
+      REQUIRE(s.step(0.02));
+      if (path) path->push_back(s.jointPosition(hook));
+    }
+  };
+  std::vector<Vec3> uninterrupted, continued;
+  {
+    Session whole(scene);
+    run(whole, 1.0, nullptr);
+    run(whole, 2.5, &uninterrupted);
+  }
+  const std::string file = "session_state_test.h5";
+  {
+    Session first(scene);
+    run(first, 1.0, nullptr);
+    first.saveFile(file);
+  }
+  Session second(scene);
+  second.restoreFile(file);
+  CHECK(second.time() == Approx(1.0).margin(1e-12));
+  run(second, 2.5, &continued);
+  REQUIRE(continued.size() == uninterrupted.size());
+  double largest = 0.0;
+  for (std::size_t k = 0; k < continued.size(); ++k) largest = std::max(largest, (continued[k] - uninterrupted[k]).norm());
+  INFO("largest hook distance " << largest << " m");
+  CHECK(largest < 1e-6);
+  CHECK(largest > 0.0);  // a restart, not a copy of the integrator's history
+
+  // Another model's state is refused, naming the file.
+  Session other(std::string(CRANESIM_SOURCE_DIR) + "/configs/crane_condensed.yaml");
+  CHECK_THROWS_WITH(other.restoreFile(file), Catch::Contains(file) && Catch::Contains("inputs"));
+  CHECK_THROWS_WITH(second.restoreFile("no_such_state.h5"), Catch::Contains("no_such_state.h5"));
+  std::remove(file.c_str());
+}
+
+TEST_CASE("A session of a scene without inputs, stepped to its output times, is its crane-sim run, bit for "
+          "bit", "[session]") {
+  Scene scene = readScene(std::string(CRANESIM_SOURCE_DIR) + "/configs/crane_combined.yaml");
+  scene.solver.t_end = 12.0;  // across the slewing's start (a breakpoint, a restart)
+  const Model model = compileModel(scene);
+  const Assembler assembler(model);
+  ResultsRecorder recorder(assembler);
+  const SimulationOutcome whole = simulate(assembler, runInitialState(scene, model, assembler, true), recorder);
+  REQUIRE(whole.complete);
+
+  Session session(scene);
+  const int hook = session.joint("load.origin");
+  const std::vector<double>& recorded = recorder.jointPositions(hook);
+  REQUIRE(recorded.size() == 3 * recorder.samples());
+  for (std::size_t k = 1; k < recorder.samples(); ++k) {
+    session.advanceTo(recorder.time()[k]);
+    REQUIRE(session.time() == recorder.time()[k]);
+    const Vec3 p = session.jointPosition(hook);
+    REQUIRE(p == Vec3(recorded[3 * k], recorded[3 * k + 1], recorded[3 * k + 2]));
+  }
+  CHECK(session.outcome().complete);
+  CHECK(session.outcome().statistics.steps == whole.statistics.steps);
+}
