@@ -21,7 +21,8 @@ from __future__ import annotations
 
 import math
 import os
-from typing import Any, Optional
+from collections.abc import Mapping
+from typing import Optional
 
 import gymnasium
 import numpy as np
@@ -56,15 +57,26 @@ class CraneLiftEnv(gymnasium.Env):
 
     **Resets** start the crane from its equilibrium; the target is drawn from ``reset``'s seed:
     slewed by up to ±``slew`` degrees, lifted by ``lift`` metres, moved out or in by up to
-    ``reach`` metres from the load's starting place.
+    ``reach`` metres from the load's starting place. With ``load_mass`` (kg, low and high) each
+    reset also draws the mass of the body ``load_body`` (its inertia kept) and solves the
+    crane's equilibrium with it (about 0.1 s); on the default scene it is 390 t ± 20 %.
     """
 
     metadata = {"render_modes": []}
 
     def __init__(self, scene: Optional[Scene] = None, *, dt: float = 0.02, episode_time: float = 60.0,
                  hook: str = "load.origin", sheave: str = "head.sheave", slew: float = 40.0,
-                 lift: tuple[float, float] = (2.0, 15.0), reach: float = 1.0, tolerance: float = 0.2):
-        self.sim = Simulation(scene if scene is not None else default_scene())
+                 lift: tuple[float, float] = (2.0, 15.0), reach: float = 1.0, tolerance: float = 0.2,
+                 load_mass: Optional[tuple[float, float]] = None, load_body: str = "load"):
+        if scene is None:
+            scene = default_scene()
+            if load_mass is None:
+                load_mass = (0.8 * 390000.6, 1.2 * 390000.6)  # the thesis load (Table D-12) ± 20 %
+        if load_mass is not None and isinstance(scene, Mapping):
+            raise ValueError("load_mass draws the load's mass into a scene file: give the scene as a path")
+        self._scene, self._load_mass, self._load_body = scene, load_mass, load_body
+        self._mass_now: Optional[float] = None
+        self.sim = Simulation(scene)
         self.dt, self.episode_time, self.tolerance = dt, episode_time, tolerance
         self.slew, self.lift, self.reach = slew, lift, reach
         self.action_names = self.sim.inputs
@@ -95,15 +107,21 @@ class CraneLiftEnv(gymnasium.Env):
     # -- the Gymnasium API -------------------------------------------------------------------
     def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
         super().reset(seed=seed)
-        self.sim.reset()
         rng = self.np_random
+        if self._load_mass is not None:
+            self._mass_now = float(rng.uniform(*self._load_mass))
+            self.sim = Simulation({"base": os.path.abspath(os.fspath(self._scene)),
+                                   "modify": {f"bodies.{self._load_body}.mass": self._mass_now}})
+            self._start = self.sim.joint_position(self._hook)
+        else:
+            self.sim.reset()
         angle = math.radians(rng.uniform(-self.slew, self.slew))
         radius = math.hypot(self._start[0], self._start[1])
         scale = (radius + rng.uniform(-self.reach, self.reach)) / radius
         c, s = math.cos(angle), math.sin(angle)
         x, y = self._start[0] * scale, self._start[1] * scale
         self._target = np.array([c * x - s * y, s * x + c * y, self._start[2] + rng.uniform(*self.lift)])
-        return self._observation(), {"target": self._target.copy()}
+        return self._observation(), {"target": self._target.copy(), "load_mass": self._mass_now}
 
     def step(self, action):
         action = np.asarray(action, dtype=np.float64).reshape(-1)

@@ -118,6 +118,10 @@ def test_the_lift_environment_passes_gymnasiums_checks():
     assert np.array_equal(first, again) and np.array_equal(info["target"], info_again["target"])
     other, info_other = env.reset(seed=8)
     assert not np.array_equal(info["target"], info_other["target"])
+    # The load drawn with the target: the thesis' 390 t ± 20 %, its equilibrium solved anew.
+    masses = [info["load_mass"], info_other["load_mass"]]
+    assert all(0.8 * 390000.6 <= m <= 1.2 * 390000.6 for m in masses) and masses[0] != masses[1]
+    assert info_again["load_mass"] == info["load_mass"]
     with pytest.raises(ValueError, match="not finite"):
         env.step(np.array([0.0, np.nan, 0.0], dtype=np.float32))
     observation, reward, terminated, truncated, _ = env.step(np.array([5.0, -5.0, 5.0], dtype=np.float32))
