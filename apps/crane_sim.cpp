@@ -203,13 +203,7 @@ int statics(const std::string& scene_path, std::string out) {
   const Assembler assembler(model);
   const StaticResult eq = reportedEquilibrium(scene, model, assembler);
   const std::string unstable = equilibriumInstability(model, eq, false);
-  ResultsRecorder recorder(assembler);
-  recorder.sample(eq.t, equilibriumSample(assembler, eq).data(), WorkTerms{});
-  SimulationOutcome outcome;
-  outcome.complete = unstable.empty();
-  outcome.t_reached = eq.t;
-  outcome.message = unstable;
-  recorder.write(out, {scene_path, scene.text, "static", eq.t}, outcome);
+  writeEquilibriumResults(out, assembler, eq, scene_path, scene.text, unstable);
   fmt::print(stderr, "  results: {}{}\n", out, unstable.empty() ? "" : " (incomplete)");
   if (unstable.empty()) return 0;
   fmt::print(stderr, "error: {}\n", unstable);

@@ -28,7 +28,7 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "scripts"))
-from cranesim_results import ResultsError  # noqa: E402
+from cranesim.results import ResultsError  # noqa: E402
 from plot_load import sway_period  # noqa: E402
 
 # scenario → time after which every drive has stopped (the scene files' profiles)

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from matplotlib.animation import FFMpegWriter, FuncAnimation, PillowWriter
 
-from cranesim_results import Results, ResultsError, run_command
+from cranesim.results import Results, ResultsError, run_command
 from mechanism_drawing import MechanismDrawing, MechanismGeometry, create_figure, set_equal_limits
 
 

@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.colors import to_rgba
 from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
-from cranesim_results import Results, ResultsError
+from cranesim.results import Results, ResultsError
 
 GROUND = "ground"
 

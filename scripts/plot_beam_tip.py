@@ -21,7 +21,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from cranesim_results import Results, ResultsError, run_command  # noqa: E402
+from cranesim.results import Results, ResultsError, run_command  # noqa: E402
 
 
 def tip_series(path: Path, member: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

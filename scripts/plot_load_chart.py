@@ -22,7 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cranesim_results import ResultsError, run_command
+from cranesim.results import ResultsError, run_command
 
 
 def parse_arguments() -> argparse.Namespace:

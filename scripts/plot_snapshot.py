@@ -13,7 +13,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from cranesim_results import Results, run_command
+from cranesim.results import Results, run_command
 from mechanism_drawing import MechanismDrawing, MechanismGeometry, create_figure, set_equal_limits
 
 

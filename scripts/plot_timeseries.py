@@ -2,7 +2,7 @@
 
 QUANTITY is a dataset path with an optional component selector, e.g.
 energy/balance, lambda[0], joints/link2.tip/position[2],
-bodies/link1/velocity[norm] (see cranesim_results.py). Vector quantities
+bodies/link1/velocity[norm] (see cranesim.results). Vector quantities
 without a selector are drawn one line per component. Several runs are compared
 by giving RESULTS as a comma-separated list; lines are labelled by file stem.
 
@@ -22,7 +22,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cranesim_results import Results, ResultsError, guess_unit, run_command
+from cranesim.results import Results, ResultsError, guess_unit, run_command
 
 
 def parse_arguments() -> argparse.Namespace:

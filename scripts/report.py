@@ -17,7 +17,7 @@ import sys
 
 import numpy as np
 
-from cranesim_results import Results, run_command
+from cranesim.results import Results, run_command
 
 NOT_AVAILABLE = "n/a (no samples)"
 

@@ -34,7 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
-from cranesim_results import Results, ResultsError, run_command
+from cranesim.results import Results, ResultsError, run_command
 from mechanism_drawing import MechanismGeometry, body_of
 
 HERE = Path(__file__).resolve().parent

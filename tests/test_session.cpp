@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -246,8 +247,8 @@ TEST_CASE("A state saved to a file goes on in another session within the integra
   std::remove(file.c_str());
 }
 
-TEST_CASE("A session of a scene without inputs, stepped to its output times, is its crane-sim run, bit for "
-          "bit", "[session]") {
+TEST_CASE("A session of a scene without inputs, stepped every 20 ms, is its crane-sim run at the output "
+          "times, bit for bit", "[session]") {
   Scene scene = readScene(std::string(CRANESIM_SOURCE_DIR) + "/configs/crane_combined.yaml");
   scene.solver.t_end = 12.0;  // across the slewing's start (a breakpoint, a restart)
   const Model model = compileModel(scene);
@@ -261,11 +262,76 @@ TEST_CASE("A session of a scene without inputs, stepped to its output times, is 
   const std::vector<double>& recorded = recorder.jointPositions(hook);
   REQUIRE(recorded.size() == 3 * recorder.samples());
   for (std::size_t k = 1; k < recorder.samples(); ++k) {
-    session.advanceTo(recorder.time()[k]);
+    const double from = recorder.time()[k - 1], to = recorder.time()[k];
+    for (int j = 1; j < 5; ++j) session.advanceTo(from + (to - from) * j / 5.0);  // output every 0.1 s
+    session.advanceTo(to);
     REQUIRE(session.time() == recorder.time()[k]);
     const Vec3 p = session.jointPosition(hook);
     REQUIRE(p == Vec3(recorded[3 * k], recorded[3 * k + 1], recorded[3 * k + 2]));
   }
   CHECK(session.outcome().complete);
   CHECK(session.outcome().statistics.steps == whole.statistics.steps);
+}
+
+TEST_CASE("A recording session keeps the samples before a restored state and records on from there",
+          "[session]") {
+  Session session(kCraneInputs, true);
+  Lift lift(session);
+  const auto drive = [&](double until) {
+    while (session.time() < until - 1e-9) {
+      lift.apply(lift.feedback(session.time()));
+      session.step(0.02);
+    }
+  };
+  drive(1.0);
+  const SimulationState saved = session.save();
+  drive(2.0);
+  const ResultsRecorder& recorder = *session.recorder();
+  const std::vector<double> first_time = recorder.time(), first_q = recorder.stateColumn(0);
+  REQUIRE(first_time.size() == 21);  // 0, 0.1, …, 2 s
+  session.restore(saved);
+  CHECK(recorder.samples() == 11);   // up to the saved 1 s
+  drive(2.0);
+  CHECK(recorder.time() == first_time);
+  CHECK(recorder.stateColumn(0) == first_q);
+
+  const std::string file = "session_results_test.h5";
+  session.writeResults(file);
+  CHECK(std::remove(file.c_str()) == 0);
+  Session unrecorded(kCraneInputs);
+  CHECK(unrecorded.recorder() == nullptr);
+  CHECK_THROWS_AS(unrecorded.writeResults(file), std::logic_error);
+}
+
+TEST_CASE("A session's loads and energies are those of statics and of the results file", "[session]") {
+  Session session(kCraneInputs, true);
+  Lift lift(session);
+  const Scene& scene = session.scene();
+  const auto load = std::find_if(scene.bodies.begin(), scene.bodies.end(), [](const RigidBodySpec& b) { return b.name == "load"; });
+  REQUIRE(load != scene.bodies.end());
+  const double weight = load->mass * scene.gravity.norm();
+
+  // In equilibrium the hook carries the load's weight, which is the hoist rope's tension there.
+  const ConstraintReaction hook = session.constraintLoad(session.constraint("hook"));
+  CHECK(hook.force.norm() == Approx(weight).epsilon(1e-9));
+  const std::vector<double> tension = session.ropeTensions("hoist_rope");
+  REQUIRE(tension.size() % kTensionPoints == 0);
+  CHECK(tension.back() == Approx(weight).epsilon(1e-6));
+  CHECK(tension.front() > tension.back());  // the rope's own weight above the hook
+  CHECK(session.kineticEnergy() == 0.0);
+
+  // Moving, at a sample time: the recorder's energies.
+  for (int k = 1; k <= 150; ++k) {
+    lift.apply(lift.feedback(session.time()));
+    session.advanceTo(0.02 * k);
+  }
+  const ResultsRecorder& recorder = *session.recorder();
+  REQUIRE(recorder.time().back() == Approx(session.time()).epsilon(1e-15));
+  CHECK(session.kineticEnergy() == Approx(recorder.kineticEnergy().back()).epsilon(1e-12));
+  CHECK(session.potentialEnergy() == Approx(recorder.potentialEnergy().back()).epsilon(1e-12));
+  CHECK(session.kineticEnergy() > 1e3);
+  CHECK(session.constraintLoad(session.constraint("hook")).force.norm() != Approx(weight).epsilon(1e-3));
+
+  CHECK_THROWS_WITH(session.constraint("hok"), Catch::Contains("did you mean 'hook'"));
+  CHECK_THROWS_WITH(session.ropeTensions("hoist"), Catch::Contains("hoist_rope"));
 }

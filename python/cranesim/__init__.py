@@ -12,12 +12,20 @@ Drive a crane step by step from Python::
         sim.step(0.02)
         position, velocity = sim.joint_position(hook), sim.joint_velocity(hook)
 
+Whole analyses, as the command line runs them, return their results files as numpy arrays::
+
+    results = cranesim.run("configs/crane_condensed.yaml", "crane.h5")
+    hook = results.get("joints/load.origin/position")     # (samples, 3)
+
 ``help(cranesim.Simulation)`` lists what a run offers; docs/python.md in the repository says
 more, and docs/session.md what inputs are and what they cost.
 """
 
 from ._core import __version__
+from .analyses import modes, run, static
 from .errors import SceneError
+from .results import Results, ResultsError
 from .simulation import Simulation
 
-__all__ = ["Simulation", "SceneError", "__version__"]
+__all__ = ["Simulation", "run", "static", "modes", "Results", "ResultsError", "SceneError",
+           "__version__"]

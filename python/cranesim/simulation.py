@@ -9,8 +9,16 @@ import numpy as np
 import yaml
 
 from . import _core
+from .results import Results
 
 Scene = Union[str, os.PathLike, Mapping]
+
+
+def scene_source(scene: Scene) -> tuple[str, str, str]:
+    """(path, text, name) for the engine: a file's path, or a dict's YAML text named <dict>."""
+    if isinstance(scene, Mapping):
+        return "", yaml.safe_dump(dict(scene), sort_keys=False), "<dict>"
+    return os.fspath(scene), "", ""
 
 
 class Simulation:
@@ -32,18 +40,19 @@ class Simulation:
         sim.step(0.02)                     # advance 20 ms
         sim.joint_position(hook)           # observe
 
+    Observations besides joints: :meth:`constraint_load` (a joint's force and moment: the hook's
+    is the hoist rope's tension), :meth:`rope_tension`, :meth:`energy`, :meth:`input_values`,
+    :meth:`input_rates`. With ``record=True`` the run keeps its samples every
+    ``output.interval`` and :meth:`write_results` writes them as ``crane-sim run`` does.
+
     Other methods: :meth:`advance_to`, :meth:`reset`, :meth:`save_state`, :meth:`restore_state`,
-    :meth:`joint_velocity`, :meth:`input_values`, :meth:`input_rates`, :meth:`input_limits`,
-    :meth:`statistics`.
+    :meth:`joint_velocity`, :meth:`input_limits`, :meth:`statistics`.
     """
 
-    def __init__(self, scene: Scene):
-        if isinstance(scene, Mapping):
-            text = yaml.safe_dump(dict(scene), sort_keys=False)
-            self._core = _core.Session.from_text(text, "<dict>")
-        else:
-            self._core = _core.Session.from_file(os.fspath(scene))
+    def __init__(self, scene: Scene, record: bool = False):
+        self._core = _core.Session.open(*scene_source(scene), record)
         self._joints: dict[str, int] = {}
+        self._constraints: dict[str, int] = {}
         self._inputs = tuple(self._core.input_names)
         self._input_index = {name: k for k, name in enumerate(self._inputs)}
         self._commands = self._core.held_commands()
@@ -166,6 +175,49 @@ class Simulation:
     def joint_velocity(self, joint: Union[int, str]) -> np.ndarray:
         """A joint's velocity now, inertial frame, m/s."""
         return self._core.joint_velocity(self._joint_index(joint))
+
+    @property
+    def joints(self) -> tuple[str, ...]:
+        """Every joint's name."""
+        return tuple(self._core.joint_names)
+
+    @property
+    def constraints(self) -> tuple[str, ...]:
+        """Every constraint's name."""
+        return tuple(self._core.constraint_names)
+
+    def constraint_load(self, name: str) -> tuple[np.ndarray, np.ndarray]:
+        """The force (N) and the moment (N·m, about the second joint) that a constraint carries
+        to its second joint now, in its first joint's axes; the multipliers are solved for the
+        state now, as in a results file's ``/constraint_loads``. A rope's tension is the force
+        of the joint that holds its end (the thesis crane's ``hook``)."""
+        index = self._constraints.get(name)
+        if index is None:
+            index = self._constraints[name] = self._core.constraint(name)
+        load = self._core.constraint_load(index)
+        return load[:3], load[3:]
+
+    def rope_tension(self, rope: str) -> np.ndarray:
+        """A rope's axial force now (N, ≥ 0, 0 where slack), one row per element of the rope,
+        at equally spaced points from the element's first node to its second."""
+        return self._core.rope_tensions(rope).reshape(-1, _core.tension_points)
+
+    def energy(self) -> dict[str, float]:
+        """The kinetic energy and the potential energy (gravity and strain) now, J."""
+        return {"kinetic": self._core.kinetic_energy(), "potential": self._core.potential_energy()}
+
+    def write_results(self, path: Union[str, os.PathLike]) -> Results:
+        """Writes the run's samples so far as a results file (a ``Simulation`` opened with
+        ``record=True``), the same file ``crane-sim run`` writes, and returns it opened. The
+        file is complete up to :attr:`time` unless the run failed. After a restore, the file
+        holds the samples before the state's time and those recorded since."""
+        self._core.write_results(os.fspath(path))
+        return Results(path)
+
+    @property
+    def recording(self) -> bool:
+        """Whether the run keeps its samples (``record=True``)."""
+        return self._core.recording
 
     def input_values(self) -> np.ndarray:
         """Every input's drive value now (a rope's length, an angle in the scene's unit, …)."""

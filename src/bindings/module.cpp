@@ -6,8 +6,13 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include "cranesim/io/modes_writer.hpp"
+#include "cranesim/io/results_writer.hpp"
 #include "cranesim/io/scene_reader.hpp"
+#include "cranesim/model/compile.hpp"
 #include "cranesim/session/session.hpp"
+#include "cranesim/solvers/modes.hpp"
+#include "cranesim/solvers/scene_equilibrium.hpp"
 #include "cranesim/version.hpp"
 
 namespace nb = nanobind;
@@ -36,12 +41,47 @@ Vector vector(const Vec3& v) { return vector(v.data(), 3); }
   throw nb::python_error();
 }
 
-template <class Open> Session* opened(const std::string& file, const Open& open) {
+/// What `read` returns, a scene error in `file` raised as cranesim.SceneError.
+template <class Read> auto read(const std::string& file, const Read& read) -> decltype(read()) {
   try {
-    return open();
+    return read();
   } catch (const SceneError& e) {
     raiseSceneError(file, e);
   }
+}
+
+/// The scene file at `path`, or the YAML `text` standing for a file called `name`.
+Scene scene(const std::string& path, const std::string& text, const std::string& name) {
+  return read(path.empty() ? name : path, [&] { return path.empty() ? parseScene(text, name) : readScene(path); });
+}
+
+std::vector<std::string> names(const auto& items) {
+  std::vector<std::string> out;
+  for (const auto& item : items) out.push_back(item.name);
+  return out;
+}
+
+/// The scene's static equilibrium (its solver.statics method), written to `out` as a one-sample
+/// results file as `crane-sim static` writes it; returns why it is unstable (empty when stable).
+std::string writeStatic(const Scene& scene, const std::string& out) {
+  const Model model = read(scene.path, [&] { return compileModel(scene); });
+  const Assembler assembler(model);
+  nb::gil_scoped_release released;
+  const StaticResult eq = sceneEquilibrium(scene, model, assembler, true);
+  const std::string unstable = equilibriumInstability(model, eq, true);
+  writeEquilibriumResults(out, assembler, eq, scene.path, scene.text, unstable);
+  return unstable;
+}
+
+/// The `count` lowest small-vibration modes about the equilibrium (0: all), written to `out` as
+/// `crane-sim modes` writes them.
+void writeModesFile(const Scene& scene, int count, const std::string& out) {
+  const Model model = read(scene.path, [&] { return compileModel(scene); });
+  const Assembler assembler(model);
+  nb::gil_scoped_release released;
+  const StaticResult eq = sceneEquilibrium(scene, model, assembler, true);
+  const ModalResult modal = computeModes(model, eq.q, eq.t, count);
+  writeModes(out, model, eq.q, modal, {scene.path, scene.text, eq.t});
 }
 
 }  // namespace
@@ -56,15 +96,17 @@ NB_MODULE(_core, m) {
 
   nb::class_<Session>(m, "Session", "A run of a compiled scene, advanced by its caller (cranesim.Simulation).")
       .def_static(
-          "from_file", [](const std::string& path) { return opened(path, [&] { return new Session(path); }); },
-          nb::arg("path"), nb::rv_policy::take_ownership, "Reads, compiles and starts the scene file at `path`.")
-      .def_static(
-          "from_text",
-          [](const std::string& text, const std::string& name) {
-            return opened(name, [&] { return new Session(parseScene(text, name)); });
+          "open",
+          [](const std::string& path, const std::string& text, const std::string& name, bool record) {
+            const Scene s = scene(path, text, name);
+            return read(s.path, [&] { return new Session(s, record); });
           },
-          nb::arg("text"), nb::arg("name"), nb::rv_policy::take_ownership,
-          "Reads, compiles and starts a scene given as YAML text; `name` stands for its file in messages.")
+          nb::arg("path"), nb::arg("text"), nb::arg("name"), nb::arg("record"), nb::rv_policy::take_ownership,
+          "Reads, compiles and starts the scene file at `path`, or when `path` is empty the scene given as YAML "
+          "`text` (`name` stands for its file in messages); with `record`, keeps its samples.")
+      .def_prop_ro("recording", &Session::recording)
+      .def("write_results", &Session::writeResults, nb::arg("path"),
+           "Writes the samples so far as a results file, as `crane-sim run` writes it.")
       .def_prop_ro("name", [](const Session& s) { return s.model().name; })
       .def_prop_ro("time", &Session::time)
       .def_prop_ro("t_end", [](const Session& s) { return s.model().solver.t_end; })
@@ -155,5 +197,38 @@ NB_MODULE(_core, m) {
            },
            "The solver's counters and the wall time spent advancing.")
       .def("joint_position", [](const Session& s, int j) { return vector(s.jointPosition(j)); }, nb::arg("joint"))
-      .def("joint_velocity", [](const Session& s, int j) { return vector(s.jointVelocity(j)); }, nb::arg("joint"));
+      .def("joint_velocity", [](const Session& s, int j) { return vector(s.jointVelocity(j)); }, nb::arg("joint"))
+      .def_prop_ro("joint_names", [](const Session& s) { return names(s.model().joints); })
+      .def_prop_ro("constraint_names", [](const Session& s) { return names(s.model().constraints); })
+      .def("constraint", &Session::constraint, nb::arg("name"), "The index of the constraint named `name`.")
+      .def("constraint_load",
+           [](const Session& s, int c) {
+             const ConstraintReaction load = s.constraintLoad(c);
+             const double values[] = {load.force.x(),  load.force.y(),  load.force.z(),
+                                      load.moment.x(), load.moment.y(), load.moment.z()};
+             return vector(values, 6);
+           },
+           nb::arg("constraint"), "[force (3), moment (3)] the constraint carries now, in its first joint's axes.")
+      .def("rope_tensions",
+           [](const Session& s, const std::string& rope) {
+             const std::vector<double> t = s.ropeTensions(rope);
+             return vector(t.data(), t.size());
+           },
+           nb::arg("rope"), "A rope's axial force along its elements now, kTensionPoints per element.")
+      .def("kinetic_energy", &Session::kineticEnergy)
+      .def("potential_energy", &Session::potentialEnergy);
+
+  m.def("write_static",
+        [](const std::string& path, const std::string& text, const std::string& name, const std::string& out) {
+          return writeStatic(scene(path, text, name), out);
+        },
+        nb::arg("path"), nb::arg("text"), nb::arg("name"), nb::arg("out"),
+        "The scene's static equilibrium written as `crane-sim static` writes it; why it is unstable, or ''.");
+  m.def("write_modes",
+        [](const std::string& path, const std::string& text, const std::string& name, int count, const std::string& out) {
+          writeModesFile(scene(path, text, name), count, out);
+        },
+        nb::arg("path"), nb::arg("text"), nb::arg("name"), nb::arg("count"), nb::arg("out"),
+        "The lowest `count` modes about the equilibrium written as `crane-sim modes` writes them.");
+  m.attr("tension_points") = kTensionPoints;
 }

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "cranesim/assembly/constraint_reaction.hpp"
+#include "cranesim/solvers/scene_equilibrium.hpp"
 #include "cranesim/version.hpp"
 #include "hdf5_file.hpp"
 
@@ -71,6 +72,19 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
     tipping_supports_.push_back(std::move(supports));
   }
   tipping_moments_.resize(tipping_supports_.size());
+}
+
+void ResultsRecorder::keepBefore(double t) {
+  const std::size_t recorded = time_.size();
+  const std::size_t kept = static_cast<std::size_t>(std::lower_bound(time_.begin(), time_.end(), t) - time_.begin());
+  if (kept == recorded) return;
+  const auto keep = [&](std::vector<double>& series) { series.resize(series.size() / recorded * kept); };
+  for (auto* group : {&body_position_, &body_rotation_, &body_velocity_, &body_omega_, &joint_position_, &joint_rotation_,
+                      &section_forces_, &constraint_loads_, &tipping_moments_})
+    for (std::vector<double>& series : *group) keep(series);
+  for (auto* series : {&time_, &state_, &kinetic_, &potential_, &drive_work_, &load_work_, &winch_work_, &dissipated_,
+                       &balance_, &residual_position_, &residual_velocity_})
+    keep(*series);
 }
 
 DynamicState ResultsRecorder::motionAt(double t, const double* y, const ConstraintState& constraints,
@@ -309,6 +323,17 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     file.attribute("/solver", "last_step_size", st.last_step_size);
     file.attribute("/solver", "last_order", static_cast<long>(st.last_order));
   });
+}
+
+void writeEquilibriumResults(const std::string& path, const Assembler& assembler, const StaticResult& eq,
+                             const std::string& scene_path, const std::string& scene_text, const std::string& unstable) {
+  ResultsRecorder recorder(assembler);
+  recorder.sample(eq.t, equilibriumSample(assembler, eq).data(), WorkTerms{});
+  SimulationOutcome outcome;
+  outcome.complete = unstable.empty();
+  outcome.t_reached = eq.t;
+  outcome.message = unstable;
+  recorder.write(path, {scene_path, scene_text, "static", eq.t}, outcome);
 }
 
 void requireResultsFit(const Scene& scene, const Model& model) {

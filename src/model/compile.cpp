@@ -14,6 +14,7 @@
 #include "cranesim/math/rotation.hpp"
 #include "cranesim/model/arc.hpp"
 #include "cranesim/model/closest_name.hpp"
+#include "cranesim/model/member_force_elements.hpp"
 #include "compile_truss.hpp"
 #include "model_building.hpp"
 
@@ -262,21 +263,10 @@ Model compileModel(const Scene& scene) {
     model.loads.push_back(std::move(l));
   }
 
-  // The beams of each member whose section forces are recorded: the elements on its own nodes
-  // that report them (a truss' end plates do not); of a rope, its elements' tensions.
-  const VecX zero_v = VecX::Zero(model.nv);
-  const ElementInput drawn{model.q0.data(), zero_v.data(), zero_v.data(), model.solver.t_start, model.gravity};
   for (const std::string& member : scene.output.section_forces) {
     const auto spec = std::find_if(scene.members.begin(), scene.members.end(), [&](const MemberSpec& m) { return m.name == member; });
-    Model::SectionForceGroup group{member, {}, spec != scene.members.end() && spec->type == MemberType::Rope};
-    for (std::size_t e = 0; e < model.elements.size(); ++e) {
-      const auto& nodes = model.elements[e]->nodes();
-      double forces[std::max(12, kTensionPoints)];
-      const bool reports = group.rope ? model.elements[e]->tensions(drawn, forces) : model.elements[e]->sectionForces(drawn, forces);
-      if (std::all_of(nodes.begin(), nodes.end(), [&](int n) { return model.nodes[n].member == member; }) && reports)
-        group.elements.push_back(static_cast<int>(e));
-    }
-    model.section_force_groups.push_back(std::move(group));
+    const bool rope = spec != scene.members.end() && spec->type == MemberType::Rope;
+    model.section_force_groups.push_back({member, memberForceElements(model, member, rope), rope});
   }
   return model;
 }

@@ -9,14 +9,11 @@
 #include "cranesim/io/state_file.hpp"
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/compile.hpp"
+#include "cranesim/model/member_force_elements.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
 namespace cranesim {
 namespace {
-
-struct DiscardedSamples final : SampleSink {
-  void sample(double, const double*, const WorkTerms&) override {}
-};
 
 /// "no <what> named 'x' (did you mean 'y'?); the scene's <what>s: a, b, …"
 std::string unknownName(const std::string& what, const std::string& name, const std::vector<std::string>& names) {
@@ -29,11 +26,12 @@ std::string unknownName(const std::string& what, const std::string& name, const 
 
 }  // namespace
 
-Session::Session(const std::string& scene_path) : Session(readScene(scene_path)) {}
+Session::Session(const std::string& scene_path, bool record) : Session(readScene(scene_path), record) {}
 
-Session::Session(const Scene& scene)
-    : scene_(scene), model_(std::make_unique<Model>(compileModel(scene_))), assembler_(std::make_unique<Assembler>(*model_)),
-      sink_(std::make_unique<DiscardedSamples>()) {
+Session::Session(const Scene& scene, bool record)
+    : scene_(scene), recording_(record), model_(std::make_unique<Model>(compileModel(scene_))),
+      assembler_(std::make_unique<Assembler>(*model_)) {
+  if (recording_) requireResultsFit(scene_, *model_);
   initial_ = runInitialState(scene_, *model_, *assembler_, true);
   start();
 }
@@ -43,9 +41,15 @@ Session::~Session() = default;
 void Session::start() {
   simulation_.reset();
   for (const ModelInput& input : model_->inputs) *input.signal = InputSignal(input.signal->spec(), initial_.t);
-  simulation_ = std::make_unique<Simulation>(*assembler_, initial_, *sink_);
-  observed_t_ = initial_.t;
+  if (recording_) sink_.recorder = std::make_unique<ResultsRecorder>(*assembler_);
+  simulation_ = std::make_unique<Simulation>(*assembler_, initial_, sink_);
+  observed(initial_.t);
+}
+
+void Session::observed(double t) {
+  observed_t_ = t;
   interpolated_ = false;
+  motion_known_ = false;
 }
 
 void Session::reset() { start(); }
@@ -78,7 +82,7 @@ double Session::inputRate(int index) const {
 bool Session::advanceTo(double t) {
   const bool going = simulation_->advanceTo(t);
   // At t, or where the run stopped before it; never back before an earlier advance's t.
-  observed_t_ = std::max(observed_t_, std::min(std::min(t, model_->solver.t_end), simulation_->time()));
+  observed(std::max(observed_t_, std::min(std::min(t, model_->solver.t_end), simulation_->time())));
   interpolated_ = simulation_->time() > observed_t_;
   if (interpolated_) {
     observed_.resize(static_cast<std::size_t>(assembler_->size()));
@@ -89,20 +93,32 @@ bool Session::advanceTo(double t) {
 
 SimulationState Session::save() {
   SimulationState saved = simulation_->save();
-  observed_t_ = saved.t;
-  interpolated_ = false;
+  observed(saved.t);
   return saved;
 }
 
 void Session::restore(const SimulationState& state) {
   simulation_->restore(state);
-  observed_t_ = state.t;
-  interpolated_ = false;
+  if (sink_.recorder) {
+    sink_.recorder->keepBefore(initial_.t + static_cast<double>(state.next_sample) * model_->output.interval);
+  }
+  observed(state.t);
 }
 
 void Session::saveFile(const std::string& path) { writeStateFile(path, *model_, save()); }
 
 void Session::restoreFile(const std::string& path) { restore(readStateFile(path, *model_)); }
+
+void Session::writeResults(const std::string& path) const {
+  if (!sink_.recorder) throw std::logic_error("this run is not recorded: open it with recording on to write its results");
+  // Complete: the run went where it was asked to (to time(), or on to t_end) without failing.
+  SimulationOutcome outcome = simulation_->outcome();
+  const double asked = outcome.complete ? model_->solver.t_end : observed_t_;
+  outcome.complete = outcome.message.empty();
+  const ResultsRecorder::Metadata meta{scene_.path, scene_.text,
+                                       model_->solver.formulation == Formulation::GGL ? "ggl" : "baumgarte", asked};
+  sink_.recorder->write(path, meta, outcome);
+}
 
 int Session::joint(const std::string& name) const {
   const int j = model_->findJoint(name);
@@ -128,5 +144,60 @@ Vec3 Session::jointVelocity(int joint) const {
   const Vec3 omega(v[3], v[4], v[5]);  // body frame (2-10)
   return velocity + model_->nodeFrame(state(), j.node).R * omega.cross(j.offset);
 }
+
+int Session::constraint(const std::string& name) const {
+  const int c = model_->findConstraint(name);
+  if (c >= 0) return c;
+  std::vector<std::string> names;
+  for (const Constraint& constraint : model_->constraints) names.push_back(constraint.name);
+  throw std::invalid_argument(unknownName("constraint", name, names));
+}
+
+const DynamicState& Session::motion() const {
+  if (motion_known_) return motion_;
+  const int nq = model_->nq, nv = model_->nv;
+  const double* y = state();
+  motion_.t = observed_t_;
+  motion_.q = Eigen::Map<const VecX>(y, nq);
+  motion_.v = Eigen::Map<const VecX>(y + assembler_->vOffset(), nv);
+  const ConstraintState constraints = assembler_->constraints(motion_.t, y, y + assembler_->vOffset());
+  accelerations_.solve(*assembler_, motion_, constraints, Limit::Left);
+  motion_known_ = true;
+  return motion_;
+}
+
+ConstraintReaction Session::constraintLoad(int constraint) const {
+  const Constraint& c = model_->constraints.at(static_cast<std::size_t>(constraint));
+  const DynamicState& s = motion();
+  const ConstraintState constraints = assembler_->constraints(s.t, s.q.data(), s.v.data());
+  return constraintReaction(*model_, c, constraints.G, s.q.data(), s.lambda.data());
+}
+
+std::vector<double> Session::ropeTensions(const std::string& rope) const {
+  const auto spec = std::find_if(scene_.members.begin(), scene_.members.end(), [&](const MemberSpec& m) { return m.name == rope; });
+  if (spec == scene_.members.end() || spec->type != MemberType::Rope) {
+    std::vector<std::string> ropes;
+    for (const MemberSpec& m : scene_.members)
+      if (m.type == MemberType::Rope) ropes.push_back(m.name);
+    throw std::invalid_argument(unknownName("rope", rope, ropes));
+  }
+  const VecX zero = VecX::Zero(model_->nv);
+  const ElementInput in{state(), zero.data(), zero.data(), observed_t_, model_->gravity};
+  std::vector<double> tensions;
+  for (const int e : memberForceElements(*model_, rope, true)) {
+    double forces[kTensionPoints];
+    model_->elements[static_cast<std::size_t>(e)]->tensions(in, forces);
+    tensions.insert(tensions.end(), forces, forces + kTensionPoints);
+  }
+  return tensions;
+}
+
+double Session::kineticEnergy() const {
+  const double* y = state();
+  const Eigen::Map<const VecX> dq(y + assembler_->vOffset(), model_->nv);
+  return 0.5 * dq.dot(assembler_->massMatrix(observed_t_, y) * dq);
+}
+
+double Session::potentialEnergy() const { return assembler_->potentialEnergy(observed_t_, state()); }
 
 }  // namespace cranesim

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 import cranesim
 
@@ -202,3 +203,84 @@ def test_a_saved_state_goes_on_alike_here_and_in_another_process(tmp_path):
     assert np.abs(np.load(tmp_path / "path.npy") - first).max() < 1e-9
     with pytest.raises(RuntimeError, match="state.h5.*inputs"):
         cranesim.Simulation(ROOT / "configs" / "crane_condensed.yaml").restore_state(tmp_path / "state.h5")
+
+
+CRANE_SIM = ROOT / "build" / "crane-sim"
+LUFFING_JIB = ROOT / "configs" / "luffing_jib.yaml"
+
+
+def crane_sim(*args):
+    subprocess.run([str(CRANE_SIM), *map(str, args)], check=True, capture_output=True)
+
+
+def test_run_static_and_modes_write_the_command_lines_files(tmp_path):
+    import h5py
+
+    crane_sim("run", LUFFING_JIB, "-o", tmp_path / "cli.h5", "-q")
+    crane_sim("static", LUFFING_JIB, "-o", tmp_path / "cli_static.h5")
+    crane_sim("modes", LUFFING_JIB, "-n", 6, "-o", tmp_path / "cli_modes.h5")
+    analyses = {
+        "cli.h5": (cranesim.run(LUFFING_JIB, tmp_path / "py.h5"), ["time", "q", "v", "lambda", "energy/balance"]),
+        "cli_static.h5": (cranesim.static(LUFFING_JIB, tmp_path / "py_static.h5"), ["q", "lambda"]),
+        "cli_modes.h5": (cranesim.modes(LUFFING_JIB, 6, tmp_path / "py_modes.h5"),
+                         ["modes/frequency", "modes/shapes", "equilibrium/q"]),
+    }
+    for cli_file, (results, paths) in analyses.items():
+        with h5py.File(tmp_path / cli_file) as cli, results:
+            for path in paths:
+                assert np.array_equal(results.get(path), cli[path][()]), (cli_file, path)
+    run = cranesim.Results(tmp_path / "py.h5")
+    assert run.status == "complete" and run.attribute("t_reached") == run.time()[-1] == 10.0
+    assert run.get("joints/boom.tip/position").shape == (run.time().size, 3)
+
+
+def test_analyses_of_dicts_need_an_output_and_name_errors_in_them(tmp_path):
+    scene = yaml.safe_load(LUFFING_JIB.read_text())
+    with pytest.raises(ValueError, match="output"):
+        cranesim.static(scene)
+    scene["bodies"][0]["mass"] = -1
+    with pytest.raises(cranesim.SceneError) as error:
+        cranesim.run(scene, tmp_path / "bad.h5")
+    assert error.value.path == "bodies[0].mass" and error.value.file == "<dict>"
+    assert not (tmp_path / "bad.h5").exists()
+
+
+def test_a_recorded_run_writes_what_it_did_and_takes_back_what_a_restore_undoes(tmp_path):
+    sim = cranesim.Simulation(CRANE_INPUTS, record=True)
+    assert sim.recording
+    for _ in range(50):
+        sim.set_inputs({"slewing": 2.0, "hoist_rope": -0.3})
+        sim.step(0.02)
+    saved = sim.save_state()
+    for _ in range(50):
+        sim.step(0.02)
+    with sim.write_results(tmp_path / "two.h5") as results:
+        assert results.status == "complete"
+        np.testing.assert_allclose(results.time(), np.arange(21) * 0.1, atol=1e-12)
+        hook_at_two = results.get("joints/load.origin/position")[-1]
+    sim.restore_state(saved)
+    with sim.write_results(tmp_path / "one.h5") as results:
+        assert results.time()[-1] == pytest.approx(1.0, abs=1e-12)
+    with cranesim.Results(tmp_path / "one.h5") as results:
+        np.testing.assert_allclose(results.get("joints/load.origin/position")[-1],
+                                   sim.joint_position("load.origin"), rtol=0, atol=1e-12)
+    assert np.linalg.norm(hook_at_two - sim.joint_position("load.origin")) > 0.01
+
+
+def test_loads_and_energies_are_observed(crane):
+    crane.reset()
+    scene = yaml.safe_load((ROOT / "configs" / "crane.yaml").read_text())
+    load = next(b for b in scene["bodies"] if b["name"] == "load")
+    force, moment = crane.constraint_load("hook")  # the load's weight, in equilibrium
+    assert np.linalg.norm(force) == pytest.approx(load["mass"] * np.linalg.norm(scene["gravity"]), rel=1e-9)
+    assert np.linalg.norm(moment) < 1e-3  # a spherical joint carries no moment
+    tension = crane.rope_tension("hoist_rope")
+    assert tension.shape[1] == 9 and tension[-1, -1] == pytest.approx(np.linalg.norm(force), rel=1e-6)
+    assert crane.energy()["kinetic"] == 0.0
+    for _ in range(25):
+        crane.set_inputs({"hoist_rope": -0.5})
+        crane.step(0.02)
+    assert crane.energy()["kinetic"] > 0.0
+    assert "hook" in crane.constraints and "load.origin" in crane.joints
+    with pytest.raises(ValueError, match="did you mean 'hook'"):
+        crane.constraint_load("hok")

@@ -11,7 +11,7 @@ from conftest import (
     ENERGY_DRIFT, INCOMPLETE_MESSAGE, LINK_LENGTH, MAX_POSITION_RESIDUAL, MAX_VELOCITY_RESIDUAL,
     SAMPLES, SCRIPTS, SOLVER_STEPS, pendulum,
 )
-from cranesim_results import Results, ResultsError, guess_unit
+from cranesim.results import Results, ResultsError, guess_unit
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 GIF_SIGNATURE = b"GIF8"
@@ -57,7 +57,8 @@ def test_units_are_guessed_from_the_path():
 
 
 def test_reader_lists_contents(results_file):
-    result = run("cranesim_results.py", results_file)
+    result = subprocess.run([sys.executable, "-m", "cranesim.results", str(results_file)],
+                            capture_output=True, text=True, timeout=60)
     assert result.returncode == 0, result.stderr
     assert "/joints/link2.tip/position  (41, 3)" in result.stdout
     assert "@status = 'complete'" in result.stdout
@@ -145,10 +146,12 @@ def test_missing_and_non_hdf5_files_are_clean_errors(tmp_path):
 
 
 def test_every_script_has_help_with_example():
-    scripts = ["cranesim_results.py", "plot_timeseries.py", "plot_snapshot.py", "animate.py",
-               "report.py"]
+    commands = {script: [str(SCRIPTS / script)] for script in
+                ["plot_timeseries.py", "plot_snapshot.py", "animate.py", "report.py"]}
+    commands["cranesim.results"] = ["-m", "cranesim.results"]
+    scripts = list(commands)
     # Started together: each one pays the matplotlib import on its own.
-    processes = [subprocess.Popen([sys.executable, str(SCRIPTS / script), "--help"],
+    processes = [subprocess.Popen([sys.executable, *commands[script], "--help"],
                                   stdout=subprocess.PIPE, text=True) for script in scripts]
     for script, process in zip(scripts, processes):
         help_text, _ = process.communicate(timeout=60)

@@ -6,6 +6,7 @@
 
 #include "cranesim/assembly/assembler.hpp"
 #include "cranesim/solvers/dynamics.hpp"
+#include "cranesim/solvers/statics.hpp"
 
 namespace cranesim {
 
@@ -18,6 +19,8 @@ class ResultsRecorder final : public SampleSink {
   void sample(double t, const double* y, const WorkTerms& work) override;
 
   std::size_t samples() const { return time_.size(); }
+  /// Forgets the samples at t and after (a run that goes on from an earlier state).
+  void keepBefore(double t);
   const std::vector<double>& time() const { return time_; }
   /// Column k of the recorded DAE state over time.
   std::vector<double> stateColumn(int k) const;
@@ -76,6 +79,11 @@ class ResultsRecorder final : public SampleSink {
   std::vector<std::vector<int>> tipping_supports_;     // per output.tipping_lines: its supports, as constraint indices
   std::vector<std::vector<double>> tipping_moments_;   // per tipping line: 1 per sample
 };
+
+/// Writes an equilibrium as a one-sample results file (`crane-sim static`, formulation "static"):
+/// complete, or incomplete with `unstable` as its message when that says why it is unstable.
+void writeEquilibriumResults(const std::string& path, const Assembler& assembler, const StaticResult& eq,
+                             const std::string& scene_path, const std::string& scene_text, const std::string& unstable);
 
 /// Refuses, before any work, a run whose results would not fit in memory (more than 4 GiB):
 /// throws SceneError at output.interval with the estimate.

@@ -9,7 +9,10 @@
 #include <vector>
 
 #include "cranesim/assembly/assembler.hpp"
+#include "cranesim/assembly/constraint_reaction.hpp"
+#include "cranesim/io/results_writer.hpp"
 #include "cranesim/model/scene.hpp"
+#include "cranesim/solvers/initial_conditions.hpp"
 #include "cranesim/solvers/simulation.hpp"
 
 namespace cranesim {
@@ -17,9 +20,11 @@ namespace cranesim {
 class Session {
  public:
   /// Reads and compiles the scene file (SceneError naming the file, key path and line on bad
-  /// input) and solves its starting state as `crane-sim run` does (solver.initial_state).
-  explicit Session(const std::string& scene_path);
-  explicit Session(const Scene& scene);
+  /// input) and solves its starting state as `crane-sim run` does (solver.initial_state). With
+  /// `record`, keeps the run's samples every output.interval as `crane-sim run` records them
+  /// (SceneError at output.interval when a run to solver.t_end would not fit in memory).
+  explicit Session(const std::string& scene_path, bool record = false);
+  explicit Session(const Scene& scene, bool record = false);
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
@@ -28,8 +33,18 @@ class Session {
   const Model& model() const { return *model_; }
   const Assembler& assembler() const { return *assembler_; }
 
-  /// Back to the starting state at solver.t_start, every input at rest at its scene value.
+  /// Back to the starting state at solver.t_start, every input at rest at its scene value; a
+  /// recording starts anew.
   void reset();
+
+  /// Whether the run's samples are kept. A restore keeps the samples before the state's time and
+  /// records on from there.
+  bool recording() const { return recording_; }
+  /// The samples kept so far; nullptr when not recording.
+  const ResultsRecorder* recorder() const { return sink_.recorder.get(); }
+  /// Writes the samples so far as a results file (docs/results-format.md) through a temporary
+  /// file, complete up to time() unless the run failed; std::logic_error when not recording.
+  void writeResults(const std::string& path) const;
 
   /// The index of the input (Model::inputs) named `name`; std::invalid_argument naming the
   /// scene's inputs when there is none.
@@ -68,18 +83,47 @@ class Session {
   Vec3 jointPosition(int joint) const;
   Vec3 jointVelocity(int joint) const;
 
+  /// The index of the constraint named `name`; std::invalid_argument (with "did you mean").
+  int constraint(const std::string& name) const;
+  /// The load a constraint carries now (constraintReaction): the force its rows carry to its
+  /// second joint and the moment about that joint, in the first joint's axes. A rope's tension
+  /// at its end is the force of the joint holding it there.
+  ConstraintReaction constraintLoad(int constraint) const;
+  /// The axial force along a rope member now: kTensionPoints per element, from each element's
+  /// first node to its second (N, 0 where slack); std::invalid_argument for no such rope.
+  std::vector<double> ropeTensions(const std::string& rope) const;
+  /// Kinetic energy ½ dqᵀ M dq, and gravity's potential plus strain energy (J).
+  double kineticEnergy() const;
+  double potentialEnergy() const;
+
  private:
+  /// Passes the run's samples to the recorder while there is one.
+  struct RecordingSink final : SampleSink {
+    std::unique_ptr<ResultsRecorder> recorder;
+    void sample(double t, const double* y, const WorkTerms& work) override {
+      if (recorder) recorder->sample(t, y, work);
+    }
+  };
+
   void start();
+  void observed(double t);
+  /// Accelerations and multipliers consistent with the state at time() (the saddle-point
+  /// system (4-3)), solved once per observed time, as the results file's are.
+  const DynamicState& motion() const;
 
   Scene scene_;
+  bool recording_;
   std::unique_ptr<Model> model_;
   std::unique_ptr<Assembler> assembler_;
   DynamicState initial_;
-  std::unique_ptr<SampleSink> sink_;
+  RecordingSink sink_;
   std::unique_ptr<Simulation> simulation_;
   double observed_t_ = 0.0;
   bool interpolated_ = false;    // the integrator is past observed_t_: observed_ holds the state there
   std::vector<double> observed_;
+  mutable AccelerationSolver accelerations_;
+  mutable DynamicState motion_;
+  mutable bool motion_known_ = false;
 };
 
 }  // namespace cranesim

@@ -11,11 +11,11 @@ component selector in brackets:
 
 Example, as a command listing what a results file holds:
 
-    python scripts/cranesim_results.py run.h5
+    python3 -m cranesim.results run.h5
 
-Example, as a library:
+Example, as a library (cranesim.run and cranesim.static return one):
 
-    from cranesim_results import Results
+    from cranesim.results import Results
     with Results("run.h5") as results:
         t = results.time()
         z = results.get("joints/link3.tip/position[2]")
@@ -200,7 +200,7 @@ class Results:
         hint = f"did you mean: {', '.join(close)}?" if close else "no similar paths"
         raise ResultsError(
             f"no quantity '{path}' in {self.path}; {hint} "
-            f"(list all with: python scripts/cranesim_results.py {self.path})"
+            f"(list all with: python3 -m cranesim.results {self.path})"
         )
 
 

@@ -1,0 +1,64 @@
+"""Whole analyses of a scene, as the command line runs them: each writes the file `crane-sim`
+writes and returns it opened, its datasets as numpy arrays."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Optional, Union
+
+from . import _core
+from .results import Results
+from .simulation import Scene, Simulation, scene_source
+
+Output = Optional[Union[str, os.PathLike]]
+
+# A run of a scene without inputs advances in pieces this long (s of simulated time), so that
+# Ctrl-C stops it between them; the integrator's steps do not depend on where it stops.
+_PIECE = 1.0
+
+
+def _output(scene: Scene, output: Output, suffix: str) -> str:
+    """The file to write: `output`, or as crane-sim names it, <scene stem><suffix> here."""
+    if output is not None:
+        return os.fspath(output)
+    if not isinstance(scene, (str, os.PathLike)):
+        raise ValueError("a scene given as a dict needs an output path: output='run.h5'")
+    return Path(scene).stem + suffix
+
+
+def run(scene: Scene, output: Output = None) -> Results:
+    """Simulates the scene from its starting state to ``solver.t_end`` and writes its results
+    file (default: ``<scene stem>.h5`` in the working directory), as ``crane-sim run`` does;
+    returns it opened. A run the solver stops early is written marked incomplete (its
+    ``status`` and ``message`` say why) and a warning goes to stderr.
+
+    A scene's inputs hold their scene values: to command them, use :class:`Simulation`.
+    """
+    path = _output(scene, output, ".h5")
+    simulation = Simulation(scene, record=True)
+    if simulation.inputs:
+        simulation.advance_to(simulation.t_end)
+    else:
+        while simulation.advance_to(min(simulation.time + _PIECE, simulation.t_end)):
+            pass
+    return simulation.write_results(path)
+
+
+def static(scene: Scene, output: Output = None) -> Results:
+    """Solves the scene's static equilibrium (its ``solver.statics`` method) and writes it as a
+    one-sample results file (default: ``<scene stem>_static.h5``), as ``crane-sim static``
+    does; returns it opened. An unstable equilibrium is written marked incomplete, its
+    ``message`` saying why."""
+    path = _output(scene, output, "_static.h5")
+    _core.write_static(*scene_source(scene), path)
+    return Results(path)
+
+
+def modes(scene: Scene, count: int = 10, output: Output = None) -> Results:
+    """The ``count`` lowest small-vibration modes about the scene's static equilibrium (0: all),
+    written as ``crane-sim modes`` writes them (default: ``<scene stem>_modes.h5``); returns the
+    file opened: ``modes/frequency`` (Hz), ``modes/shapes``, ``modes/joint_displacements``."""
+    path = _output(scene, output, "_modes.h5")
+    _core.write_modes(*scene_source(scene), count, path)
+    return Results(path)
