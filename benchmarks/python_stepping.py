@@ -33,18 +33,24 @@ SCENE = ROOT / "configs" / "crane_inputs.yaml"
 
 
 def trapezoid_speed(t, distance, t_start, duration, t_accel, t_decel):
-    """The speed of a trapezoid profile (E-1..E-5) at t."""
+    """The speed of a trapezoid profile (E-1..E-5) at t, rounded as the C++ benchmark's (the
+    derivative of the profile, left limits at its corners), so that both runs get the same
+    commands to the last bit."""
     t1, t3, t0 = t_accel, t_decel, duration
+    t2 = t0 - t1 - t3
     a1 = 2.0 * distance / (t1 * (2.0 * t0 - t1 - t3))
     a3 = -2.0 * distance / (t3 * (2.0 * t0 - t1 - t3))
+    vmax = a1 * t1
     tau = t - t_start
-    if tau <= 0.0 or tau >= t0:
+    if tau <= 0.0:
         return 0.0
     if tau <= t1:
         return a1 * tau
-    if tau <= t0 - t3:
-        return a1 * t1
-    return a1 * t1 + a3 * (tau - (t0 - t3))
+    if tau <= t1 + t2:
+        return vmax
+    if tau <= t0:
+        return vmax + a3 * (tau - (t1 + t2))
+    return 0.0
 
 
 def python_run(t_end, dt=0.02):
@@ -57,12 +63,13 @@ def python_run(t_end, dt=0.02):
         t = sim.time
         r, hook_r = sim.joint_position(head), sim.joint_position(hook)
         radius = math.hypot(r[0], r[1])
-        sway = ((hook_r[0] - r[0]) * -r[1] + (hook_r[1] - r[1]) * r[0]) / radius  # across the boom
+        across = (-r[1] / radius, r[0] / radius)
+        sway = (hook_r[0] - r[0]) * across[0] + (hook_r[1] - r[1]) * across[1]  # across the boom
         commands[order[0]] = trapezoid_speed(t, 45, 10, 20, 5, 5) + 0.44 * sway / radius * 180.0 / math.pi
         commands[order[1]] = trapezoid_speed(t, -20, 0, 40, 5, 5)
         commands[order[2]] = trapezoid_speed(t, 5, 20, 20, 5, 5)
         sim.set_inputs(commands)
-        if not sim.step(dt):
+        if not sim.advance_to((k + 1) * dt):  # the C++ loop's sample times, to the bit
             raise RuntimeError(sim.message)
     wall = time.perf_counter() - start
     return wall, sim.statistics(), sim.joint_position(hook)

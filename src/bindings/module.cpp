@@ -1,10 +1,13 @@
 // cranesim._core: the library's session for Python (python/cranesim/). The Python layer only
 // adapts: scenes from dicts, inputs by name, numpy arrays; the logic is the C++ Session's.
 
+#include <fmt/format.h>
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
+
+#include <cmath>
 
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_writer.hpp"
@@ -142,11 +145,17 @@ NB_MODULE(_core, m) {
              if (commands.shape(0) != n)
                throw std::invalid_argument("set_inputs takes " + std::to_string(n) + " commands, one per input, not " +
                                            std::to_string(commands.shape(0)));
+             for (std::size_t k = 0; k < n; ++k)
+               if (!std::isfinite(commands(k)))
+                 throw std::invalid_argument(fmt::format("input '{}': the command is {}, not a finite number",
+                                                         s.model().inputs[k].name, commands(k)));
              std::vector<double> held(n);
              for (std::size_t k = 0; k < n; ++k) held[k] = s.setInput(static_cast<int>(k), commands(k));
              return vector(held.data(), n);
            },
-           nb::arg("commands"), "Holds one command per input from now on; returns them as held (clipped to the limits).")
+           nb::arg("commands"),
+           "Holds one command per input from now on; returns them as held (clipped to the limits). A command that "
+           "is not finite raises ValueError naming its input and changes nothing.")
       .def("set_input", &Session::setInput, nb::arg("index"), nb::arg("command"))
       .def("input_values",
            [](const Session& s) {
