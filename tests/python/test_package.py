@@ -205,6 +205,54 @@ def test_a_saved_state_goes_on_alike_here_and_in_another_process(tmp_path):
         cranesim.Simulation(ROOT / "configs" / "crane_condensed.yaml").restore_state(tmp_path / "state.h5")
 
 
+PRECISE_LIFT = f"""
+import math, sys
+import numpy as np
+import cranesim
+
+# The crane at rtol 1e-9 rests until 29 s (cheap steps) and then slews and hoists with commands
+# that depend on time only, so that every run of it gets the same ones.
+sim = cranesim.Simulation({{"base": {str(CRANE_INPUTS)!r}, "name": "precise",
+                           "modify": {{"solver.rtol": 1.0e-9, "solver.atol": 1.0e-10}}}})
+hook = sim.joint("load.origin")
+restore, save, until, out = sys.argv[1:5]
+if restore != "-":
+    sim.restore_state(restore)
+path = []
+k = int(round(sim.time / 0.02))
+while k < int(round(float(until) / 0.02)):
+    t = max(sim.time - 29.0, 0.0)
+    sim.set_inputs({{"slewing": 3.0 * math.sin(0.5 * t), "hoist_rope": -0.3 * math.sin(0.7 * t)}})
+    k += 1
+    assert sim.advance_to(k * 0.02), sim.message
+    if sim.time > 30.0 + 1e-9:
+        path.append(sim.joint_position(hook))
+if save != "-":
+    sim.save_state(save)
+np.save(out, np.array(path))
+"""
+
+
+def test_a_state_saved_at_30_s_goes_on_in_another_process_within_the_integrators_error(tmp_path):
+    script = tmp_path / "precise_lift.py"
+    script.write_text(PRECISE_LIFT)
+
+    def run(*args):
+        return subprocess.Popen([sys.executable, str(script), *map(str, args)])
+
+    state = tmp_path / "state_30s.h5"
+    # The uninterrupted run to 31 s and the run that saves at 30 s, on both cores at once.
+    whole, first = run("-", "-", 31.0, tmp_path / "whole.npy"), run("-", state, 30.0, tmp_path / "first.npy")
+    assert first.wait(timeout=600) == 0
+    continued = run(state, "-", 31.0, tmp_path / "continued.npy")
+    assert whole.wait(timeout=600) == 0 and continued.wait(timeout=600) == 0
+    uninterrupted, restored = np.load(tmp_path / "whole.npy"), np.load(tmp_path / "continued.npy")
+    assert uninterrupted.shape == restored.shape == (50, 3)
+    distance = np.linalg.norm(restored - uninterrupted, axis=1).max()
+    print(f"largest hook distance after the restore: {distance:.3g} m")
+    assert 0.0 < distance < 1e-6  # a restart within the tolerance, not a copy of the history
+    assert np.linalg.norm(uninterrupted[-1] - uninterrupted[0]) > 0.01  # the load moves
+
 CRANE_SIM = ROOT / "build" / "crane-sim"
 LUFFING_JIB = ROOT / "configs" / "luffing_jib.yaml"
 
