@@ -124,9 +124,14 @@ TEST_CASE("A joint's velocity is the rate of its position", "[session]") {
   Lift lift(session);
   const double dt = 0.005;
   std::vector<Vec3> head, head_velocity, hook, hook_velocity;
+  std::vector<Session::Sway> sway;
+  const Session::Sway at_rest = session.sway(lift.hook, lift.head);
+  CHECK(std::abs(at_rest.radial) < 1e-9);  // the rope hangs plumb in equilibrium
+  CHECK(std::abs(at_rest.across) < 1e-9);
   for (int k = 0; k < 800; ++k) {
     lift.apply(lift.feedback(session.time()));
     session.step(dt);
+    sway.push_back(session.sway(lift.hook, lift.head));
     head.push_back(session.jointPosition(lift.head));
     head_velocity.push_back(session.jointVelocity(lift.head));
     hook.push_back(session.jointPosition(lift.hook));
@@ -138,8 +143,16 @@ TEST_CASE("A joint's velocity is the rate of its position", "[session]") {
     const Vec3 head_rate = (head[k + 1] - head[k - 1]) / (2.0 * dt), hook_rate = (hook[k + 1] - hook[k - 1]) / (2.0 * dt);
     CHECK((head_rate - head_velocity[k]).norm() < 1e-3 * head_velocity[k].norm());
     CHECK((hook_rate - hook_velocity[k]).norm() < 1e-3 * hook_velocity[k].norm());
+    const double radial_rate = (sway[k + 1].radial - sway[k - 1].radial) / (2.0 * dt),
+                 across_rate = (sway[k + 1].across - sway[k - 1].across) / (2.0 * dt);
+    CHECK(radial_rate == Approx(sway[k].radial_rate).epsilon(1e-3).margin(1e-6));
+    CHECK(across_rate == Approx(sway[k].across_rate).epsilon(1e-3).margin(1e-6));
+    // The across angle is the hook's offset across the boom over the rope's drop.
+    const Vec3 r = head[k], across_boom = Vec3(-r.y(), r.x(), 0.0).normalized();
+    CHECK(std::tan(sway[k].across) == Approx((hook[k] - r).dot(across_boom) / (r.z() - hook[k].z())).epsilon(1e-12));
   }
   CHECK(head_velocity.back().norm() > 0.1);
+  CHECK(std::abs(sway.back().across) > 1e-3);  // the slewing swings the load
 }
 
 TEST_CASE("A session refuses unknown names and commands that are not numbers", "[session]") {

@@ -145,17 +145,7 @@ class CraneLiftEnv(gymnasium.Env):
     # -- observations ------------------------------------------------------------------------
     def _observation(self) -> np.ndarray:
         hook, hook_v = self.sim.joint_position(self._hook), self.sim.joint_velocity(self._hook)
-        head, head_v = self.sim.joint_position(self._sheave), self.sim.joint_velocity(self._sheave)
-        rope, rope_v = hook - head, hook_v - head_v
-        radial = np.array([head[0], head[1], 0.0])
-        radial /= max(np.linalg.norm(radial), 1e-9)
-        across = np.array([-radial[1], radial[0], 0.0])
-        down, down_v = -rope[2], -rope_v[2]
-        angles, rates = np.empty(2), np.empty(2)
-        for k, axis in enumerate((radial, across)):
-            a, a_v = rope @ axis, rope_v @ axis
-            angles[k] = math.atan2(a, down)
-            rates[k] = (a_v * down - a * down_v) / (a * a + down * down)
+        angles, rates = self.sim.sway(self._hook, self._sheave)
         return np.concatenate([hook - self._target, hook_v, angles, rates, self.sim.input_values(),
                                self.sim.input_rates()]).astype(np.float32)
 

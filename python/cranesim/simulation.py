@@ -202,6 +202,15 @@ class Simulation:
         at equally spaced points from the element's first node to its second."""
         return self._core.rope_tensions(rope).reshape(-1, _core.tension_points)
 
+    def sway(self, hanging: Union[int, str], pivot: Union[int, str]) -> tuple[np.ndarray, np.ndarray]:
+        """How the line from joint ``pivot`` down to joint ``hanging`` swings (the hook below
+        the boom head's sheave: ``sway("load.origin", "head.sheave")``): its angles from the
+        downward vertical, radial (in the vertical plane through the pivot and the vertical axis
+        through the origin, > 0 outward) and across (> 0 in the sense of a positive slew), rad,
+        and their rates, rad/s."""
+        values = self._core.sway(self._joint_index(hanging), self._joint_index(pivot))
+        return values[:2], values[2:]
+
     def energy(self) -> dict[str, float]:
         """The kinetic energy and the potential energy (gravity and strain) now, J."""
         return {"kinetic": self._core.kinetic_energy(), "potential": self._core.potential_energy()}

@@ -224,6 +224,13 @@ NB_MODULE(_core, m) {
              return vector(t.data(), t.size());
            },
            nb::arg("rope"), "A rope's axial force along its elements now, kTensionPoints per element.")
+      .def("sway",
+           [](const Session& s, int hanging, int pivot) {
+             const Session::Sway w = s.sway(hanging, pivot);
+             const double values[] = {w.radial, w.across, w.radial_rate, w.across_rate};
+             return vector(values, 4);
+           },
+           nb::arg("hanging"), nb::arg("pivot"), "[radial, across, their rates] of the line from pivot to hanging.")
       .def("kinetic_energy", &Session::kineticEnergy)
       .def("potential_energy", &Session::potentialEnergy);
 

@@ -145,6 +145,30 @@ Vec3 Session::jointVelocity(int joint) const {
   return velocity + model_->nodeFrame(state(), j.node).R * omega.cross(j.offset);
 }
 
+Session::Sway Session::sway(int hanging, int pivot) const {
+  const Vec3 down = model_->gravity.normalized();
+  const Vec3 head = jointPosition(pivot), head_rate = jointVelocity(pivot);
+  const Vec3 line = jointPosition(hanging) - head, line_rate = jointVelocity(hanging) - head_rate;
+  // The plane turns with the pivot: the axes' rates enter the angles' rates.
+  const Vec3 out = head - head.dot(down) * down, out_rate = head_rate - head_rate.dot(down) * down;
+  Vec3 radial = down.unitOrthogonal(), radial_rate = Vec3::Zero();
+  if (out.norm() > 0.0) {
+    radial = out.normalized();
+    radial_rate = (out_rate - radial * radial.dot(out_rate)) / out.norm();
+  }
+  const Vec3 across = radial.cross(down), across_rate = radial_rate.cross(down);
+  const double d = line.dot(down), d_rate = line_rate.dot(down);
+  Sway s;
+  const auto angle = [&](const Vec3& axis, const Vec3& axis_rate, double& value, double& rate) {
+    const double a = line.dot(axis), a_rate = line_rate.dot(axis) + line.dot(axis_rate);
+    value = std::atan2(a, d);
+    rate = (a_rate * d - a * d_rate) / (a * a + d * d);
+  };
+  angle(radial, radial_rate, s.radial, s.radial_rate);
+  angle(across, across_rate, s.across, s.across_rate);
+  return s;
+}
+
 int Session::constraint(const std::string& name) const {
   const int c = model_->findConstraint(name);
   if (c >= 0) return c;

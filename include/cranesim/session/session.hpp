@@ -83,6 +83,15 @@ class Session {
   Vec3 jointPosition(int joint) const;
   Vec3 jointVelocity(int joint) const;
 
+  /// How the line from joint `pivot` down to joint `hanging` (a hook below its sheave) swings: its
+  /// angles from the downward vertical (gravity) in the vertical plane through the pivot and the
+  /// vertical axis through the origin (radial, > 0 outward) and across that plane (> 0 in the
+  /// sense of a positive turn about the upward axis), rad, and their rates, rad/s.
+  struct Sway {
+    double radial = 0.0, across = 0.0, radial_rate = 0.0, across_rate = 0.0;
+  };
+  Sway sway(int hanging, int pivot) const;
+
   /// The index of the constraint named `name`; std::invalid_argument (with "did you mean").
   int constraint(const std::string& name) const;
   /// The load a constraint carries now (constraintReaction): the force its rows carry to its
