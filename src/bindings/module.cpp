@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "cranesim/control/sway_axis.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/io/scene_reader.hpp"
@@ -233,6 +234,24 @@ NB_MODULE(_core, m) {
            nb::arg("hanging"), nb::arg("pivot"), "[radial, across, their rates] of the line from pivot to hanging.")
       .def("kinetic_energy", &Session::kineticEnergy)
       .def("potential_energy", &Session::potentialEnergy);
+
+  nb::class_<SwayAxisController>(m, "SwayAxis", "Anti-sway LQR along one horizontal axis (cranesim.control.SwayAxis).")
+      .def(
+          "__init__",
+          [](SwayAxisController* self, double sample_time, double drive_lag, double gravity, double position, double speed,
+             double angle, double angle_rate, double command, double reschedule) {
+            new (self) SwayAxisController(
+                SwayAxisSpec{sample_time, drive_lag, gravity, position, speed, angle, angle_rate, command, reschedule});
+          },
+          nb::arg("sample_time"), nb::arg("drive_lag"), nb::arg("gravity"), nb::arg("position"), nb::arg("speed"),
+          nb::arg("angle"), nb::arg("angle_rate"), nb::arg("command"), nb::arg("reschedule"))
+      .def("command", &SwayAxisController::command, nb::arg("rope_length"), nb::arg("position_error"), nb::arg("speed"),
+           nb::arg("reference_speed"), nb::arg("angle"), nb::arg("angle_rate"))
+      .def_prop_ro("gain",
+                   [](const SwayAxisController& c) { return vector(c.gain().data(), 4); })
+      .def_prop_ro("design_length", &SwayAxisController::designLength)
+      .def_prop_ro("closed_loop_spectral_radius",
+                   [](const SwayAxisController& c) { return c.closedLoop().eigenvalues().cwiseAbs().maxCoeff(); });
 
   m.def("write_static",
         [](const std::string& path, const std::string& text, const std::string& name, const std::string& out) {

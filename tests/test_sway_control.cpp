@@ -1,0 +1,109 @@
+// The anti-sway controller's design (control/lqr.hpp, control/sway_axis.hpp): the sampled model
+// against the continuous one, the Riccati solution against its closed form and its equation,
+// and the pendulum under the controller exactly as the design predicts.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "cranesim/control/lqr.hpp"
+#include "cranesim/control/sway_axis.hpp"
+
+using namespace cranesim;
+
+namespace {
+
+/// ẋ = A x + B u over h with u held, by classical RK4 in `steps` steps.
+Eigen::VectorXd heldRk4(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, Eigen::VectorXd x, const Eigen::VectorXd& u,
+                        double h, int steps) {
+  const double dt = h / steps;
+  const auto f = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd { return A * y + B * u; };
+  for (int k = 0; k < steps; ++k) {
+    const Eigen::VectorXd k1 = f(x), k2 = f(x + 0.5 * dt * k1), k3 = f(x + 0.5 * dt * k2), k4 = f(x + dt * k3);
+    x += dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+  }
+  return x;
+}
+
+double spectralRadius(const Eigen::MatrixXd& M) { return M.eigenvalues().cwiseAbs().maxCoeff(); }
+
+}  // namespace
+
+TEST_CASE("The held model is the continuous model integrated over a sample", "[control]") {
+  const PendulumAxisModel m = pendulumAxisModel(40.0, 9.81, 0.1);
+  const DiscreteSystem d = zeroOrderHold(m.A, m.B, 0.02);
+  const Eigen::VectorXd x0 = (Eigen::VectorXd(4) << 0.3, -0.2, 0.05, -0.01).finished();
+  const Eigen::VectorXd u = Eigen::VectorXd::Constant(1, 0.7);
+  const Eigen::VectorXd exact = heldRk4(m.A, m.B, x0, u, 0.02, 200);
+  CHECK((d.A * x0 + d.B * u - exact).norm() < 1e-13);
+}
+
+TEST_CASE("The LQR gain of a scalar system is the closed form's", "[control]") {
+  // x⁺ = a x + b u, cost q x² + r u²: b² p² + (r (1 − a²) − q b²) p − q r = 0, k = a b p / (r + b² p).
+  const double a = 1.3, b = 0.4, q = 2.0, r = 0.5;
+  const double c1 = r * (1 - a * a) - q * b * b;
+  const double p = (-c1 + std::sqrt(c1 * c1 + 4 * b * b * q * r)) / (2 * b * b);
+  const LqrDesign design = discreteLqr({Eigen::MatrixXd::Constant(1, 1, a), Eigen::MatrixXd::Constant(1, 1, b)},
+                                       Eigen::MatrixXd::Constant(1, 1, q), Eigen::MatrixXd::Constant(1, 1, r));
+  CHECK(design.P(0, 0) == Approx(p).epsilon(1e-13));
+  CHECK(design.K(0, 0) == Approx(a * b * p / (r + b * b * p)).epsilon(1e-13));
+  CHECK(std::abs(a - b * design.K(0, 0)) < 1.0);
+}
+
+TEST_CASE("The sway controller's gain solves the Riccati equation of the pendulum", "[control]") {
+  SwayAxisController controller{SwayAxisSpec{}};
+  controller.command(48.0, 0, 0, 0, 0, 0);
+  const PendulumAxisModel m = pendulumAxisModel(48.0, 9.81, 0.1);
+  const DiscreteSystem d = zeroOrderHold(m.A, m.B, 0.02);
+  const SwayAxisSpec& s = controller.spec();
+  const Eigen::Matrix4d Q = Eigen::Vector4d(1 / (s.position * s.position), 1 / (s.speed * s.speed), 1 / (s.angle * s.angle),
+                                            1 / (s.angle_rate * s.angle_rate)).asDiagonal();
+  const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, 1 / (s.command * s.command));
+  const LqrDesign design = discreteLqr(d, Q, R);
+  const Eigen::MatrixXd& P = design.P;
+  const Eigen::MatrixXd residual =
+      d.A.transpose() * P * d.A - d.A.transpose() * P * d.B * (R + d.B.transpose() * P * d.B).inverse() * d.B.transpose() * P * d.A + Q - P;
+  CHECK(residual.norm() < 1e-9 * P.norm());
+  CHECK((controller.gain() - design.K).norm() == 0.0);
+  // The open pendulum does not decay (|λ| = 1); the closed loop does.
+  CHECK(spectralRadius(d.A) == Approx(1.0).epsilon(1e-12));
+  CHECK(spectralRadius(controller.closedLoop()) < 0.999);
+}
+
+TEST_CASE("The pendulum under the sampled controller moves as the design predicts", "[control]") {
+  const double L = 30.0, h = 0.02;
+  SwayAxisController controller{SwayAxisSpec{}};
+  const PendulumAxisModel m = pendulumAxisModel(L, 9.81, 0.1);
+  // A load swinging 0.5 m (θ = 1/60 rad) under a suspension point at rest at its reference.
+  Eigen::VectorXd x = (Eigen::VectorXd(4) << 0.0, 0.0, 0.5 / L, 0.0).finished();
+  Eigen::VectorXd predicted = x;
+  double swing[6] = {};  // the largest swing in each 5 s
+  for (int k = 0; k < 1500; ++k) {  // 30 s
+    const double u = controller.command(L, x(0), x(1), 0.0, x(2), x(3));
+    x = heldRk4(m.A, m.B, x, Eigen::VectorXd::Constant(1, u), h, 20);
+    predicted = controller.closedLoop() * predicted;
+    REQUIRE((x - predicted).norm() < 1e-9);
+    swing[k / 250] = std::max(swing[k / 250], L * std::abs(x(2)));
+  }
+  INFO("closed-loop spectral radius " << controller.closedLoop().eigenvalues().cwiseAbs().maxCoeff());
+  CHECK(swing[1] < 0.1);    // 0.5 m: below 10 cm after 5 s (0.085 m by the design's closed loop)
+  CHECK(swing[2] < 0.02);   // below 2 cm after 10 s (0.015 m)
+  CHECK(swing[5] < 0.001);  // and on (0.0005 m)
+  CHECK(std::abs(x(0)) < 0.01);  // the suspension point is back at its reference
+}
+
+TEST_CASE("The sway controller redesigns its gain as the rope's length changes", "[control]") {
+  SwayAxisController controller{SwayAxisSpec{}};
+  controller.command(20.0, 0, 0, 0, 0, 0);
+  const Eigen::RowVector4d short_rope = controller.gain();
+  controller.command(20.05, 0, 0, 0, 0, 0);  // within 0.5 %: kept
+  CHECK(controller.designLength() == 20.0);
+  controller.command(40.0, 0, 0, 0, 0, 0);
+  CHECK(controller.designLength() == 40.0);
+  SwayAxisController fresh{SwayAxisSpec{}};
+  fresh.command(40.0, 0, 0, 0, 0, 0);
+  CHECK(controller.gain() == fresh.gain());
+  CHECK(controller.gain() != short_rope);
+  CHECK_THROWS_WITH(controller.command(-1.0, 0, 0, 0, 0, 0), Catch::Contains("length must be positive"));
+  CHECK_THROWS_WITH(SwayAxisController(SwayAxisSpec{.sample_time = 0.0}), Catch::Contains("sample time"));
+}
