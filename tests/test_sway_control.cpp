@@ -1,11 +1,13 @@
-// The anti-sway controller's design (control/lqr.hpp, control/sway_axis.hpp): the sampled model
-// against the continuous one, the Riccati solution against its closed form and its equation,
-// and the pendulum under the controller exactly as the design predicts.
+// The anti-sway controller (control/): the sampled model against the continuous one, the
+// Riccati solution against its closed form and its equation, the pendulum under the controller
+// exactly as the design predicts, and the feedback on the flexible crane against open loop.
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <memory>
 
+#include "cranesim/control/crane_sway.hpp"
 #include "cranesim/control/lqr.hpp"
 #include "cranesim/control/sway_axis.hpp"
 
@@ -106,4 +108,39 @@ TEST_CASE("The sway controller redesigns its gain as the rope's length changes",
   CHECK(controller.gain() != short_rope);
   CHECK_THROWS_WITH(controller.command(-1.0, 0, 0, 0, 0, 0), Catch::Contains("length must be positive"));
   CHECK_THROWS_WITH(SwayAxisController(SwayAxisSpec{.sample_time = 0.0}), Catch::Contains("sample time"));
+}
+
+TEST_CASE("On the flexible crane the anti-sway feedback damps the swing an operator's slew leaves, within "
+          "the drives' limits", "[control][session]") {
+  const std::string scene = std::string(CRANESIM_SOURCE_DIR) + "/configs/crane_inputs.yaml";
+  // The lever slews at 3 °/s for 10 s; the swing over the 10 s from 30 s on, open loop and with the
+  // feedback holding the head where it was at the lever's release.
+  const auto swing = [&](bool feedback) {
+    Session session(scene);
+    const int hook = session.joint("load.origin"), head = session.joint("head.sheave"), slewing = session.input("slewing");
+    std::unique_ptr<CraneSwayController> controller;
+    double largest = 0.0, fastest = 0.0;
+    for (int k = 1; k <= 2000; ++k) {
+      const double t = session.time();
+      if (t < 10.0) {
+        session.setInput(slewing, 3.0);
+      } else if (!feedback) {
+        session.setInput(slewing, 0.0);
+      } else {
+        if (!controller) controller = std::make_unique<CraneSwayController>(session, CraneSwaySpec{});
+        controller->apply(0.0, 0.0, 0.0);
+      }
+      REQUIRE(session.advanceTo(0.02 * k));
+      for (std::size_t i = 0; i < session.model().inputs.size(); ++i)
+        fastest = std::max(fastest, std::abs(session.inputRate(static_cast<int>(i))) /
+                                        session.model().inputs[i].signal->spec().max_speed);
+      if (session.time() > 30.0) largest = std::max(largest, (session.jointPosition(hook) - session.jointPosition(head)).head<2>().norm());
+    }
+    CHECK(fastest <= 1.0 + 1e-12);  // every drive within its speed limit all along
+    return largest;
+  };
+  const double open = swing(false), closed = swing(true);
+  INFO("swing from 30 to 40 s: open loop " << open << " m, with feedback " << closed << " m");
+  CHECK(open > 0.5);
+  CHECK(closed < 0.1 * open);
 }

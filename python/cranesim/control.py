@@ -54,3 +54,41 @@ class SwayAxis:
         """The largest |eigenvalue| of the sampled closed loop of the design model (< 1: stable;
         per sample)."""
         return self._core.closed_loop_spectral_radius
+
+
+class AntiSway:
+    """Anti-sway feedback on a crane driven step by step: a :class:`SwayAxis` across the boom
+    (by the slewing drive) and one along it (by the luffing winch), in the loop of a
+    :class:`cranesim.Simulation`.
+
+    The operator's (or a plan's) speeds are references the boom head follows; the feedback adds
+    what damps the swing. It reads what a crane measures: the drives' encoders, the hoist rope's
+    angles at the boom head and its length. The boom head's radius per metre of luffing rope is
+    tabulated at construction from the scene's equilibria over the luffing input's range (about
+    a second on the thesis crane).
+
+    Each sample, call :meth:`apply` with the reference speeds instead of
+    :meth:`Simulation.set_inputs`, then step the simulation by ``sample_time``.
+    """
+
+    def __init__(self, sim, across: SwayAxis | None = None, along: SwayAxis | None = None,
+                 slewing: str = "slewing", luffing_rope: str = "luffing_rope",
+                 hoist_rope: str = "hoist_rope", hook: str = "load.origin",
+                 sheave: str = "head.sheave"):
+        across = across or SwayAxis()
+        along = along or SwayAxis(angle=0.02, angle_rate=0.02)
+        self._sim = sim
+        self._core = _core.CraneSway(sim._core, slewing, luffing_rope, hoist_rope, hook, sheave,
+                                     across._core, along._core)
+
+    def apply(self, slewing: float = 0.0, luffing: float = 0.0, hoist: float = 0.0) -> np.ndarray:
+        """Sets the simulation's inputs for the next sample from the reference speeds: the
+        slewing rate (the slewing input's unit per s), the luffing and hoist ropes' speeds (m/s);
+        returns the commands as held, in the order of ``sim.inputs``."""
+        held = self._core.apply(slewing, luffing, hoist)
+        self._sim._commands = held.copy()
+        return held
+
+    def head_per_luff(self, length: float) -> float:
+        """The boom head's radius per metre of luffing rope at that luffing rope length."""
+        return self._core.head_per_luff(length)

@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "cranesim/control/crane_sway.hpp"
 #include "cranesim/control/sway_axis.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_writer.hpp"
@@ -252,6 +253,26 @@ NB_MODULE(_core, m) {
       .def_prop_ro("design_length", &SwayAxisController::designLength)
       .def_prop_ro("closed_loop_spectral_radius",
                    [](const SwayAxisController& c) { return c.closedLoop().eigenvalues().cwiseAbs().maxCoeff(); });
+
+  nb::class_<CraneSwayController>(m, "CraneSway", "Anti-sway feedback on a session (cranesim.control.AntiSway).")
+      .def(
+          "__init__",
+          [](CraneSwayController* self, Session& session, const std::string& slewing, const std::string& luffing_rope,
+             const std::string& hoist_rope, const std::string& hook, const std::string& sheave, const SwayAxisController& across,
+             const SwayAxisController& along) {
+            nb::gil_scoped_release released;
+            new (self) CraneSwayController(session, {slewing, luffing_rope, hoist_rope, hook, sheave, across.spec(), along.spec()});
+          },
+          nb::arg("session"), nb::arg("slewing"), nb::arg("luffing_rope"), nb::arg("hoist_rope"), nb::arg("hook"),
+          nb::arg("sheave"), nb::arg("across"), nb::arg("along"), nb::keep_alive<1, 2>())
+      .def(
+          "apply",
+          [](CraneSwayController& c, double slewing, double luffing, double hoist) {
+            const std::vector<double> held = c.apply(slewing, luffing, hoist);
+            return vector(held.data(), held.size());
+          },
+          nb::arg("slewing"), nb::arg("luffing"), nb::arg("hoist"))
+      .def("head_per_luff", &CraneSwayController::headPerLuff, nb::arg("length"));
 
   m.def("write_static",
         [](const std::string& path, const std::string& text, const std::string& name, const std::string& out) {

@@ -1,0 +1,52 @@
+#pragma once
+// Anti-sway feedback on a crane driven step by step: two SwayAxisControllers, across the boom by
+// the slewing drive and along it by the luffing winch, in the loop of a Session. The operator's
+// (or a plan's) speeds are the references the boom head follows; the feedback adds what damps
+// the swing. It reads what a crane measures: the drives' encoders (the inputs' values and rates),
+// the hoist rope's angles at the boom head and its length.
+
+#include <string>
+#include <vector>
+
+#include "cranesim/control/sway_axis.hpp"
+#include "cranesim/session/session.hpp"
+
+namespace cranesim {
+
+struct CraneSwaySpec {
+  std::string slewing = "slewing";            // input: the slewing drive, speed commands in the scene's unit per s
+  std::string luffing_rope = "luffing_rope";  // input: the luffing winch, m/s
+  std::string hoist_rope = "hoist_rope";      // input: the hoist winch, m/s (passed through)
+  std::string hook = "load.origin";           // joint at the rope's lower end
+  std::string sheave = "head.sheave";         // joint at its upper end, on the boom head
+  SwayAxisSpec across{}, along{.angle = 0.02, .angle_rate = 0.02};
+};
+
+class CraneSwayController {
+ public:
+  /// Finds the inputs and joints (std::invalid_argument naming what is missing) and tabulates the
+  /// boom head's radius per metre of luffing rope from the scene's equilibria over the luffing
+  /// input's range (its limits, or ±2 m about its value). The head's reference is where it is now.
+  CraneSwayController(Session& session, const CraneSwaySpec& spec);
+
+  /// Sets the session's inputs for the next sample: the head follows the reference speeds (the
+  /// slewing rate in the slewing input's unit per s, the luffing rope's speed in m/s) while the
+  /// swing is damped; the hoist speed passes through. Returns the commands as held, in the order of
+  /// the session's inputs (clipped to their limits).
+  std::vector<double> apply(double slewing_speed, double luffing_speed, double hoist_speed);
+
+  /// The boom head's radius per metre of luffing rope at luffing rope length `length` (the table).
+  double headPerLuff(double length) const;
+  const SwayAxisController& across() const { return across_; }
+  const SwayAxisController& along() const { return along_; }
+
+ private:
+  Session& session_;
+  int slewing_, luffing_, hoist_, hook_, sheave_;
+  double slewing_unit_;  // rad per unit of the slewing input (π/180 for degrees)
+  SwayAxisController across_, along_;
+  std::vector<double> table_length_, table_ratio_;  // dR/dl at luffing rope lengths
+  double slewing_reference_, luffing_reference_;    // where the head should be, in the inputs' values
+};
+
+}  // namespace cranesim

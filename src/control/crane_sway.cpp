@@ -1,0 +1,103 @@
+#include "cranesim/control/crane_sway.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "cranesim/model/compile.hpp"
+#include "cranesim/solvers/scene_equilibrium.hpp"
+
+namespace cranesim {
+namespace {
+
+/// The drive's value per unit of input `index` (π/180 for a drive in degrees, else 1): its
+/// profile evaluated with a signal that holds 1.
+double inputUnit(const Model& model, int index) {
+  const ModelInput& input = model.inputs[static_cast<std::size_t>(index)];
+  for (const Constraint& c : model.constraints)
+    if (c.name == input.name && c.drive && c.drive->input()) {
+      Profile unit = *c.drive;
+      InputSpec spec = unit.input()->spec;
+      spec.value = 1.0;
+      unit.input()->signal = std::make_shared<InputSignal>(spec, 0.0);
+      return unit(0.0);
+    }
+  return 1.0;
+}
+
+/// The luffing rope's input spec in `scene`, to set its value.
+InputSpec& luffingSpec(Scene& scene, const std::string& rope) {
+  for (MemberSpec& m : scene.members)
+    if (m.name == rope && m.length && m.length->input()) return m.length->input()->spec;
+  throw std::invalid_argument(fmt::format("the luffing rope '{}' is not a rope length input", rope));
+}
+
+double horizontal(const Vec3& r) { return std::hypot(r.x(), r.y()); }
+
+}  // namespace
+
+CraneSwayController::CraneSwayController(Session& session, const CraneSwaySpec& spec)
+    : session_(session), slewing_(session.input(spec.slewing)), luffing_(session.input(spec.luffing_rope)),
+      hoist_(session.input(spec.hoist_rope)), hook_(session.joint(spec.hook)), sheave_(session.joint(spec.sheave)),
+      slewing_unit_(inputUnit(session.model(), slewing_)), across_(spec.across), along_(spec.along),
+      slewing_reference_(session.inputValue(slewing_)), luffing_reference_(session.inputValue(luffing_)) {
+  // dR/dl by central differences of the equilibria at the table's lengths ± 1 cm.
+  const InputSpec& luffing = session.model().inputs[static_cast<std::size_t>(luffing_)].signal->spec();
+  const double now = session.inputValue(luffing_);
+  const double low = std::isfinite(luffing.min) ? luffing.min : now - 2.0, high = std::isfinite(luffing.max) ? luffing.max : now + 2.0;
+  constexpr int kPoints = 7;
+  constexpr double kStep = 0.01;
+  Scene scene = session.scene();
+  const auto headRadius = [&](double length) {
+    luffingSpec(scene, spec.luffing_rope).value = length;
+    const Model model = compileModel(scene);
+    const Assembler assembler(model);
+    const StaticResult eq = sceneEquilibrium(scene, model, assembler, true);
+    return horizontal(model.jointFrame(eq.q.data(), model.findJoint(spec.sheave)).r);
+  };
+  for (int k = 0; k < kPoints; ++k) {
+    const double length = low + (high - low) * k / (kPoints - 1);
+    table_length_.push_back(length);
+    table_ratio_.push_back((headRadius(length + kStep) - headRadius(length - kStep)) / (2.0 * kStep));
+  }
+}
+
+double CraneSwayController::headPerLuff(double length) const {
+  const auto upper = std::upper_bound(table_length_.begin(), table_length_.end(), length);
+  if (upper == table_length_.begin()) return table_ratio_.front();
+  if (upper == table_length_.end()) return table_ratio_.back();
+  const std::size_t k = static_cast<std::size_t>(upper - table_length_.begin());
+  const double w = (length - table_length_[k - 1]) / (table_length_[k] - table_length_[k - 1]);
+  return (1.0 - w) * table_ratio_[k - 1] + w * table_ratio_[k];
+}
+
+std::vector<double> CraneSwayController::apply(double slewing_speed, double luffing_speed, double hoist_speed) {
+  const double dt = across_.spec().sample_time;
+  const Vec3 head = session_.jointPosition(sheave_);
+  const double radius = horizontal(head);
+  const double length = (session_.jointPosition(hook_) - head).norm();
+  const Session::Sway sway = session_.sway(hook_, sheave_);
+
+  const double slewing = session_.inputValue(slewing_), slewing_rate = session_.inputRate(slewing_);
+  const double across = across_.command(length, radius * slewing_unit_ * (slewing - slewing_reference_),
+                                        radius * slewing_unit_ * slewing_rate, radius * slewing_unit_ * slewing_speed,
+                                        sway.across, sway.across_rate);
+  const double luffing = session_.inputValue(luffing_), luffing_rate = session_.inputRate(luffing_);
+  const double ratio = headPerLuff(luffing);
+  const double along = along_.command(length, ratio * (luffing - luffing_reference_), ratio * luffing_rate,
+                                      ratio * luffing_speed, sway.radial, sway.radial_rate);
+  slewing_reference_ += slewing_speed * dt;
+  luffing_reference_ += luffing_speed * dt;
+
+  std::vector<double> held(session_.model().inputs.size());
+  for (std::size_t k = 0; k < held.size(); ++k) held[k] = session_.model().inputs[k].signal->held();
+  held[static_cast<std::size_t>(slewing_)] = session_.setInput(slewing_, across / (radius * slewing_unit_));
+  held[static_cast<std::size_t>(luffing_)] = session_.setInput(luffing_, along / ratio);
+  held[static_cast<std::size_t>(hoist_)] = session_.setInput(hoist_, hoist_speed);
+  return held;
+}
+
+}  // namespace cranesim
