@@ -348,3 +348,25 @@ TEST_CASE("A session's loads and energies are those of statics and of the result
   CHECK_THROWS_WITH(session.constraint("hok"), Catch::Contains("did you mean 'hook'"));
   CHECK_THROWS_WITH(session.ropeTensions("hoist"), Catch::Contains("hoist_rope"));
 }
+
+TEST_CASE("Commands at times summed from a sample period pass a breakpoint within rounding of them",
+          "[session]") {
+  // A load that gusts from 2 s to 5 s: breakpoints at 2 and 5 s, which a caller adding 0.02 s to
+  // the time reaches within rounding (1.9999999999999998 s), not exactly.
+  Scene scene = readScene(kCraneInputs);
+  LoadSpec gust;
+  gust.name = "gust";
+  gust.joint = "load.origin";
+  gust.force = Vec3(0.0, 5e4, 0.0);
+  gust.scale = Profile(CosineFullProfile{0.0, 1.0, 2.0, 5.0});
+  scene.loads.push_back(gust);
+  Session session(scene);
+  double t = 0.0;
+  for (int k = 0; k < 300; ++k) {
+    t += 0.02;
+    REQUIRE(session.advanceTo(t));
+    REQUIRE(session.time() == Approx(t).margin(1e-12));
+  }
+  CHECK(session.outcome().statistics.restarts == 2);
+  CHECK(std::abs(session.jointPosition(session.joint("load.origin")).y()) > 0.05);  // the gust pushed the load
+}

@@ -39,6 +39,9 @@ int reparameterise(const Model& model, double* q) {
   return changed;
 }
 
+/// Times closer than this are the same time to the integrator (IDAS refuses to step shorter).
+double roundingOf(double t) { return 1e-12 * std::max(1.0, std::abs(t)); }
+
 }  // namespace
 
 Simulation::Simulation(const Assembler& assembler, const DynamicState& initial, SampleSink& sink)
@@ -64,7 +67,10 @@ bool Simulation::advanceTo(double t, const SimulationControl& control) {
   bool going = true;
   long taken = 0;
   double longest = 0.0, last = 0.0;  // longest: of the steps before the last, which lands on t
-  while (going && t_ < target) {
+  // With inputs, a target within rounding of where the run is (a caller's sum of sample times)
+  // is reached: no integrator can step that far.
+  const auto reached = [&] { return t_ >= target || (stops_at_targets_ && target - t_ <= roundingOf(target)); };
+  while (going && !reached()) {
     const double before = t_;
     going = step(target, control);
     ++taken;
@@ -72,7 +78,7 @@ bool Simulation::advanceTo(double t, const SimulationControl& control) {
     last = t_ - before;
   }
   if (stops_at_targets_ && going) countSteps(taken, target - from, longest);
-  if (going && t_ >= t_end) {
+  if (going && (t_ >= t_end || (stops_at_targets_ && target == t_end && reached()))) {
     stopped_ = complete_ = true;
     going = false;
   }
@@ -198,9 +204,16 @@ bool Simulation::step(double target, const SimulationControl& control) {
   const double t_end = model.solver.t_end, dt_out = model.output.interval;
   const double t_break = next_break_ < breakpoints_.size() ? breakpoints_[next_break_] : t_end;
   const bool to_target = stops_at_targets_ && target < t_break;
-  const StepOutcome step = stepper_->step(to_target ? target : t_break);
+  // A breakpoint within rounding of where the run is (reached by a sum of sample times) is passed
+  // where the run is: no integrator can step that far.
+  const bool on_break = !to_target && t_break - t_ <= roundingOf(t_break);
+  StepOutcome step;
+  if (on_break)
+    step.reached_stop = true;
+  else
+    step = stepper_->step(to_target ? target : t_break);
   if (!step.failure.empty()) return stop(fmt::format("solver failure at t = {:.6g} s: {}", t_, step.failure));
-  const double t_ret = stepper_->time();
+  const double t_ret = on_break ? t_ : stepper_->time();
   // Samples up to t_ret, interpolated within the step; the last one exactly at t_end.
   std::array<double, WorkTerms::kCount> work{};
   const double eps = 1e-12 * std::max(1.0, std::abs(t_ret));
