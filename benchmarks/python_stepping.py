@@ -62,7 +62,7 @@ def python_run(t_end, dt=0.02):
     for k in range(int(round(t_end / dt))):
         t = sim.time
         r, hook_r = sim.joint_position(head), sim.joint_position(hook)
-        radius = math.hypot(r[0], r[1])
+        radius = math.sqrt(r[0] * r[0] + r[1] * r[1])  # as the C++ loop rounds it (not hypot)
         across = (-r[1] / radius, r[0] / radius)
         sway = (hook_r[0] - r[0]) * across[0] + (hook_r[1] - r[1]) * across[1]  # across the boom
         commands[order[0]] = trapezoid_speed(t, 45, 10, 20, 5, 5) + 0.44 * sway / radius * 180.0 / math.pi

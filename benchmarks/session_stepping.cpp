@@ -63,7 +63,7 @@ Commands combinedMotion(const Session& s, int hook, int head) {
   static const TrapezoidProfile hoist{53.9937, -20, 0, 40, 5, 5}, slewing{0, 45, 10, 20, 5, 5},
       luffing{7.0608, 5, 20, 20, 5, 5};
   const Vec3 r = s.jointPosition(head);
-  const double radius = std::hypot(r.x(), r.y());
+  const double radius = std::sqrt(r.x() * r.x() + r.y() * r.y());  // as python_stepping.py rounds it
   const Vec3 across(-r.y() / radius, r.x() / radius, 0.0);
   const double sway = (s.jointPosition(hook) - r).dot(across);
   constexpr double c = 0.44;

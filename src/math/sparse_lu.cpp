@@ -71,6 +71,11 @@ void SparseLU::solve(double* x) {
   klu_solve(k.symbolic, k.numeric, k.n, 1, x, &k.common);
 }
 
+void SparseLU::forgetPivots() {
+  Klu& k = *klu_;
+  if (k.numeric) klu_free_numeric(&k.numeric, &k.common);
+}
+
 int SparseLU::pivotedFactorisations() const { return klu_->pivotings; }
 
 long SparseLU::factorNonZeros() const {

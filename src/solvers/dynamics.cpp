@@ -149,6 +149,8 @@ class IdasStepper final : public TimeStepper {
     check(IDAQuadReInit(mem_, yq_), "IDAQuadReInit");
   }
 
+  void forgetPivots() override { cranesim::forgetPivots(LS_); }
+
   void setWork(const double* work) override {
     std::copy_n(work, WorkTerms::kCount, N_VGetArrayPointer(yq_));
     check(IDAQuadReInit(mem_, yq_), "IDAQuadReInit");
@@ -159,8 +161,12 @@ class IdasStepper final : public TimeStepper {
     const double limit = h > 0.0 && scene_limit > 0.0 ? std::min(h, scene_limit) : h > 0.0 ? h : scene_limit;
     check(IDASetMaxStep(mem_, limit), "IDASetMaxStep");
     // IDAS holds the limit only where it raises the step; raising it whenever the error allows
-    // (not only when it allows doubling) brings a longer step down to the limit at once.
-    check(IDASetEtaFixedStepBounds(mem_, 1.0, 1.0), "IDASetEtaFixedStepBounds");
+    // (not only when it allows doubling) brings a longer step down to the limit at once, and
+    // raising it by as much as the error allows brings a step cut short back up to it at once.
+    // A step the error would shorten by less than half is kept: shortened by IDAS' 10 %, it
+    // leaves a sliver before the stop time and every advance after it takes one step more.
+    check(IDASetEtaFixedStepBounds(mem_, 0.5, 1.0), "IDASetEtaFixedStepBounds");
+    check(IDASetEtaMax(mem_, 10.0), "IDASetEtaMax");
   }
 
   /// IDAS' counters restart with IDAReInit; they are summed over the segments.

@@ -119,6 +119,11 @@ class GeneralizedAlphaStepper final : public TimeStepper {
     has_history_ = false;
   }
 
+  void forgetPivots() override {
+    lu_.forgetPivots();
+    factorised_ = false;
+  }
+
   void setWork(const double* work) override {
     std::copy(work, work + WorkTerms::kCount, work_.begin());
     work_old_ = work_;

@@ -107,7 +107,7 @@ long Simulation::fewestSteps(double span) const {
 }
 
 void Simulation::countSteps(long taken, double span, double longest) {
-  constexpr long kFirstWait = 64, kLongestWait = 1024, kSettle = 3;
+  constexpr long kFirstWait = 16, kLongestWait = 128, kSettle = 3;
   StepSharing& s = sharing_;
   if (s.settling > 0) {
     --s.settling;
@@ -132,8 +132,7 @@ void Simulation::countSteps(long taken, double span, double longest) {
   s.trial = 0;
   if (++s.clean < s.wait) return;
   s.clean = 0;
-  const double growth = assembler_.model().solver.max_step_growth;
-  const long fewer = std::max(fewestSteps(span), static_cast<long>(std::ceil(s.steps / growth - 1e-9)));
+  const long fewer = fewestSteps(span);
   if (fewer < s.steps) {
     s.before_trial = s.steps;
     s.steps = fewer;
@@ -152,6 +151,7 @@ SimulationState Simulation::save() {
   const Model& model = assembler_.model();
   const DynamicState s = stateOf(assembler_, t_, stepper_->state());
   restartAt(s);
+  stepper_->forgetPivots();
   ++counts_.restarts;
   SimulationState saved;
   saved.t = t_;
@@ -180,6 +180,7 @@ void Simulation::restore(const SimulationState& saved) {
   s.q = saved.q;
   s.v = saved.v;
   restartAt(s);
+  stepper_->forgetPivots();
   stepper_->setWork(saved.work.data());
   ++counts_.restarts;
   t_ = saved.t;

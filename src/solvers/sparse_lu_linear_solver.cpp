@@ -54,6 +54,8 @@ int release(SUNLinearSolver S) {
 
 }  // namespace
 
+void forgetPivots(SUNLinearSolver solver) { content(solver).lu.forgetPivots(); }
+
 SUNLinearSolver sparseLuLinearSolver(SUNContext context) {
   SUNLinearSolver S = SUNLinSolNewEmpty(context);
   if (S == nullptr) throw std::bad_alloc();

@@ -28,6 +28,8 @@ class SparseLU {
   bool factorise(int n, const int* Ap, const int* Ai, const double* Ax);
   /// Solves A x = b in place (x holds b on entry) with the latest factorisation.
   void solve(double* x);
+  /// The next factorisation pivots anew, as a new SparseLU's first does; solve needs it first.
+  void forgetPivots();
   /// Factorisations with pivoting so far (the others reused the pivots before them).
   int pivotedFactorisations() const;
   /// Entries of the latest factors L and U (KLU's lnz + unz, diagonals included): the fill.

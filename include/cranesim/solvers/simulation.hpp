@@ -28,13 +28,13 @@ namespace cranesim {
 
 /// How a run with inputs divides each advance into equal steps (Simulation::limitSteps), no
 /// longer than solver.max_step: as many as the integrator's own step fits into one when it
-/// needed more (not counting the first advances after a restart), and after `wait` advances in a row that needed no more, as few as its step may
-/// grow to at once (solver.max_step_growth), to find out whether they do; a trial gets a few
-/// advances to settle, and one that fails goes back and doubles the wait.
+/// needed more (not counting the first advances after a restart), and after `wait` advances in
+/// a row that needed no more, as few as solver.max_step allows, to find out whether they do; a
+/// trial gets a few advances to settle, and one that fails goes back and doubles the wait.
 struct StepSharing {
   long steps = 1;
   long clean = 0;         // advances in a row that needed no more than `steps`
-  long wait = 64;
+  long wait = 16;
   long trial = 0;         // while trying fewer steps: the advances left to settle into them
   long before_trial = 1;  // the steps to go back to if the trial fails
   long settling = 3;      // advances left after a restart, whose short first steps do not count

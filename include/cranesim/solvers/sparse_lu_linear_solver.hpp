@@ -17,4 +17,7 @@ namespace cranesim {
 /// SUNLinSolFree.
 SUNLinearSolver sparseLuLinearSolver(SUNContext context);
 
+/// The solver's next setup pivots anew (SparseLU::forgetPivots).
+void forgetPivots(SUNLinearSolver solver);
+
 }  // namespace cranesim

@@ -55,6 +55,10 @@ class TimeStepper {
   /// Starts afresh from a consistent state (its accelerations and multipliers solved), keeping
   /// the work integrals and the statistics.
   virtual void restart(const DynamicState& s) = 0;
+  /// Right after a restart: the Newton matrix's next factorisation pivots anew, as a new
+  /// stepper's does, and not on the pivots of the run before (Simulation::save, restore), so
+  /// that a saved state goes on alike in this process and in any other.
+  virtual void forgetPivots() = 0;
   /// Replaces the work integrals (in the order of WorkTerms::toArray) right after a restart: a
   /// restored run's.
   virtual void setWork(const double* work) = 0;
