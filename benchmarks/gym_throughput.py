@@ -1,9 +1,10 @@
 """Throughput of the Gymnasium lift environment (cranesim/CraneLift-v0) on the condensed crane.
 
 Steps the environment with random actions (the roughest commands a learning agent sends: every
-drive's speed command jumps at every 20 ms step), on one process and in Gymnasium's
-AsyncVectorEnv on 1 and 2 worker processes. Reports environment steps per second (the median of --reps runs) and the scaling from
-1 to 2 workers.
+drive's speed command jumps at every 20 ms step), on one process, in Gymnasium's AsyncVectorEnv
+on 1 and 2 worker processes, and in cranesim.gym.ThreadedVectorEnv (2 and 4 environments on 2
+threads of one process). Reports environment steps per second (the median of --reps runs) and
+the scaling from 1 to 2 workers.
 
 Writes benchmarks/results/gym_throughput.csv.
 
@@ -37,8 +38,9 @@ def single(steps, seed):
     return steps / (time.perf_counter() - start)
 
 
-def vector(workers, steps, seed):
-    envs = gym.vector.AsyncVectorEnv([lambda: gym.make(ENV_ID) for _ in range(workers)])
+def vector(workers, steps, seed, threads=None):
+    fns = [lambda: gym.make(ENV_ID) for _ in range(workers)]
+    envs = cranesim.gym.ThreadedVectorEnv(fns, threads=threads) if threads else gym.vector.AsyncVectorEnv(fns)
     envs.action_space.seed(seed)
     envs.reset(seed=seed)
     envs.step(envs.action_space.sample())  # the workers' first step outside the timing
@@ -56,11 +58,14 @@ def main():
     parser.add_argument("--reps", type=int, default=3)
     parser.add_argument("-o", "--out", default=str(ROOT / "benchmarks" / "results" / "gym_throughput.csv"))
     args = parser.parse_args()
-    results = {"one process": [], "AsyncVectorEnv, 1 worker": [], "AsyncVectorEnv, 2 workers": []}
+    results = {"one process": [], "AsyncVectorEnv, 1 worker": [], "AsyncVectorEnv, 2 workers": [],
+               "ThreadedVectorEnv, 2 envs, 2 threads": [], "ThreadedVectorEnv, 4 envs, 2 threads": []}
     for rep in range(args.reps):
         results["one process"].append(single(args.steps, rep))
         results["AsyncVectorEnv, 1 worker"].append(vector(1, args.steps, rep))
         results["AsyncVectorEnv, 2 workers"].append(vector(2, args.steps, rep))
+        results["ThreadedVectorEnv, 2 envs, 2 threads"].append(vector(2, args.steps, rep, threads=2))
+        results["ThreadedVectorEnv, 4 envs, 2 threads"].append(vector(4, args.steps, rep, threads=2))
     rows = []
     for setup, rates in results.items():
         rate = statistics.median(rates)
@@ -71,7 +76,7 @@ def main():
         row["scaling_1_to_2"] = f"{scaling:.2f}"
     write_rows(args.out, rows)
     for row in rows:
-        print(f"{row['setup']:28} {row['steps_per_s']:>6} steps/s  ({row['real_time_factor']}× real time)")
+        print(f"{row['setup']:38} {row['steps_per_s']:>6} steps/s  ({row['real_time_factor']}× real time)")
     print(f"scaling from 1 to 2 workers: {scaling:.2f}   results: {args.out}")
 
 

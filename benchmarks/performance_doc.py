@@ -414,7 +414,7 @@ def session_stepping(r: Results) -> str:
                          for x in python])
     overhead = percent(num(python[0]["python_overhead"])) if python else "–"
     gym = r.csv("gym_throughput.csv")
-    gym_body = table(["setup", "environment steps per second", "real-time factor per process"],
+    gym_body = table(["setup", "environment steps per second", "simulated seconds per second, all environments"],
                      [[x["setup"], x["steps_per_s"], f"{x['real_time_factor']}×"] for x in gym])
     scaling = gym[0]["scaling_1_to_2"] if gym else "–"
     return f"""## Driving the crane step by step
@@ -437,8 +437,9 @@ The same feedback law in a Python loop over `cranesim.Simulation` against the C+
 {r.source("python3 benchmarks/python_stepping.py", "python_stepping.csv", python)}
 
 The Gymnasium environment `cranesim/CraneLift-v0` stepped with random actions (every drive's
-command jumps at every 20 ms step); from 1 to 2 worker processes the throughput grows
-{scaling}-fold.
+command jumps at every 20 ms step); from 1 to 2 worker processes of `AsyncVectorEnv` the
+throughput grows {scaling}-fold, and `cranesim.gym.ThreadedVectorEnv` steps its environments on
+the threads of one process, without the workers' messages.
 
 {gym_body}
 

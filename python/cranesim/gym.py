@@ -14,6 +14,10 @@
     observation, info = env.reset(seed=1)
     observation, reward, terminated, truncated, info = env.step(env.action_space.sample())
 
+Several environments on both cores of one process: :class:`ThreadedVectorEnv`::
+
+    envs = cranesim.gym.ThreadedVectorEnv([lambda: gym.make("cranesim/CraneLift-v0")] * 4)
+
 docs/python.md in the repository describes the spaces, the reward and the speed.
 """
 
@@ -21,12 +25,15 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from typing import Optional
 
 import gymnasium
 import numpy as np
 from gymnasium import spaces
+from gymnasium.vector import AutoresetMode, SyncVectorEnv
+from gymnasium.vector.utils import iterate
 
 from .simulation import Scene, Simulation
 
@@ -148,6 +155,44 @@ class CraneLiftEnv(gymnasium.Env):
         angles, rates = self.sim.sway(self._hook, self._sheave)
         return np.concatenate([hook - self._target, hook_v, angles, rates, self.sim.input_values(),
                                self.sim.input_rates()]).astype(np.float32)
+
+
+class _SteppedAhead(gymnasium.Wrapper):
+    """An environment whose next step may have been taken already, on another thread."""
+
+    def __init__(self, env: gymnasium.Env):
+        super().__init__(env)
+        self.ahead = None
+
+    def step(self, action):
+        result, self.ahead = self.ahead, None
+        return result if result is not None else self.env.step(action)
+
+
+class ThreadedVectorEnv(SyncVectorEnv):
+    """Gymnasium's :class:`~gymnasium.vector.SyncVectorEnv`, with the environments' steps taken on
+    ``threads`` threads (default: one per core) in the one process.
+
+    The crane's integration releases Python's lock, so the steps of several environments run on
+    several cores at once, without the processes, pipes and copies of
+    :class:`~gymnasium.vector.AsyncVectorEnv`; resets and the batching are SyncVectorEnv's. The
+    results are SyncVectorEnv's, bit for bit (each environment's run does not depend on the
+    others')."""
+
+    def __init__(self, env_fns: Sequence[Callable[[], gymnasium.Env]], threads: Optional[int] = None, **kwargs):
+        super().__init__([lambda fn=fn: _SteppedAhead(fn()) for fn in env_fns], **kwargs)
+        self._pool = ThreadPoolExecutor(threads or os.cpu_count() or 1)
+
+    def step(self, actions):
+        stepping = [(env, action) for k, (env, action) in enumerate(zip(self.envs, iterate(self.action_space, actions)))
+                    if not (self.autoreset_mode == AutoresetMode.NEXT_STEP and self._autoreset_envs[k])]
+        for (env, _), result in zip(stepping, self._pool.map(lambda pair: pair[0].env.step(pair[1]), stepping)):
+            env.ahead = result
+        return super().step(actions)
+
+    def close_extras(self, **kwargs):
+        self._pool.shutdown()
+        super().close_extras(**kwargs)
 
 
 gymnasium.register(id="cranesim/CraneLift-v0", entry_point="cranesim.gym:CraneLiftEnv")

@@ -334,3 +334,23 @@ def test_loads_and_energies_are_observed(crane):
     assert "hook" in crane.constraints and "load.origin" in crane.joints
     with pytest.raises(ValueError, match="did you mean 'hook'"):
         crane.constraint_load("hok")
+
+
+def test_the_threaded_vector_environment_is_the_synchronous_one_bit_for_bit():
+    import gymnasium as gym
+    import cranesim.gym
+
+    make = [lambda: gym.make("cranesim/CraneLift-v0", episode_time=1.0)] * 3  # truncated every 50 steps
+    synchronous, threaded = gym.vector.SyncVectorEnv(make), cranesim.gym.ThreadedVectorEnv(make, threads=2)
+    first, _ = synchronous.reset(seed=5)
+    assert np.array_equal(first, threaded.reset(seed=5)[0])
+    rng = np.random.default_rng(1)
+    resets = 0
+    for _ in range(120):
+        actions = rng.uniform(-1.0, 1.0, (3, 3)).astype(np.float32)
+        expected, got = synchronous.step(actions), threaded.step(actions)
+        for a, b in zip(expected[:4], got[:4]):
+            assert np.array_equal(a, b)
+        resets += int(got[3].sum())
+    assert resets >= 6  # through the autoresets
+    threaded.close()
