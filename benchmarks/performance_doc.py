@@ -447,6 +447,27 @@ the threads of one process, without the workers' messages.
 """
 
 
+def anti_sway(r: Results) -> str:
+    rows = r.csv("anti_sway.csv")
+    body = table(["case", "5–10 s after: open / closed loop", "last 10 s: open / closed loop", "less swing",
+                  "real-time factor open / closed"],
+                 [[x["case"], f"{metres(x['open_5_10_s_m'])} / {metres(x['closed_5_10_s_m'])}",
+                   f"{metres(x['open_last_10_s_m'])} / {metres(x['closed_last_10_s_m'])}",
+                   f"{100 * num(x['reduction_last_10_s']):.0f} %",
+                   f"{x['open_real_time_factor']}× / {x['closed_real_time_factor']}×"] for x in rows])
+    return f"""## Feedback against sway
+
+The condensed thesis crane at 50 Hz from Python, each case open loop and with
+`cranesim.control.AntiSway` ([feedback against sway](control.md)): the largest swing of the hook
+about the boom head from 5 to 10 s after the last stop of the lever (or the end of the gust), and
+over the last 10 s of the run. The cases are in the benchmark's docstring.
+
+{body}
+
+{r.source("python3 benchmarks/anti_sway.py", "anti_sway.csv", rows, "anti_sway.png")}
+"""
+
+
 def setup_times(r: Results) -> str:
     rows = r.csv("setup_times.csv")
     body = table(["step", "command", "wall", "detail"],
@@ -467,7 +488,8 @@ compile.
 
 
 SECTIONS = [combined_motion, fidelities, equilibrium_grid, map_parallel, jacobian_ratio, truss_reduction,
-            element_bending, slender_statics, element_vibration, pendulum_chain, session_stepping, setup_times]
+            element_bending, slender_statics, element_vibration, pendulum_chain, session_stepping, anti_sway,
+            setup_times]
 
 
 def render(results: Results) -> str:
