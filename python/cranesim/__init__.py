@@ -22,10 +22,10 @@ more, and docs/session.md what inputs are and what they cost.
 """
 
 from ._core import __version__
-from .analyses import modes, run, static
+from .analyses import modes, run, static, study
 from .errors import SceneError
 from .results import Results, ResultsError
 from .simulation import Simulation
 
-__all__ = ["Simulation", "run", "static", "modes", "Results", "ResultsError", "SceneError",
+__all__ = ["Simulation", "run", "static", "modes", "study", "Results", "ResultsError", "SceneError",
            "__version__"]

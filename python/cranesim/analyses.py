@@ -62,3 +62,18 @@ def modes(scene: Scene, count: int = 10, output: Output = None) -> Results:
     path = _output(scene, output, "_modes.h5")
     _core.write_modes(*scene_source(scene), count, path)
     return Results(path)
+
+
+def study(study_file: Union[str, os.PathLike], output: Output = None, jobs: int = 1,
+          resume: bool = False) -> Results:
+    """Runs a study file as ``crane-sim study`` does — its cases on ``jobs`` threads, finished
+    rows kept in a checkpoint, ``resume`` going on from it — and returns its case table opened
+    (default: ``<study stem>.h5`` in the working directory; docs/study-format.md). A bad study
+    raises :class:`cranesim.SceneError`; a case that fails is a row that says why, not an
+    exception. Ctrl-C acts when the study returns: for studies of hours, use the command line."""
+    path = os.fspath(study_file)
+    out = os.fspath(output) if output is not None else Path(path).stem + ".h5"
+    code = _core.run_study(path, out, jobs, resume)
+    if code != 0:
+        raise RuntimeError(f"the study {path} stopped (exit code {code}): its table {out} could not be written")
+    return Results(out)

@@ -18,6 +18,8 @@
 #include "cranesim/session/session.hpp"
 #include "cranesim/solvers/modes.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
+#include "cranesim/study/study.hpp"
+#include "cranesim/study/study_command.hpp"
 #include "cranesim/version.hpp"
 
 namespace nb = nanobind;
@@ -286,5 +288,16 @@ NB_MODULE(_core, m) {
         },
         nb::arg("path"), nb::arg("text"), nb::arg("name"), nb::arg("count"), nb::arg("out"),
         "The lowest `count` modes about the equilibrium written as `crane-sim modes` writes them.");
+  m.def("run_study",
+        [](const std::string& path, const std::string& out, int jobs, bool resume) {
+          read(path, [&] { return readStudy(path); });
+          const StudyCommand command{path, out, jobs, resume, true};
+          return read(path, [&] {
+            nb::gil_scoped_release released;
+            return runStudyCommand(command);
+          });
+        },
+        nb::arg("path"), nb::arg("out"), nb::arg("jobs"), nb::arg("resume"),
+        "`crane-sim study` on the study file at `path`; its exit code (0: every case computed).");
   m.attr("tension_points") = kTensionPoints;
 }

@@ -354,3 +354,16 @@ def test_the_threaded_vector_environment_is_the_synchronous_one_bit_for_bit():
         resets += int(got[3].sum())
     assert resets >= 6  # through the autoresets
     threaded.close()
+
+
+def test_a_study_writes_the_command_lines_table(tmp_path):
+    import h5py
+
+    study = ROOT / "configs" / "study_rope_pendulum.yaml"
+    crane_sim("study", study, "-o", tmp_path / "cli.h5", "--jobs", 2, "--quiet")
+    with cranesim.study(study, tmp_path / "py.h5", jobs=2) as table, h5py.File(tmp_path / "cli.h5") as cli:
+        for path in ("figures/ball_sway", "figures/hook_tension_max", "cases/steps", "parameters/bodies.ball.mass"):
+            assert np.array_equal(table.get(path), cli[path][()]), path
+    with pytest.raises(cranesim.SceneError) as error:
+        cranesim.study(ROOT / "tests" / "bad_studies" / "criterion_without_bound.yaml", tmp_path / "bad.h5")
+    assert error.value.line is not None and not (tmp_path / "bad.h5").exists()
