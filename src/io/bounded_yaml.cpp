@@ -85,17 +85,20 @@ std::optional<SourceLocation> flowNestingBeyondLimit(const std::string& text) {
 }  // namespace
 
 std::string readInputFile(const std::string& path, const std::string& what, const SourceLocation& location) {
+  // The file itself (an empty location) is named by whoever reports the error; a file another
+  // names (a base scene) is named here.
+  const std::string file = location.path.empty() && location.line == 0 ? what : fmt::format("{} '{}'", what, path);
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
-  if (error || !std::filesystem::exists(status)) throw SceneError(location, fmt::format("cannot open the {} '{}'", what, path));
+  if (error || !std::filesystem::exists(status)) throw SceneError(location, fmt::format("cannot open the {}", file));
   if (!std::filesystem::is_regular_file(status))
-    throw SceneError(location, fmt::format("the {} '{}' is not a regular file", what, path));
+    throw SceneError(location, fmt::format("the {} is not a regular file", file));
   const auto size = std::filesystem::file_size(path, error);
   if (!error && size > kMaxInputBytes)
-    throw SceneError(location, fmt::format("the {} '{}' has {} bytes, more than the {} any {} needs", what, path, size,
+    throw SceneError(location, fmt::format("the {} has {} bytes, more than the {} any {} needs", file, size,
                                            kMaxInputBytes, what));
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(location, fmt::format("cannot open the {} '{}'", what, path));
+  if (!in) throw SceneError(location, fmt::format("cannot open the {}", file));
   std::stringstream buffer;
   buffer << in.rdbuf();
   return buffer.str();

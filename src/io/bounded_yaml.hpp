@@ -20,8 +20,8 @@ inline constexpr std::size_t kMaxExpandedNodes = 1u << 20;  // the crane with it
 inline constexpr int kMaxNestingDepth = 64;                 // the crane: 7
 
 /// The text of the file at `path` (a scene, base scene or target: `what`). Throws SceneError
-/// at `location` (the file itself, or the `base` field naming it) when it cannot be read, is not
-/// a regular file or is too large.
+/// at `location` when it cannot be read, is not a regular file or is too large: the `base` field
+/// naming it, or an empty location for the file itself (the error's reporter names that file).
 std::string readInputFile(const std::string& path, const std::string& what, const SourceLocation& location);
 
 /// YAML::Load of `text`, then the node graph checked as above. Throws SceneError naming the

@@ -603,7 +603,7 @@ Scene parseScene(const std::string& text, const std::string& path) {
 }
 
 Scene readScene(const std::string& path) {
-  return parseScene(readInputFile(path, "scene file", {path, 0, 0}), path);
+  return parseScene(readInputFile(path, "scene file", {}), path);
 }
 
 }  // namespace cranesim

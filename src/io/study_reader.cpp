@@ -331,7 +331,7 @@ std::vector<double> Study::parameterValues(long index) const {
 Study readStudy(const std::string& path) {
   Study study;
   study.path = path;
-  study.text = readInputFile(path, "study file", {path, 0, 0});
+  study.text = readInputFile(path, "study file", {});
   const YAML::Node root = loadBoundedYaml(study.text);
   const YamlField f(root, "");
   if (!f.isMap()) f.fail("a study file is a mapping (scene, analysis, parameters, figures, …)");
@@ -343,7 +343,7 @@ Study readStudy(const std::string& path) {
   Scene scene;
   try {
     const auto validate = [](const ComposedScene& base, const std::string& base_path) { sceneFromComposed(base, base_path); };
-    source->base = composeScene(readInputFile(study.scene_path, "scene file", {study.scene_path, 0, 0}), study.scene_path, validate);
+    source->base = composeScene(readInputFile(study.scene_path, "scene file", {}), study.scene_path, validate);
     scene = sceneFromComposed(source->base, study.scene_path);
   } catch (const SceneError& e) {
     scene_field.fail(fmt::format("in the scene '{}': {}", study.scene_path, e.what()));

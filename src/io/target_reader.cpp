@@ -176,7 +176,7 @@ void readTrajectory(const YamlField& f, TargetSpec& t) {
 }  // namespace
 
 TargetSpec readTarget(const std::string& path) {
-  const std::string text = readInputFile(path, "target file", {path, 0, 0});
+  const std::string text = readInputFile(path, "target file", {});
   const YAML::Node root = loadBoundedYaml(text);
   const YamlField f(root, "");
   // An empty document has no mark of its own: the defect is the file from its first line on.

@@ -9,7 +9,10 @@ std::string SourceLocation::describe() const {
   return path.empty() ? "<document>" : path;
 }
 
+// A location with neither a path nor a line is the input file itself, which whoever reports the
+// error names.
 SceneError::SceneError(SourceLocation where, const std::string& message)
-    : std::runtime_error(fmt::format("{}: {}", where.describe(), message)), where_(std::move(where)) {}
+    : std::runtime_error(where.path.empty() && where.line == 0 ? message : fmt::format("{}: {}", where.describe(), message)),
+      where_(std::move(where)) {}
 
 }  // namespace cranesim
