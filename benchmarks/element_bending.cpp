@@ -29,6 +29,7 @@
 
 #include "cranesim/solvers/statics.hpp"
 #include "end_moment_arc.hpp"
+#include "run_statistics.hpp"
 
 namespace {
 
@@ -64,11 +65,7 @@ Solve solveOnce(const Model& model, const VecX& q_start) {
   return s;
 }
 
-double median(std::vector<double> x) {
-  std::sort(x.begin(), x.end());
-  const std::size_t n = x.size();
-  return n == 0 ? kNaN : n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
+using cranesim_bench::median;
 
 std::string num(double x) { return std::isnan(x) ? std::string("nan") : fmt::format("{:.6g}", x); }
 

@@ -31,6 +31,7 @@
 #include "cranesim/model/compile.hpp"
 #include "cranesim/solvers/dynamics.hpp"
 #include "cranesim/solvers/initial_conditions.hpp"
+#include "run_statistics.hpp"
 
 namespace {
 
@@ -143,13 +144,7 @@ double tipError(const Run& run, const Run& ref) {
   return worst;
 }
 
-double median(std::vector<double> x) {
-  x.erase(std::remove_if(x.begin(), x.end(), [](double v) { return std::isnan(v); }), x.end());
-  if (x.empty()) return kNaN;
-  std::sort(x.begin(), x.end());
-  const std::size_t n = x.size();
-  return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
+using cranesim_bench::median;
 
 std::string num(double x) { return std::isnan(x) ? std::string("nan") : fmt::format("{:.6g}", x); }
 

@@ -30,6 +30,7 @@
 #include "cranesim/model/compile.hpp"
 #include "cranesim/solvers/dynamics.hpp"
 #include "cranesim/solvers/initial_conditions.hpp"
+#include "run_statistics.hpp"
 
 namespace {
 
@@ -170,13 +171,7 @@ double energyDrift(const RunResult& run) {
   return worst / run.energy_scale;
 }
 
-double median(std::vector<double> x) {
-  x.erase(std::remove_if(x.begin(), x.end(), [](double v) { return std::isnan(v); }), x.end());
-  if (x.empty()) return kNaN;
-  std::sort(x.begin(), x.end());
-  const std::size_t n = x.size();
-  return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
+using cranesim_bench::median;
 
 std::string num(double x) { return std::isnan(x) ? std::string("nan") : fmt::format("{:.6g}", x); }
 

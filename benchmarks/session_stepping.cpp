@@ -28,6 +28,7 @@
 
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/session/session.hpp"
+#include "run_statistics.hpp"
 
 namespace {
 
@@ -159,10 +160,7 @@ double largestDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return a.size() == b.size() ? largest : std::numeric_limits<double>::quiet_NaN();
 }
 
-double median(std::vector<double> x) {
-  std::sort(x.begin(), x.end());
-  return x[x.size() / 2];
-}
+using cranesim_bench::median;
 
 }  // namespace
 

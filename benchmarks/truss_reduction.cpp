@@ -29,6 +29,7 @@
 #include "cranesim/solvers/modes.hpp"
 #include "cranesim/solvers/statics.hpp"
 #include "scene_fixtures.hpp"
+#include "run_statistics.hpp"
 
 namespace {
 
@@ -56,10 +57,7 @@ std::vector<double> parseList(const std::string& text) {
   return out;
 }
 
-double median(std::vector<double> x) {
-  std::sort(x.begin(), x.end());
-  return x.empty() ? kNaN : x.size() % 2 ? x[x.size() / 2] : 0.5 * (x[x.size() / 2 - 1] + x[x.size() / 2]);
-}
+using cranesim_bench::median;
 
 /// The type 2 section as one Timoshenko beam of `segments` elements with the truss' equivalent
 /// section: chords by the parallel-axis theorem, the lacing faces as shear webs (Bredt for the
