@@ -50,6 +50,19 @@ inline Vec3 equilibriumJointPosition(const std::string& yaml, const std::string&
 }
 
 /// The scene without gravity, with a force and a torque (inertial axes) on the joint boom.end.
+/// The thesis crane with its controls as inputs (crane_inputs.yaml) and a gust on its 390 t load:
+/// 50 kN across the boom, rising and falling from 2 s to 5 s (breakpoints at both).
+inline Scene craneInputsWithGust() {
+  Scene scene = loadScene("crane_inputs.yaml");
+  LoadSpec gust;
+  gust.name = "gust";
+  gust.joint = "load.origin";
+  gust.force = Vec3(0.0, 5e4, 0.0);
+  gust.scale = Profile(CosineFullProfile{0.0, 1.0, 2.0, 5.0});
+  scene.loads.push_back(gust);
+  return scene;
+}
+
 inline Scene withEndLoad(Scene scene, const Vec3& force, const Vec3& torque = Vec3::Zero()) {
   scene.gravity = Vec3::Zero();
   LoadSpec load;

@@ -16,6 +16,7 @@
 #include "cranesim/model/compile.hpp"
 #include "cranesim/session/session.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
+#include "scene_fixtures.hpp"
 
 using namespace cranesim;
 
@@ -353,14 +354,7 @@ TEST_CASE("Commands at times summed from a sample period pass a breakpoint withi
           "[session]") {
   // A load that gusts from 2 s to 5 s: breakpoints at 2 and 5 s, which a caller adding 0.02 s to
   // the time reaches within rounding (1.9999999999999998 s), not exactly.
-  Scene scene = readScene(kCraneInputs);
-  LoadSpec gust;
-  gust.name = "gust";
-  gust.joint = "load.origin";
-  gust.force = Vec3(0.0, 5e4, 0.0);
-  gust.scale = Profile(CosineFullProfile{0.0, 1.0, 2.0, 5.0});
-  scene.loads.push_back(gust);
-  Session session(scene);
+  Session session(test::craneInputsWithGust());
   double t = 0.0;
   for (int k = 0; k < 300; ++k) {
     t += 0.02;

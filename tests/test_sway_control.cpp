@@ -8,9 +8,9 @@
 #include <memory>
 
 #include "cranesim/control/crane_sway.hpp"
-#include "cranesim/io/scene_reader.hpp"
 #include "cranesim/control/lqr.hpp"
 #include "cranesim/control/sway_axis.hpp"
+#include "scene_fixtures.hpp"
 
 using namespace cranesim;
 
@@ -150,13 +150,7 @@ TEST_CASE("The anti-sway feedback takes out most of the swing a gust leaves on t
           "[control][session]") {
   // 50 kN on the 390 t load, across the boom, rising and falling over 3 s (a gust); the swing from
   // 20 s to 40 s, open loop and with the feedback holding the boom head.
-  Scene scene = readScene(std::string(CRANESIM_SOURCE_DIR) + "/configs/crane_inputs.yaml");
-  LoadSpec gust;
-  gust.name = "gust";
-  gust.joint = "load.origin";
-  gust.force = Vec3(0.0, 5e4, 0.0);
-  gust.scale = Profile(CosineFullProfile{0.0, 1.0, 2.0, 5.0});
-  scene.loads.push_back(gust);
+  const Scene scene = test::craneInputsWithGust();
   const auto swing = [&](bool feedback) {
     Session session(scene);
     const int hook = session.joint("load.origin"), head = session.joint("head.sheave");

@@ -14,6 +14,7 @@
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/io/scene_reader.hpp"
+#include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/session/session.hpp"
 #include "cranesim/solvers/modes.hpp"
@@ -60,12 +61,6 @@ template <class Read> auto read(const std::string& file, const Read& read) -> de
 /// The scene file at `path`, or the YAML `text` standing for a file called `name`.
 Scene scene(const std::string& path, const std::string& text, const std::string& name) {
   return read(path.empty() ? name : path, [&] { return path.empty() ? parseScene(text, name) : readScene(path); });
-}
-
-std::vector<std::string> names(const auto& items) {
-  std::vector<std::string> out;
-  for (const auto& item : items) out.push_back(item.name);
-  return out;
 }
 
 /// The scene's static equilibrium (its solver.statics method), written to `out` as a one-sample
@@ -117,12 +112,7 @@ NB_MODULE(_core, m) {
       .def_prop_ro("name", [](const Session& s) { return s.model().name; })
       .def_prop_ro("time", &Session::time)
       .def_prop_ro("t_end", [](const Session& s) { return s.model().solver.t_end; })
-      .def_prop_ro("input_names",
-                   [](const Session& s) {
-                     std::vector<std::string> names;
-                     for (const ModelInput& input : s.model().inputs) names.push_back(input.name);
-                     return names;
-                   })
+      .def_prop_ro("input_names", [](const Session& s) { return namesOf(s.model().inputs); })
       .def_prop_ro("input_kinds",
                    [](const Session& s) {
                      std::vector<std::string> kinds;
@@ -211,8 +201,8 @@ NB_MODULE(_core, m) {
            "The solver's counters and the wall time spent advancing.")
       .def("joint_position", [](const Session& s, int j) { return vector(s.jointPosition(j)); }, nb::arg("joint"))
       .def("joint_velocity", [](const Session& s, int j) { return vector(s.jointVelocity(j)); }, nb::arg("joint"))
-      .def_prop_ro("joint_names", [](const Session& s) { return names(s.model().joints); })
-      .def_prop_ro("constraint_names", [](const Session& s) { return names(s.model().constraints); })
+      .def_prop_ro("joint_names", [](const Session& s) { return namesOf(s.model().joints); })
+      .def_prop_ro("constraint_names", [](const Session& s) { return namesOf(s.model().constraints); })
       .def("constraint", &Session::constraint, nb::arg("name"), "The index of the constraint named `name`.")
       .def("constraint_load",
            [](const Session& s, int c) {

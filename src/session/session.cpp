@@ -57,9 +57,7 @@ void Session::reset() { start(); }
 int Session::input(const std::string& name) const {
   const int k = model_->findInput(name);
   if (k >= 0) return k;
-  std::vector<std::string> names;
-  for (const ModelInput& input : model_->inputs) names.push_back(input.name);
-  throw std::invalid_argument(unknownName("input", name, names));
+  throw std::invalid_argument(unknownName("input", name, namesOf(model_->inputs)));
 }
 
 double Session::setInput(int index, double command) {
@@ -123,9 +121,7 @@ void Session::writeResults(const std::string& path) const {
 int Session::joint(const std::string& name) const {
   const int j = model_->findJoint(name);
   if (j >= 0) return j;
-  std::vector<std::string> names;
-  for (const Joint& joint : model_->joints) names.push_back(joint.name);
-  const std::string closest = closestName(name, names);
+  const std::string closest = closestName(name, namesOf(model_->joints));
   throw std::invalid_argument(fmt::format("no joint named '{}'{}", name, closest.empty() ? "" : fmt::format(" (did you mean '{}'?)", closest)));
 }
 
@@ -172,9 +168,7 @@ Session::Sway Session::sway(int hanging, int pivot) const {
 int Session::constraint(const std::string& name) const {
   const int c = model_->findConstraint(name);
   if (c >= 0) return c;
-  std::vector<std::string> names;
-  for (const Constraint& constraint : model_->constraints) names.push_back(constraint.name);
-  throw std::invalid_argument(unknownName("constraint", name, names));
+  throw std::invalid_argument(unknownName("constraint", name, namesOf(model_->constraints)));
 }
 
 const DynamicState& Session::motion() const {
@@ -184,8 +178,8 @@ const DynamicState& Session::motion() const {
   motion_.t = observed_t_;
   motion_.q = Eigen::Map<const VecX>(y, nq);
   motion_.v = Eigen::Map<const VecX>(y + assembler_->vOffset(), nv);
-  const ConstraintState constraints = assembler_->constraints(motion_.t, y, y + assembler_->vOffset());
-  accelerations_.solve(*assembler_, motion_, constraints, Limit::Left);
+  motion_constraints_ = assembler_->constraints(motion_.t, y, y + assembler_->vOffset());
+  accelerations_.solve(*assembler_, motion_, motion_constraints_, Limit::Left);
   motion_known_ = true;
   return motion_;
 }
@@ -193,8 +187,7 @@ const DynamicState& Session::motion() const {
 ConstraintReaction Session::constraintLoad(int constraint) const {
   const Constraint& c = model_->constraints.at(static_cast<std::size_t>(constraint));
   const DynamicState& s = motion();
-  const ConstraintState constraints = assembler_->constraints(s.t, s.q.data(), s.v.data());
-  return constraintReaction(*model_, c, constraints.G, s.q.data(), s.lambda.data());
+  return constraintReaction(*model_, c, motion_constraints_.G, s.q.data(), s.lambda.data());
 }
 
 std::vector<double> Session::ropeTensions(const std::string& rope) const {

@@ -14,4 +14,11 @@ std::size_t editDistance(const std::string& a, const std::string& b);
 /// (at most 2 edits, or a quarter of the name's length for long names); empty otherwise.
 std::string closestName(const std::string& name, const std::vector<std::string>& candidates);
 
+/// The names of named items (joints, constraints, inputs, …), in their order: the candidates.
+template <class Items> std::vector<std::string> namesOf(const Items& items) {
+  std::vector<std::string> names;
+  for (const auto& item : items) names.push_back(item.name);
+  return names;
+}
+
 }  // namespace cranesim

@@ -117,7 +117,8 @@ class Session {
   void start();
   void observed(double t);
   /// Accelerations and multipliers consistent with the state at time() (the saddle-point
-  /// system (4-3)), solved once per observed time, as the results file's are.
+  /// system (4-3)), solved once per observed time, as the results file's are; with them, the
+  /// constraints at that state (motion_constraints_).
   const DynamicState& motion() const;
 
   Scene scene_;
@@ -132,6 +133,7 @@ class Session {
   std::vector<double> observed_;
   mutable AccelerationSolver accelerations_;
   mutable DynamicState motion_;
+  mutable ConstraintState motion_constraints_;
   mutable bool motion_known_ = false;
 };
 
