@@ -66,6 +66,19 @@ def fail(script, message):
     return 2
 
 
+def machine():
+    """This machine as the benchmarks' tables name it: cores and CPU model (from /proc/cpuinfo)."""
+    import os
+
+    model = "unknown CPU"
+    try:
+        with open("/proc/cpuinfo") as f:
+            model = next((line.split(":", 1)[1].strip() for line in f if line.startswith("model name")), model)
+    except OSError:
+        pass
+    return f"{os.cpu_count()} cores, {model}"
+
+
 def write_rows(path, rows):
     """Writes dict rows (the first row's keys as the header) to `path`, making its directory."""
     Path(path).parent.mkdir(parents=True, exist_ok=True)

@@ -13,10 +13,6 @@ from .simulation import Scene, Simulation, scene_source
 
 Output = Optional[Union[str, os.PathLike]]
 
-# A run of a scene without inputs advances in pieces this long (s of simulated time), so that
-# Ctrl-C stops it between them; the integrator's steps do not depend on where it stops.
-_PIECE = 1.0
-
 
 def _output(scene: Scene, output: Output, suffix: str) -> str:
     """The file to write: `output`, or as crane-sim names it, <scene stem><suffix> here."""
@@ -33,15 +29,16 @@ def run(scene: Scene, output: Output = None) -> Results:
     returns it opened. A run the solver stops early is written marked incomplete (its
     ``status`` and ``message`` say why) and a warning goes to stderr.
 
-    A scene's inputs hold their scene values: to command them, use :class:`Simulation`.
+    A scene's inputs hold their scene values: to command them, use :class:`Simulation`. Ctrl-C
+    ends the run, writes what it computed marked interrupted, and raises KeyboardInterrupt.
     """
     path = _output(scene, output, ".h5")
     simulation = Simulation(scene, record=True)
-    if simulation.inputs:
+    try:
         simulation.advance_to(simulation.t_end)
-    else:
-        while simulation.advance_to(min(simulation.time + _PIECE, simulation.t_end)):
-            pass
+    except KeyboardInterrupt:
+        simulation.write_results(path)
+        raise
     return simulation.write_results(path)
 
 
@@ -70,7 +67,8 @@ def study(study_file: Union[str, os.PathLike], output: Output = None, jobs: int 
     rows kept in a checkpoint, ``resume`` going on from it — and returns its case table opened
     (default: ``<study stem>.h5`` in the working directory; docs/study-format.md). A bad study
     raises :class:`cranesim.SceneError`; a case that fails is a row that says why, not an
-    exception. Ctrl-C acts when the study returns: for studies of hours, use the command line."""
+    exception. Ctrl-C stops it as it stops ``crane-sim study``: the rows finished so far are
+    kept for ``resume=True``, and KeyboardInterrupt is raised."""
     path = os.fspath(study_file)
     out = os.fspath(output) if output is not None else Path(path).stem + ".h5"
     code = _core.run_study(path, out, jobs, resume)

@@ -23,6 +23,7 @@ docs/python.md in the repository describes the spaces, the reward and the speed.
 
 from __future__ import annotations
 
+import copy
 import math
 import os
 from collections.abc import Callable, Mapping, Sequence
@@ -66,7 +67,12 @@ class CraneLiftEnv(gymnasium.Env):
     slewed by up to ±``slew`` degrees, lifted by ``lift`` metres, moved out or in by up to
     ``reach`` metres from the load's starting place. With ``load_mass`` (kg, low and high) each
     reset also draws the mass of the body ``load_body`` (its inertia kept) and solves the
-    crane's equilibrium with it (about 0.1 s); on the default scene it is 390 t ± 20 %.
+    crane's equilibrium with it (about 0.04 s); on the default scene it is 390 t ± 20 %.
+
+    **Accuracy**: the crane is integrated at relative tolerance ``rtol`` (absolute ``rtol``/10),
+    in place of the scene's; ``None`` keeps the scene's. At the default 1e-3 a minute of random
+    actions on the default scene moves the load within 4 mm of its path at 1e-8, at 1.5 times the
+    speed of the scene's 1e-4.
     """
 
     metadata = {"render_modes": []}
@@ -74,7 +80,8 @@ class CraneLiftEnv(gymnasium.Env):
     def __init__(self, scene: Optional[Scene] = None, *, dt: float = 0.02, episode_time: float = 60.0,
                  hook: str = "load.origin", sheave: str = "head.sheave", slew: float = 40.0,
                  lift: tuple[float, float] = (2.0, 15.0), reach: float = 1.0, tolerance: float = 0.2,
-                 load_mass: Optional[tuple[float, float]] = None, load_body: str = "load"):
+                 load_mass: Optional[tuple[float, float]] = None, load_body: str = "load",
+                 rtol: Optional[float] = 1e-3):
         if scene is None:
             scene = default_scene()
             if load_mass is None:
@@ -83,7 +90,8 @@ class CraneLiftEnv(gymnasium.Env):
             raise ValueError("load_mass draws the load's mass into a scene file: give the scene as a path")
         self._scene, self._load_mass, self._load_body = scene, load_mass, load_body
         self._mass_now: Optional[float] = None
-        self.sim = Simulation(scene)
+        self._solver = {} if rtol is None else {"solver.rtol": rtol, "solver.atol": rtol / 10}
+        self.sim = Simulation(self._modified({}))
         self.dt, self.episode_time, self.tolerance = dt, episode_time, tolerance
         self.slew, self.lift, self.reach = slew, lift, reach
         self.action_names = self.sim.inputs
@@ -117,8 +125,7 @@ class CraneLiftEnv(gymnasium.Env):
         rng = self.np_random
         if self._load_mass is not None:
             self._mass_now = float(rng.uniform(*self._load_mass))
-            self.sim = Simulation({"base": os.path.abspath(os.fspath(self._scene)),
-                                   "modify": {f"bodies.{self._load_body}.mass": self._mass_now}})
+            self.sim = Simulation(self._modified({f"bodies.{self._load_body}.mass": self._mass_now}))
             self._start = self.sim.joint_position(self._hook)
         else:
             self.sim.reset()
@@ -149,6 +156,22 @@ class CraneLiftEnv(gymnasium.Env):
         truncated = not arrived and (self.sim.time >= self.episode_time - 1e-9 or not going)
         return observation, float(reward), arrived, truncated, {"target": self._target.copy()}
 
+    def _modified(self, changes: dict) -> Scene:
+        """The scene with the environment's tolerances and ``changes`` (``modify`` paths)."""
+        changes = {**self._solver, **changes}
+        if not changes:
+            return self._scene
+        if not isinstance(self._scene, Mapping):
+            return {"base": os.path.abspath(os.fspath(self._scene)), "modify": changes}
+        scene = copy.deepcopy(dict(self._scene))
+        if "base" in scene:
+            scene["modify"] = {**scene.get("modify", {}), **changes}
+        else:
+            for path, value in changes.items():  # only the solver's: load_mass needs a file
+                section, key = path.split(".", 1)
+                scene.setdefault(section, {})[key] = value
+        return scene
+
     # -- observations ------------------------------------------------------------------------
     def _observation(self) -> np.ndarray:
         hook, hook_v = self.sim.joint_position(self._hook), self.sim.joint_velocity(self._hook)
@@ -169,6 +192,11 @@ class _SteppedAhead(gymnasium.Wrapper):
         return result if result is not None else self.env.step(action)
 
 
+def _step_share(share):
+    """Steps each (environment, action) of ``share``: the environments and their results."""
+    return [(env, env.env.step(action)) for env, action in share]
+
+
 class ThreadedVectorEnv(SyncVectorEnv):
     """Gymnasium's :class:`~gymnasium.vector.SyncVectorEnv`, with the environments' steps taken on
     ``threads`` threads (default: one per core) in the one process.
@@ -181,13 +209,18 @@ class ThreadedVectorEnv(SyncVectorEnv):
 
     def __init__(self, env_fns: Sequence[Callable[[], gymnasium.Env]], threads: Optional[int] = None, **kwargs):
         super().__init__([lambda fn=fn: _SteppedAhead(fn()) for fn in env_fns], **kwargs)
-        self._pool = ThreadPoolExecutor(threads or os.cpu_count() or 1)
+        self._threads = threads or os.cpu_count() or 1
+        self._pool = ThreadPoolExecutor(self._threads)
 
     def step(self, actions):
         stepping = [(env, action) for k, (env, action) in enumerate(zip(self.envs, iterate(self.action_space, actions)))
                     if not (self.autoreset_mode == AutoresetMode.NEXT_STEP and self._autoreset_envs[k])]
-        for (env, _), result in zip(stepping, self._pool.map(lambda pair: pair[0].env.step(pair[1]), stepping)):
-            env.ahead = result
+        # One task per thread, each stepping its share of the environments in turn: every task
+        # handed to a thread costs a wake-up, which is dear beside a step of a fifth of a millisecond.
+        shares = [stepping[k::self._threads] for k in range(self._threads)]
+        for share in self._pool.map(_step_share, shares):
+            for env, result in share:
+                env.ahead = result
         return super().step(actions)
 
     def close_extras(self, **kwargs):

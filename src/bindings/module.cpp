@@ -7,7 +7,11 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <csignal>
+#include <future>
 
 #include "cranesim/control/crane_sway.hpp"
 #include "cranesim/control/sway_axis.hpp"
@@ -27,6 +31,10 @@ namespace nb = nanobind;
 using namespace cranesim;
 
 namespace {
+
+/// Simulated seconds beyond which an advance runs where Ctrl-C can stop it (a thread's start,
+/// tens of microseconds, is then small beside the integration).
+constexpr double kInterruptibleAdvance = 1.0;
 
 using Vector = nb::ndarray<nb::numpy, double, nb::shape<-1>>;
 using Commands = nb::ndarray<const double, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
@@ -56,6 +64,29 @@ template <class Read> auto read(const std::string& file, const Read& read) -> de
   } catch (const SceneError& e) {
     raiseSceneError(file, e);
   }
+}
+
+/// `work(stop)` run on a thread of its own while this one waits without Python's lock and
+/// checks for signals: Ctrl-C sets `stop` (the work ends at its next step, as a signal ends the
+/// command line's run), waits for the work to end, and raises KeyboardInterrupt.
+template <class Work> auto interruptibly(const Work& work) {
+  std::atomic<bool> stop{false};
+  auto done = std::async(std::launch::async, [&] { return work(stop); });
+  for (;;) {
+    {
+      nb::gil_scoped_release released;
+      if (done.wait_for(std::chrono::milliseconds(50)) == std::future_status::ready) break;
+    }
+    if (PyErr_CheckSignals() != 0) {
+      stop = true;
+      {
+        nb::gil_scoped_release released;
+        done.wait();
+      }
+      throw nb::python_error();
+    }
+  }
+  return done.get();
 }
 
 /// The scene file at `path`, or the YAML `text` standing for a file called `name`.
@@ -165,10 +196,14 @@ NB_MODULE(_core, m) {
            })
       .def("advance_to",
            [](Session& s, double t) {
+             if (t - s.time() > kInterruptibleAdvance)
+               return interruptibly([&](const std::atomic<bool>& stop) { return s.advanceTo(t, &stop); });
              nb::gil_scoped_release released;
              return s.advanceTo(t);
            },
-           nb::arg("t"), "Integrates to time t; False once the run has stopped (at t_end, or `message` says why).")
+           nb::arg("t"),
+           "Integrates to time t; False once the run has stopped (at t_end, or `message` says why). Ctrl-C during a "
+           "long advance ends the run, marked interrupted, and raises KeyboardInterrupt.")
       .def("reset", &Session::reset, "Back to the starting state, every input at rest.")
       .def("save", &Session::save, "The run's state now; the integrator restarts here.")
       .def("restore", &Session::restore, nb::arg("state"), "Goes on from a saved state of this scene.")
@@ -240,8 +275,8 @@ NB_MODULE(_core, m) {
           nb::arg("angle"), nb::arg("angle_rate"), nb::arg("command"), nb::arg("reschedule"))
       .def("command", &SwayAxisController::command, nb::arg("rope_length"), nb::arg("position_error"), nb::arg("speed"),
            nb::arg("reference_speed"), nb::arg("angle"), nb::arg("angle_rate"))
-      .def_prop_ro("gain",
-                   [](const SwayAxisController& c) { return vector(c.gain().data(), 4); })
+      .def_prop_ro(
+          "gain", [](const SwayAxisController& c) { return vector(c.gain().data(), 4); }, nb::rv_policy::move)
       .def_prop_ro("design_length", &SwayAxisController::designLength)
       .def_prop_ro("closed_loop_spectral_radius",
                    [](const SwayAxisController& c) { return c.closedLoop().eigenvalues().cwiseAbs().maxCoeff(); });
@@ -281,10 +316,11 @@ NB_MODULE(_core, m) {
   m.def("run_study",
         [](const std::string& path, const std::string& out, int jobs, bool resume) {
           read(path, [&] { return readStudy(path); });
-          const StudyCommand command{path, out, jobs, resume, true};
+          const std::atomic<int> interrupt_signal{SIGINT};
           return read(path, [&] {
-            nb::gil_scoped_release released;
-            return runStudyCommand(command);
+            return interruptibly([&](const std::atomic<bool>& stop) {
+              return runStudyCommand({path, out, jobs, resume, true, &stop, &interrupt_signal});
+            });
           });
         },
         nb::arg("path"), nb::arg("out"), nb::arg("jobs"), nb::arg("resume"),

@@ -77,8 +77,10 @@ double Session::inputRate(int index) const {
   return model_->inputs.at(static_cast<std::size_t>(index)).signal->derivatives(time())[1];
 }
 
-bool Session::advanceTo(double t) {
-  const bool going = simulation_->advanceTo(t);
+bool Session::advanceTo(double t, const std::atomic<bool>* stop) {
+  SimulationControl control;
+  control.stop_requested = stop;
+  const bool going = simulation_->advanceTo(t, control);
   // At t, or where the run stopped before it; never back before an earlier advance's t.
   observed(std::max(observed_t_, std::min(std::min(t, model_->solver.t_end), simulation_->time())));
   interpolated_ = simulation_->time() > observed_t_;

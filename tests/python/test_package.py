@@ -147,6 +147,21 @@ def test_random_actions_run_without_an_exception():
     assert episodes >= 9
 
 
+def test_the_lift_environment_keeps_the_load_near_its_path_at_its_tolerance():
+    """5 s of random actions at the environment's rtol 1e-3 against the same at 1e-6: the load
+    within 2 mm (1.0 mm here; 3.8 mm over 10 s against 1e-8, benchmarks/gym_throughput.py)."""
+    from cranesim.gym import CraneLiftEnv
+
+    actions = np.random.default_rng(5).uniform(-1, 1, size=(250, 3)).astype(np.float32)
+    paths = []
+    for rtol in (None, 1e-6):
+        env = CraneLiftEnv(load_mass=(390000.6, 390000.6), **({} if rtol is None else {"rtol": rtol}))
+        env.reset(seed=5)
+        paths.append(np.array([env.step(a)[0][0:3] for a in actions]))
+    error = np.max(np.linalg.norm(paths[0] - paths[1], axis=1))
+    assert 1e-6 < error < 2e-3, error
+
+
 def run_example(name, *args):
     return subprocess.run([sys.executable, str(ROOT / "examples" / name), *args], capture_output=True, text=True,
                           check=True, timeout=600).stdout
@@ -367,3 +382,61 @@ def test_a_study_writes_the_command_lines_table(tmp_path):
     with pytest.raises(cranesim.SceneError) as error:
         cranesim.study(ROOT / "tests" / "bad_studies" / "criterion_without_bound.yaml", tmp_path / "bad.h5")
     assert error.value.line is not None and not (tmp_path / "bad.h5").exists()
+
+
+INTERRUPTED_AFTER_1_S = """
+import os, signal, sys, threading, time
+import cranesim
+analysis, source, out = sys.argv[1:4]
+threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT)).start()
+start = time.monotonic()
+try:
+    getattr(cranesim, analysis)(source, out)
+except KeyboardInterrupt:
+    print(time.monotonic() - start)
+"""
+
+
+def interrupted_after_1_s(analysis, source, out):
+    """cranesim.<analysis>(source, out) in a new process that sends itself SIGINT after 1 s: the
+    wall time from the call to KeyboardInterrupt (fails if it was not raised)."""
+    result = subprocess.run([sys.executable, "-c", INTERRUPTED_AFTER_1_S, analysis, str(source), str(out)],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0 and result.stdout.strip(), result.stderr
+    return float(result.stdout)
+
+
+def test_ctrl_c_stops_a_run_and_a_study_as_it_stops_the_command_line(tmp_path):
+    import h5py
+
+    scene = tmp_path / "long.yaml"  # about a minute of computing
+    scene.write_text(re.sub(r"(?m)^(\s+t_end:).*$", r"\1 1.0e4", (ROOT / "configs" / "pendulum.yaml").read_text()))
+    assert interrupted_after_1_s("run", scene, tmp_path / "long.h5") < 3.0
+    with h5py.File(tmp_path / "long.h5") as f:
+        assert f.attrs["status"] == "incomplete" and f.attrs["message"].startswith("interrupted at t = ")
+        assert f["time"].shape[0] > 10
+
+    study = tmp_path / "study.yaml"  # 6 cases of 8 s swings: several seconds
+    study.write_text((ROOT / "configs" / "study_rope_pendulum.yaml").read_text()
+                     .replace("scene: rope_pendulum.yaml", f"scene: {ROOT / 'configs' / 'rope_pendulum.yaml'}")
+                     .replace("values: [2]", "values: [8]"))
+    out = tmp_path / "study.h5"
+    assert interrupted_after_1_s("study", study, out) < 3.0
+    with h5py.File(out) as f:
+        assert f.attrs["status"] == "incomplete" and "--resume" in f.attrs["message"]
+        finished = list(f["cases/status"].asstr()[...]).count("complete")
+    assert finished < 6
+    cranesim.study(study, out, resume=True).close()
+    with h5py.File(out) as f:
+        assert list(f["cases/status"].asstr()[...]).count("complete") == 6
+
+
+def test_the_sway_axis_controller_commands_its_gains_feedback():
+    from cranesim.control import SwayAxis
+
+    axis = SwayAxis()
+    error = np.array([0.3, -0.1, 0.01, -0.002])  # position, speed, angle, angle rate
+    command = axis.command(40.0, *error)
+    assert axis.design_length == 40.0 and axis.gain.shape == (4,)
+    assert command == pytest.approx(-axis.gain @ error, rel=1e-13)
+    assert axis.closed_loop_spectral_radius < 1.0

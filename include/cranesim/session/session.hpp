@@ -4,6 +4,7 @@
 // sampling time and reads where it is. The scene, its model and its starting state are those of
 // `crane-sim run`; the integration is the Simulation that `crane-sim run` advances in one call.
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,8 +59,9 @@ class Session {
 
   /// Integrates to t; false once the run has stopped: at solver.t_end, or for the reason in
   /// outcome().message. With inputs the integrator stops exactly at t; without, it may step past
-  /// t, as `crane-sim run` does, and the observations are interpolated at t.
-  bool advanceTo(double t);
+  /// t, as `crane-sim run` does, and the observations are interpolated at t. Setting `*stop`
+  /// (from another thread) ends the run at its next step, as a signal ends `crane-sim run`.
+  bool advanceTo(double t, const std::atomic<bool>* stop = nullptr);
   bool step(double dt) { return advanceTo(time() + dt); }
   /// The time the observations are at: the last advance's t.
   double time() const { return observed_t_; }
