@@ -26,7 +26,7 @@ import numpy as np
 
 import cranesim
 from cranesim.control import AntiSway
-from benchmark_csv import pyplot, write_rows
+from benchmark_csv import machine, pyplot, write_rows
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "configs" / "crane_inputs.yaml"
@@ -96,6 +96,7 @@ def main():
             row[f"{label}_last_10_s_m"] = f"{swing[last].max():.4f}"
             row[f"{label}_real_time_factor"] = f"{t_end / stats['wall_time_s']:.0f}"
         row["reduction_last_10_s"] = f"{1.0 - float(row['closed_last_10_s_m']) / float(row['open_last_10_s_m']):.3f}"
+        row["machine"] = machine()
         rows.append(row)
         print(f"{name:22} 5-10 s after: open {row['open_5_10_s_m']} m, closed {row['closed_5_10_s_m']} m;  "
               f"last 10 s: open {row['open_last_10_s_m']} m, closed {row['closed_last_10_s_m']} m "

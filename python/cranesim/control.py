@@ -17,7 +17,9 @@ class SwayAxis:
     while it damps the swing, designed anew when the rope's length changes by more than
     ``reschedule`` (a fraction). The weights are Bryson's: the largest deviations accepted of
     the position (m), the speed (m/s), the rope's angle (rad) and its rate (rad/s), and of the
-    command (m/s).
+    command (m/s). ``measurement_cutoff`` (Hz; 0: none) passes the measured angle and its rate
+    through a second-order low-pass filter first, to keep a flexible boom's own modes out of the
+    feedback (:class:`AntiSway` uses 0.3 Hz on both axes).
 
     Each sample, :meth:`command` takes what the crane measures along the axis and returns the
     suspension point's speed command (m/s); mapping it to a drive (°/s of slewing, m/s of
@@ -26,9 +28,10 @@ class SwayAxis:
 
     def __init__(self, sample_time: float = 0.02, drive_lag: float = 0.1, gravity: float = 9.81,
                  position: float = 1.0, speed: float = 1.0, angle: float = 0.01,
-                 angle_rate: float = 0.01, command: float = 0.5, reschedule: float = 0.005):
+                 angle_rate: float = 0.01, command: float = 0.5, reschedule: float = 0.005,
+                 measurement_cutoff: float = 0.0):
         self._core = _core.SwayAxis(sample_time, drive_lag, gravity, position, speed, angle,
-                                    angle_rate, command, reschedule)
+                                    angle_rate, command, reschedule, measurement_cutoff)
 
     def command(self, rope_length: float, position_error: float, speed: float, angle: float,
                 angle_rate: float, reference_speed: float = 0.0) -> float:
@@ -75,8 +78,8 @@ class AntiSway:
                  slewing: str = "slewing", luffing_rope: str = "luffing_rope",
                  hoist_rope: str = "hoist_rope", hook: str = "load.origin",
                  sheave: str = "head.sheave"):
-        across = across or SwayAxis()
-        along = along or SwayAxis(angle=0.02, angle_rate=0.02)
+        across = across or SwayAxis(measurement_cutoff=0.3)
+        along = along or SwayAxis(angle=0.02, angle_rate=0.02, measurement_cutoff=0.3)
         self._sim = sim
         self._core = _core.CraneSway(sim._core, slewing, luffing_rope, hoist_rope, hook, sheave,
                                      across._core, along._core)

@@ -31,6 +31,10 @@ SwayAxisController::SwayAxisController(const SwayAxisSpec& spec) : spec_(spec) {
   positive(spec.angle, "angle deviation");
   positive(spec.angle_rate, "angular rate deviation");
   positive(spec.command, "command deviation");
+  if (spec.measurement_cutoff != 0.0) {
+    angle_filter_.emplace(spec.measurement_cutoff, spec.sample_time);
+    rate_filter_.emplace(spec.measurement_cutoff, spec.sample_time);
+  }
 }
 
 void SwayAxisController::design(double rope_length) {
@@ -49,6 +53,10 @@ double SwayAxisController::command(double rope_length, double position_error, do
                                    double angle, double angle_rate) {
   if (design_length_ == 0.0 || std::abs(rope_length - design_length_) > spec_.reschedule * design_length_)
     design(rope_length);
+  if (angle_filter_) {
+    angle = (*angle_filter_)(angle);
+    angle_rate = (*rate_filter_)(angle_rate);
+  }
   const Eigen::Vector4d error(position_error, speed - reference_speed, angle, angle_rate);
   return reference_speed - gain_.dot(error);
 }

@@ -19,7 +19,8 @@ struct CraneSwaySpec {
   std::string hoist_rope = "hoist_rope";      // input: the hoist winch, m/s (passed through)
   std::string hook = "load.origin";           // joint at the rope's lower end
   std::string sheave = "head.sheave";         // joint at its upper end, on the boom head
-  SwayAxisSpec across{}, along{.angle = 0.02, .angle_rate = 0.02};
+  // The boom's sideways mode (0.76 Hz) and its luffing modes stay out of the feedback: 0.3 Hz.
+  SwayAxisSpec across{.measurement_cutoff = 0.3}, along{.angle = 0.02, .angle_rate = 0.02, .measurement_cutoff = 0.3};
 };
 
 class CraneSwayController {

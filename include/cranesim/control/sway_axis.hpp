@@ -10,6 +10,9 @@
 
 #include <Eigen/Dense>
 
+#include <optional>
+
+#include "cranesim/control/low_pass.hpp"
 #include "cranesim/control/lqr.hpp"
 
 namespace cranesim {
@@ -23,6 +26,10 @@ struct SwayAxisSpec {
   double position = 1.0, speed = 1.0, angle = 0.01, angle_rate = 0.01, command = 0.5;
   /// The rope's length changes by more than this fraction before the gain is designed anew.
   double reschedule = 0.005;
+  /// Hz: a second-order low-pass filter on the measured angle and its rate, to keep a flexible
+  /// boom's sideways and luffing modes (near 1 Hz on the thesis crane) out of the feedback; 0:
+  /// none, the loop is the design's.
+  double measurement_cutoff = 0.0;
 };
 
 /// The model above, continuous: state [x, v, θ, θ̇], input u.
@@ -39,6 +46,7 @@ class SwayAxisController {
   /// The suspension point's speed command for the next sample: its reference speed, less the
   /// LQR feedback on [position − reference position, speed − reference speed, θ, θ̇]. Designs the
   /// gain for `rope_length` when it is the first call or the length has moved (spec.reschedule).
+  /// The angle and its rate pass the measurement filter first when the spec has one.
   double command(double rope_length, double position_error, double speed, double reference_speed, double angle,
                  double angle_rate);
 
@@ -56,6 +64,7 @@ class SwayAxisController {
   DiscreteSystem system_;
   Eigen::RowVector4d gain_ = Eigen::RowVector4d::Zero();
   double design_length_ = 0.0;
+  std::optional<LowPassFilter> angle_filter_, rate_filter_;
 };
 
 }  // namespace cranesim
