@@ -21,11 +21,26 @@ Whole analyses, as the command line runs them, return their results files as num
 more, and docs/session.md what inputs are and what they cost.
 """
 
+import importlib
+
 from ._core import __version__
-from .analyses import modes, run, static, study
 from .errors import SceneError
-from .results import Results, ResultsError
 from .simulation import Simulation
 
 __all__ = ["Simulation", "run", "static", "modes", "study", "Results", "ResultsError", "SceneError",
            "__version__"]
+
+# Loaded on first use: the results reader (and h5py with it) only when asked for, and
+# `python3 -m cranesim.results FILE` runs the reader's module once, not twice.
+_LAZY = {"run": "analyses", "static": "analyses", "modes": "analyses", "study": "analyses",
+         "Results": "results", "ResultsError": "results"}
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        return getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module 'cranesim' has no attribute '{name}'")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

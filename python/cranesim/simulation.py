@@ -3,13 +3,15 @@
 from __future__ import annotations
 
 import os
-from typing import Mapping, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import yaml
 
 from . import _core
-from .results import Results
+
+if TYPE_CHECKING:
+    from .results import Results
 
 Scene = Union[str, os.PathLike, Mapping]
 
@@ -220,6 +222,8 @@ class Simulation:
         ``record=True``), the same file ``crane-sim run`` writes, and returns it opened. The
         file is complete up to :attr:`time` unless the run failed. After a restore, the file
         holds the samples before the state's time and those recorded since."""
+        from .results import Results
+
         self._core.write_results(os.fspath(path))
         return Results(path)
 
