@@ -15,7 +15,9 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
+#include "cranesim/control/closed_loop.hpp"
 #include "cranesim/io/command_line.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_info.hpp"
@@ -140,9 +142,10 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   const Model model = compileModel(scene);
   requireResultsFit(scene, model);
   const Assembler assembler(model);
-  const DynamicState initial = runInitialState(scene, model, assembler, quiet);
-
-  ResultsRecorder recorder(assembler);
+  // A scene with feedback runs as a session that its controller steps (control/closed_loop.hpp).
+  const std::unique_ptr<Session> session = scene.feedback ? std::make_unique<Session>(scene, true) : nullptr;
+  ResultsRecorder open_loop(assembler);
+  const ResultsRecorder& recorder = session ? *session->recorder() : open_loop;
   const ResultsRecorder::Metadata meta{scene_path, scene.text,
                                        model.solver.formulation == Formulation::GGL ? "ggl" : "baumgarte",
                                        model.solver.t_end};
@@ -154,7 +157,8 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
     if (recorder.samples() > 0 && checkpoints.due()) checkpoints.write([&](double wall) { recorder.writeCheckpoint(out, meta, wall); });
   };
   control.stop_requested = &g_interrupted;
-  const SimulationOutcome outcome = simulate(assembler, initial, recorder, control);
+  const SimulationOutcome outcome = session ? runClosedLoop(*session, *scene.feedback, control)
+                                            : simulate(assembler, runInitialState(scene, model, assembler, quiet), open_loop, control);
   progress.finish();
   recorder.write(out, meta, outcome);
 

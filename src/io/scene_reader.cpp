@@ -1,15 +1,18 @@
 #include "cranesim/io/scene_reader.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <set>
 
 #include "bounded_yaml.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/rotation.hpp"
+#include "cranesim/model/closest_name.hpp"
 #include "member_ends.hpp"
 #include "profile_reader.hpp"
 #include "scene_composition.hpp"
@@ -533,13 +536,72 @@ std::vector<TippingLineSpec> readTippingLines(const YamlField& f, const std::vec
   return lines;
 }
 
+/// The scene's inputs (rope lengths, drives, load scales of `type: input`) and whether each
+/// takes speed commands.
+std::map<std::string, bool> sceneInputs(const Scene& s) {
+  std::map<std::string, bool> inputs;
+  const auto add = [&](const std::string& name, const Profile& p) {
+    if (p.input()) inputs[name] = p.input()->spec.command == InputCommand::Speed;
+  };
+  for (const MemberSpec& m : s.members)
+    if (m.length) add(m.name, *m.length);
+  for (const ConstraintSpec& c : s.constraints)
+    if (c.drive) add(c.name, *c.drive);
+  for (const LoadSpec& l : s.loads) add(l.name, l.scale);
+  return inputs;
+}
+
+/// `feedback: {type: anti_sway, sample_time, start, slewing, luffing_rope, hoist_rope, hook,
+/// sheave, references: {input: profile}}`, its inputs checked against the scene's.
+FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
+  f.allowKeys({"type", "sample_time", "start", "slewing", "luffing_rope", "hoist_rope", "hook", "sheave", "references"});
+  f.at("type").choice({"anti_sway"});
+  FeedbackSpec spec;
+  spec.where = f.where();
+  if (const auto h = f.find("sample_time")) spec.sample_time = h->within(1e-4, 10.0, "s");
+  if (const auto t = f.find("start")) spec.start = t->nonNegative();
+  const std::map<std::string, bool> inputs = sceneInputs(s);
+  std::vector<std::string> names;
+  for (const auto& [name, speed] : inputs) names.push_back(name);
+  // `name`, an input of the scene that takes speed commands; errors at `field`.
+  const auto speedInput = [&](const std::string& name, const YamlField& field) {
+    const auto it = inputs.find(name);
+    if (it == inputs.end()) {
+      const std::string closest = closestName(name, names);
+      field.fail(fmt::format("no input named '{}'{}", name,
+                             closest.empty() ? fmt::format("; the scene's inputs: {}", names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", ")))
+                                             : fmt::format(" (did you mean '{}'?)", closest)));
+    }
+    if (!it->second) field.fail(fmt::format("input '{}' takes value commands; the feedback commands speeds", name));
+  };
+  // Each role's input: named under its key, or the input of the role's name.
+  for (const auto& [key, name] : {std::pair<const char*, std::string*>{"slewing", &spec.slewing},
+                                  {"luffing_rope", &spec.luffing_rope}, {"hoist_rope", &spec.hoist_rope}}) {
+    const std::optional<YamlField> named = f.find(key);
+    if (named) *name = named->text();
+    speedInput(*name, named ? *named : f);
+  }
+  if (const auto x = f.find("hook")) spec.hook = x->text();
+  if (const auto x = f.find("sheave")) spec.sheave = x->text();
+  if (const auto refs = f.find("references"))
+    for (const std::string& name : refs->keys()) {
+      const YamlField reference = refs->at(name);
+      speedInput(name, reference);
+      if (reference.isMap() && (reference.has("unit") || (reference.has("type") && reference.at("type").text() == "input")))
+        reference.fail("a reference is a speed in its input's unit per second: no 'unit', no 'type: input'");
+      spec.references.emplace(name, readProfile(reference));
+    }
+  return spec;
+}
+
 }  // namespace
 
 Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) {
   const YAML::Node& root = composed.root;
   const YamlField f(root, "");
   if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
-  f.allowKeys({"name", "gravity", "ground", "bodies", "trusses", "members", "constraints", "loads", "solver", "output"});
+  f.allowKeys({"name", "gravity", "ground", "bodies", "trusses", "members", "constraints", "loads", "solver", "output",
+               "feedback"});
   Scene s;
   s.path = path;
   s.text = composed.text;
@@ -595,6 +657,7 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
     if (const auto cl = o->find("constraint_loads")) s.output.constraint_loads = readConstraintLoadNames(*cl, s.constraints);
     if (const auto tl = o->find("tipping_lines")) s.output.tipping_lines = readTippingLines(*tl, s.constraints);
   }
+  if (const auto fb = f.find("feedback")) s.feedback = readFeedback(*fb, s);
   return s;
 }
 

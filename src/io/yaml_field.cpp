@@ -179,6 +179,17 @@ std::vector<YamlField> YamlField::items() const {
   return out;
 }
 
+std::vector<std::string> YamlField::keys() const {
+  if (!node_.IsMap()) fail(fmt::format("expected a mapping, found {}", typeName(node_)));
+  rejectDuplicateKeys();
+  std::vector<std::string> out;
+  for (const auto& entry : node_) {
+    if (!entry.first.IsScalar()) fail("a key must be a name");
+    out.push_back(entry.first.Scalar());
+  }
+  return out;
+}
+
 std::string YamlField::choice(std::initializer_list<const char*> choices) const {
   const std::string value = text();
   std::string list;

@@ -54,6 +54,8 @@ class YamlField {
   std::array<Vec3, 2> tippingLine() const;
   std::vector<double> numbers() const;
   std::vector<YamlField> items() const;
+  /// The keys of a mapping (scalars, duplicates refused), in the document's order.
+  std::vector<std::string> keys() const;
   /// One of `choices`; fails listing them.
   std::string choice(std::initializer_list<const char*> choices) const;
 

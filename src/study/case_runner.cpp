@@ -3,7 +3,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
+#include "cranesim/control/closed_loop.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/model/compile.hpp"
@@ -21,16 +23,19 @@ void analyse(const Study& study, long index, const CaseOptions& options, CaseRow
   if (study.analysis == StudyAnalysis::Run) requireResultsFit(scene, model);
   const Assembler assembler(model);
   ResultsRecorder recorder(assembler);
+  std::unique_ptr<Session> session;  // a run with feedback (control/closed_loop.hpp) records in its session
   const bool keep = !options.results_path.empty();
   std::optional<ModalResult> modal;
   bool complete = false;
   if (study.analysis == StudyAnalysis::Run) {
-    const DynamicState initial = runInitialState(scene, model, assembler, true);
     SimulationControl control;
     control.stop_requested = options.stop;
-    const SimulationOutcome outcome = simulate(assembler, initial, recorder, control);
+    if (scene.feedback) session = std::make_unique<Session>(scene, true);
+    const SimulationOutcome outcome = session ? runClosedLoop(*session, *scene.feedback, control)
+                                              : simulate(assembler, runInitialState(scene, model, assembler, true), recorder, control);
+    const ResultsRecorder& run = session ? *session->recorder() : recorder;
     if (keep)
-      recorder.write(options.results_path,
+      run.write(options.results_path,
                      {scene.path, scene.text, model.solver.formulation == Formulation::GGL ? "ggl" : "baumgarte", model.solver.t_end},
                      outcome);
     complete = outcome.complete;
@@ -58,7 +63,7 @@ void analyse(const Study& study, long index, const CaseOptions& options, CaseRow
   }
   if (!complete) return;
   row.status = kCaseComplete;
-  row.figures = caseFigures(study, model, recorder, modal ? &*modal : nullptr);
+  row.figures = caseFigures(study, model, session ? *session->recorder() : recorder, modal ? &*modal : nullptr);
 }
 
 }  // namespace

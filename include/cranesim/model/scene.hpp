@@ -9,6 +9,7 @@
 #include "cranesim/elements/section.hpp"
 #include "cranesim/math/profile.hpp"
 #include "cranesim/math/types.hpp"
+#include "cranesim/model/feedback_spec.hpp"
 #include "cranesim/model/source_location.hpp"
 #include "cranesim/model/truss_geometry.hpp"
 
@@ -204,6 +205,7 @@ struct Scene {
   SolverSpec solver;
   OutputSpec output;
   SourceLocation where_solver;
+  std::optional<FeedbackSpec> feedback;
 };
 
 }  // namespace cranesim

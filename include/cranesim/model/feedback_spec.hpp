@@ -1,0 +1,25 @@
+#pragma once
+// A controller in the loop of a run (a scene's `feedback:`): every sample the operator's (or a
+// plan's) speed references reach the inputs, directly before `start` and through anti-sway
+// feedback on the boom head from then on (control/closed_loop.hpp runs it).
+
+#include <map>
+#include <string>
+
+#include "cranesim/math/profile.hpp"
+#include "cranesim/model/source_location.hpp"
+
+namespace cranesim {
+
+struct FeedbackSpec {
+  double sample_time = 0.02;  // s
+  double start = 0.0;         // s: the feedback holds the boom head's reference path from here
+  // The inputs and joints of the anti-sway controller (control/crane_sway.hpp).
+  std::string slewing = "slewing", luffing_rope = "luffing_rope", hoist_rope = "hoist_rope";
+  std::string hook = "load.origin", sheave = "head.sheave";
+  /// Speed references by input name, in the input's unit per second (absent: 0).
+  std::map<std::string, Profile> references;
+  SourceLocation where;
+};
+
+}  // namespace cranesim
