@@ -138,20 +138,27 @@ WindBodySpec readExposedBody(const YamlField& f, const Scene& scene) {
 }
 
 WindMemberSpec readExposedMember(const YamlField& f, const Scene& scene) {
-  f.allowKeys({"member", "diameter", "drag_coefficient"});
   WindMemberSpec m;
   m.where = f.where();
   const YamlField mf = f.at("member");
   m.member = mf.text();
   m.where_member = mf.where();
   const auto member = std::find_if(scene.members.begin(), scene.members.end(), [&](const MemberSpec& s) { return s.name == m.member; });
-  std::string eligible;
-  for (const MemberSpec& s : scene.members)
-    if (s.type != MemberType::Truss) eligible += (eligible.empty() ? "" : ", ") + s.name;
-  if (member == scene.members.end() || member->type == MemberType::Truss)
-    mf.fail(fmt::format("{} '{}': the wind acts on ropes and beam members (here: {}); lattice trusses are not exposed to it yet",
-                        member == scene.members.end() ? "no member" : "a truss member", m.member, eligible.empty() ? "none" : eligible));
+  if (member == scene.members.end()) {
+    std::string known;
+    for (const MemberSpec& s : scene.members) known += (known.empty() ? "" : ", ") + s.name;
+    mf.fail(fmt::format("no member '{}' (here: {})", m.member, known.empty() ? "none" : known));
+  }
   m.drag_coefficient = f.positive("drag_coefficient", 1.2);
+  if (member->type == MemberType::Truss) {
+    f.allowKeys({"member", "drag_coefficient", "shielding"});
+    if (const auto sf = f.find("shielding")) {
+      m.shielding = sf->number();
+      if (!(m.shielding > 0.0 && m.shielding <= 1.0)) sf->fail(fmt::format("a shielding factor lies in (0, 1], found {:g}", m.shielding));
+    }
+    return m;
+  }
+  f.allowKeys({"member", "diameter", "drag_coefficient"});
   if (const auto df = f.find("diameter")) {
     m.diameter = df->within(1e-4, 1e2, "m");
   } else {

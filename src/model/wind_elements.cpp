@@ -168,4 +168,115 @@ void LineWindElement::tangents(const Local& q, const Local& v, double t, double*
   }
 }
 
+LatticeWindElement::LatticeWindElement(std::shared_ptr<const WindField> wind, std::vector<Vec3> points,
+                                       std::vector<WindTube> tubes, double length, int gauss_points, int section1,
+                                       int section2, std::vector<int> q_indices, std::vector<int> v_indices)
+    : WindElement(std::move(wind), {section1, section2}, std::move(q_indices), std::move(v_indices)),
+      points_(std::move(points)), tubes_(std::move(tubes)), length_(length), rule_(gaussLegendre(gauss_points)),
+      half_density_(0.5 * wind_->spec().air_density) {}
+
+/// Per node: its place, velocity and wind, then the wind's force on it; per section the sums of
+/// the nodes' forces and moments (p × Rᵀ F = Rᵀ (R p × F)).
+template <class S>
+Eigen::Matrix<S, 12, 1> LatticeWindElement::generalizedForce(const Eigen::Matrix<S, 12, 1>& q, const Q12& v, double t) const {
+  using std::sqrt;
+  struct NodeState {
+    Vec3T<S> arm1, arm2, place, velocity, wind, force;
+  };
+  thread_local std::vector<NodeState> nodes;
+  nodes.resize(points_.size());
+  const Mat3T<S> R1 = rotationMatrix<S>(q.template segment<3>(3)), R2 = rotationMatrix<S>(q.template segment<3>(9));
+  const Vec3T<S> w1 = R1 * v.segment<3>(3).cast<S>(), w2 = R2 * v.segment<3>(9).cast<S>();  // inertial ω
+  for (std::size_t n = 0; n < points_.size(); ++n) {
+    const double s = points_[n].x() / length_;
+    NodeState& node = nodes[n];
+    node.arm1 = R1 * points_[n].cast<S>();
+    node.arm2 = R2 * (points_[n] - Vec3(length_, 0.0, 0.0)).cast<S>();
+    node.place = (q.template head<3>() + node.arm1) * S(1.0 - s) + (q.template segment<3>(6) + node.arm2) * S(s);
+    node.velocity = (v.head<3>().cast<S>() + w1.cross(node.arm1)) * S(1.0 - s) + (v.segment<3>(6).cast<S>() + w2.cross(node.arm2)) * S(s);
+    node.wind = wind_->velocity<S>(node.place, t);
+    node.force.setZero();
+  }
+  for (const WindTube& tube : tubes_) {
+    NodeState &a = nodes[tube.from], &b = nodes[tube.to];
+    const Vec3T<S> chord = b.place - a.place;
+    const S length = sqrt(chord.squaredNorm());
+    const Vec3T<S> axis = chord / length;
+    for (int g = 0; g < rule_.points; ++g) {
+      const double xi = rule_.xi[g];
+      const Vec3T<S> relative = (a.wind - a.velocity) * S(1.0 - xi) + (b.wind - b.velocity) * S(xi);
+      const Vec3T<S> f = quadraticDrag<S>(normalPart<S>(relative, axis), half_density_ * tube.drag_diameter) *
+                         (length * rule_.weight[g]);
+      a.force += f * (1.0 - xi);
+      b.force += f * xi;
+    }
+  }
+  Vec3T<S> F1 = Vec3T<S>::Zero(), F2 = Vec3T<S>::Zero(), M1 = Vec3T<S>::Zero(), M2 = Vec3T<S>::Zero();
+  for (std::size_t n = 0; n < points_.size(); ++n) {
+    const double s = points_[n].x() / length_;
+    const NodeState& node = nodes[n];
+    F1 += node.force * S(1.0 - s);
+    M1 += node.arm1.cross(node.force) * S(1.0 - s);
+    F2 += node.force * S(s);
+    M2 += node.arm2.cross(node.force) * S(s);
+  }
+  Eigen::Matrix<S, 12, 1> Q;
+  Q << F1, R1.transpose() * M1, F2, R2.transpose() * M2;
+  return Q;
+}
+
+Eigen::Matrix<double, 3, 12> LatticeWindElement::nodeVelocityMap(const Mat3& R1, const Mat3& R2, int n) const {
+  const double s = points_[n].x() / length_;
+  Eigen::Matrix<double, 3, 12> A;
+  A.block<3, 3>(0, 0) = (1.0 - s) * Mat3::Identity();
+  A.block<3, 3>(0, 3) = (s - 1.0) * R1 * skew<double>(points_[n]);
+  A.block<3, 3>(0, 6) = s * Mat3::Identity();
+  A.block<3, 3>(0, 9) = -s * R2 * skew<double>(Vec3(points_[n] - Vec3(length_, 0.0, 0.0)));
+  return A;
+}
+
+void LatticeWindElement::force(const Local& q, const Local& v, double t, double* Q) const {
+  Eigen::Map<Q12> out(Q);
+  out = generalizedForce<double>(q.head<12>(), v.head<12>(), t);
+}
+
+Vec3 LatticeWindElement::resultantForce(const ElementInput& in) const {
+  double Q[12];
+  force(gather(in.q, coordinateIndices()), gather(in.v, velocityIndices()), in.t, Q);
+  return in.load_factor * Vec3(Q[0] + Q[6], Q[1] + Q[7], Q[2] + Q[8]);
+}
+
+/// ∂Q/∂q by forward AD; ∂Q/∂dq: node n moves at A_n dq (nodeVelocityMap) and passes A_nᵀ F_n on,
+/// so a tube's Gauss point adds −½ρcd ℓ w_g N_i N_j A_iᵀ ∂(|u⊥|u⊥)/∂u⊥ (I − e eᵀ) A_j.
+void LatticeWindElement::tangents(const Local& q, const Local& v, double t, double* Qq, double* Qv) const {
+  Eigen::Matrix<D<12>, 12, 1> qd;
+  for (int k = 0; k < 12; ++k) qd(k) = seeded<double, 12>(q(k), k);
+  const Eigen::Matrix<D<12>, 12, 1> Qd = generalizedForce<D<12>>(qd, v.head<12>(), t);
+  Eigen::Map<Eigen::Matrix<double, 12, 12>> dq(Qq), dv(Qv);
+  for (int i = 0; i < 12; ++i) dq.row(i) = Qd(i).derivatives().transpose();
+
+  const Mat3 R1 = rotationMatrix<double>(Vec3(q.segment<3>(3))), R2 = rotationMatrix<double>(Vec3(q.segment<3>(9)));
+  const Q12 dqv = v.head<12>();
+  const auto place = [&](int n) {
+    const double s = points_[n].x() / length_;
+    return Vec3((1.0 - s) * (q.head<3>() + R1 * points_[n]) + s * (q.segment<3>(6) + R2 * (points_[n] - Vec3(length_, 0.0, 0.0))));
+  };
+  dv.setZero();
+  for (const WindTube& tube : tubes_) {
+    const Eigen::Matrix<double, 3, 12> A[2] = {nodeVelocityMap(R1, R2, tube.from), nodeVelocityMap(R1, R2, tube.to)};
+    const Vec3 a = place(tube.from), b = place(tube.to), chord = b - a;
+    const Vec3 ua = wind_->velocity<double>(a, t) - A[0] * dqv, ub = wind_->velocity<double>(b, t) - A[1] * dqv;
+    const double length = chord.norm();
+    const Vec3 axis = chord / length;
+    const Mat3 across = Mat3::Identity() - axis * axis.transpose();
+    for (int g = 0; g < rule_.points; ++g) {
+      const double xi = rule_.xi[g], N[2] = {1.0 - xi, xi};
+      const Vec3 u = across * (N[0] * ua + N[1] * ub);
+      const Mat3 block = -half_density_ * tube.drag_diameter * length * rule_.weight[g] * quadraticDragTangent(u) * across;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) dv += (N[i] * N[j]) * A[i].transpose() * block * A[j];
+    }
+  }
+}
+
 }  // namespace cranesim

@@ -116,11 +116,13 @@ struct WindBodySpec {
 };
 
 /// A member exposed to the wind: every element a cylinder of `diameter` (m) with drag
-/// coefficient c.
+/// coefficient c; of a truss member every tube, its drag times (1 + η)/2 for the shielding η of
+/// the lee side.
 struct WindMemberSpec {
   std::string member;
-  double diameter = 0.0;
+  double diameter = 0.0;  // not for a truss member: its tubes' own
   double drag_coefficient = 1.2;
+  double shielding = 1.0;  // η, truss members only
   SourceLocation where, where_member;
 };
 

@@ -97,4 +97,41 @@ class LineWindElement final : public WindElement {
   int second_;  // local offset of the second node
 };
 
+/// A tube of a lattice section between two of its nodes (LatticeWindElement's points), with its
+/// c d (m) times the shielding weight.
+struct WindTube {
+  int from = 0, to = 0;
+  double drag_diameter = 0.0;
+};
+
+/// The wind on a lattice section's tubes, placed by its two end-section frames. A node p of the
+/// truss (truss frame: x along the axis from end section 1 at x = 0 to end section 2 at
+/// x = length) moves as (1 − s)(r₁ + R₁ p₁) + s (r₂ + R₂ p₂), s = p_x/length, p₁ and p₂ its
+/// offsets from the two end sections: the nodes follow the sections rigidly and linearly in
+/// between, the same for every fidelity of the section. Each tube is a cylinder on the chord
+/// between its nodes as in LineWindElement, with the wind taken at the nodes and interpolated
+/// linearly (a tube is a few metres long); its forces go to its nodes and from them to the end
+/// sections' [ṙ, ω] with the same weights.
+class LatticeWindElement final : public WindElement {
+ public:
+  LatticeWindElement(std::shared_ptr<const WindField> wind, std::vector<Vec3> points, std::vector<WindTube> tubes,
+                     double length, int gauss_points, int section1, int section2, std::vector<int> q_indices,
+                     std::vector<int> v_indices);
+  Vec3 resultantForce(const ElementInput& in) const override;
+
+ private:
+  using Q12 = Eigen::Matrix<double, 12, 1>;
+  template <class S> Eigen::Matrix<S, 12, 1> generalizedForce(const Eigen::Matrix<S, 12, 1>& q, const Q12& v, double t) const;
+  /// The 3 × 12 map from the sections' [ṙ₁, ω₁, ṙ₂, ω₂] to the velocity of node n.
+  Eigen::Matrix<double, 3, 12> nodeVelocityMap(const Mat3& R1, const Mat3& R2, int n) const;
+  void force(const Local& q, const Local& v, double t, double* Q) const override;
+  void tangents(const Local& q, const Local& v, double t, double* Qq, double* Qv) const override;
+
+  std::vector<Vec3> points_;
+  std::vector<WindTube> tubes_;
+  double length_;
+  GaussRule rule_;
+  double half_density_;  // ½ ρ
+};
+
 }  // namespace cranesim
