@@ -11,8 +11,8 @@
 namespace cranesim {
 namespace {
 
-/// The crane industry's rule for a load's wind area when it is not known (manufacturers'
-/// load charts and Liebherr's training material): 1.2 m² per tonne of mass, with c = 1.2.
+/// The crane industry's rule for a load's wind area when it is not known (manufacturers' load
+/// charts: Liebherr's training material, FEM 5.016): 1.2 m² per tonne of mass, with c = 1.2.
 constexpr double kLoadWindAreaPerKilogram = 1.2e-3;
 
 /// EN 1991-1-4, Table 4.1: roughness length z₀ and minimum height z_min of terrain categories
