@@ -6,6 +6,7 @@
 #include "cranesim/assembly/constraint_evaluation.hpp"
 #include "cranesim/assembly/constraint_second_derivatives.hpp"
 #include "cranesim/math/rotation.hpp"
+#include "cranesim/model/wind_elements.hpp"
 
 namespace cranesim {
 namespace {
@@ -205,7 +206,7 @@ void Assembler::residual(double t, const double* y, const double* yp, double* re
     for (int k = 0; k < 3; ++k) res[n.q + 3 + k] = w(k) - v[n.v + 3 + k];
   }
 
-  const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left)};
+  const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left), load_factor_};
   residual_loop_.run(model_.elements.size(), [&](std::size_t e) {
     element_scratch_[e].resize(model_.elements[e]->size());
     model_.elements[e]->residual(in, element_scratch_[e].data());
@@ -263,7 +264,7 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
   // The elements', the constraints' and, as one more item, the nodes' and loads' blocks, each
   // into its own places in the buffer and on into the values that it alone reaches; then the
   // values that several reach, gathered from their blocks.
-  const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left)};
+  const ElementInput in{q, v, a, t, gravity(), mass_damping_, rates(Limit::Left), load_factor_};
   const std::size_t elements = model_.elements.size(), constraints = model_.constraints.size();
   const auto write = [&](const BufferRange& r) { jacobian_gather_.writeExclusive(r.begin, r.end, buffer, values); };
   jacobian_loop_.run(elements + constraints + 1, [&](std::size_t item) {
@@ -396,7 +397,7 @@ Eigen::SparseMatrix<double> Assembler::massMatrix(double t, const double* q) con
 VecX Assembler::appliedForces(double t, const double* q, const double* v, Limit limit) const {
   VecX zero_a = VecX::Zero(model_.nv);
   VecX F = VecX::Zero(model_.nv);
-  const ElementInput in{q, v, zero_a.data(), t, gravity(), mass_damping_, rates(limit)};
+  const ElementInput in{q, v, zero_a.data(), t, gravity(), mass_damping_, rates(limit), load_factor_};
   std::vector<double> local;
   for (const auto& e : model_.elements) {
     local.resize(e->size());
@@ -496,6 +497,15 @@ double Assembler::loadPower(double t, const double* q, const double* v) const {
   return p;
 }
 
+double Assembler::windPower(double t, const double* q, const double* v) const {
+  if (model_.wind_parts.empty()) return 0.0;
+  const ElementInput in{q, v, nullptr, t, gravity(), 0.0, ParameterRates::Left, load_factor_};
+  double p = 0.0;
+  for (const WindPart& part : model_.wind_parts)
+    for (int e : part.elements) p += dynamic_cast<const WindElement&>(*model_.elements[e]).power(in);
+  return p;
+}
+
 double Assembler::constraintResidual(double t, const double* y) const {
   double worst = 0.0;
   double phi[kMaxConstraintRows];
@@ -515,7 +525,7 @@ void Assembler::workPowers(double t, const double* y, double* out) const {
     winch += e->explicitTimePower(in);
     dissipated += e->dissipatedPower(in);
   }
-  WorkTerms{drivePower(t, q, y + lambdaOffset()), loadPower(t, q, v), winch, dissipated}.toArray(out);
+  WorkTerms{drivePower(t, q, y + lambdaOffset()), loadPower(t, q, v) + windPower(t, q, v), winch, dissipated}.toArray(out);
 }
 
 double Assembler::drivePower(double t, const double* q, const double* lambda) const {

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "cranesim/assembly/constraint_reaction.hpp"
+#include "cranesim/model/wind_elements.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 #include "cranesim/version.hpp"
 #include "hdf5_file.hpp"
@@ -62,7 +63,8 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
       body_omega_(assembler.model().nodes.size()),
       joint_position_(assembler.model().joints.size()),
       joint_rotation_(assembler.model().joints.size()),
-      section_forces_(assembler.model().section_force_groups.size()) {
+      section_forces_(assembler.model().section_force_groups.size()),
+      wind_forces_(assembler.model().wind_parts.size()) {
   const Model& model = assembler.model();
   for (const std::string& name : model.output.constraint_loads) load_constraints_.push_back(model.findConstraint(name));
   constraint_loads_.resize(load_constraints_.size());
@@ -80,7 +82,7 @@ void ResultsRecorder::keepBefore(double t) {
   if (kept == recorded) return;
   const auto keep = [&](std::vector<double>& series) { series.resize(series.size() / recorded * kept); };
   for (auto* group : {&body_position_, &body_rotation_, &body_velocity_, &body_omega_, &joint_position_, &joint_rotation_,
-                      &section_forces_, &constraint_loads_, &tipping_moments_})
+                      &section_forces_, &constraint_loads_, &tipping_moments_, &wind_forces_})
     for (std::vector<double>& series : *group) keep(series);
   for (auto* series : {&time_, &state_, &kinetic_, &potential_, &drive_work_, &load_work_, &winch_work_, &dissipated_,
                        &balance_, &residual_position_, &residual_velocity_})
@@ -146,6 +148,11 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
         append(section_forces_[g], forces, 12);
       }
     }
+  for (std::size_t p = 0; p < model.wind_parts.size(); ++p) {
+    Vec3 force = Vec3::Zero();
+    for (const int e : model.wind_parts[p].elements) force += dynamic_cast<const WindElement&>(*model.elements[e]).resultantForce(in);
+    append(wind_forces_[p], force.data(), 3);
+  }
   for (std::size_t k = 0; k < load_constraints_.size(); ++k) {
     const ConstraintReaction load = constraintReaction(model, model.constraints[load_constraints_[k]], C.G, q, motion.lambda.data());
     append(constraint_loads_[k], load.force.data(), 3);
@@ -182,12 +189,12 @@ double ResultsRecorder::relativeBalanceDrift() const {
 double ResultsRecorder::estimatedBytes(const Model& model, double samples) {
   // Per sample: the state and multipliers, every node's position, rotation, velocity and angular
   // velocity, every joint's position and rotation, time, energies and residuals (10 numbers),
-  // the recorded section forces; twice: recorded, then the file's image.
+  // the recorded section forces and wind forces; twice: recorded, then the file's image.
   double section_forces = 0.0;
   for (const Model::SectionForceGroup& g : model.section_force_groups) section_forces += (g.rope ? kTensionPoints : 12.0) * g.elements.size();
   const double per_sample = 8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 10.0 +
                                    section_forces + 6.0 * model.output.constraint_loads.size() +
-                                   static_cast<double>(model.output.tipping_lines.size()));
+                                   static_cast<double>(model.output.tipping_lines.size()) + 3.0 * model.wind_parts.size());
   return 2.0 * per_sample * samples;
 }
 
@@ -285,6 +292,8 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
         file.writeDoubles(path + "/forces", {N, hsize_t(group.elements.size()), 12}, section_forces_[g].data());
       file.writeStrings(path + "/element_nodes", {group.elements.size(), 2}, nodes);
     }
+    for (std::size_t p = 0; p < model.wind_parts.size(); ++p)
+      file.writeDoubles("/wind/" + model.wind_parts[p].name + "/force", {N, 3}, wind_forces_[p].data());
     for (std::size_t k = 0; k < load_constraints_.size(); ++k) writeConstraintLoads(file, model.constraints[load_constraints_[k]], constraint_loads_[k]);
     for (std::size_t k = 0; k < tipping_moments_.size(); ++k) {
       const TippingLineSpec& line = model.output.tipping_lines[k];

@@ -17,6 +17,7 @@
 #include "profile_reader.hpp"
 #include "scene_composition.hpp"
 #include "solver_reader.hpp"
+#include "wind_reader.hpp"
 #include "yaml_field.hpp"
 
 namespace cranesim {
@@ -600,8 +601,8 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
   const YAML::Node& root = composed.root;
   const YamlField f(root, "");
   if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
-  f.allowKeys({"name", "gravity", "ground", "bodies", "trusses", "members", "constraints", "loads", "solver", "output",
-               "feedback"});
+  f.allowKeys({"name", "gravity", "ground", "bodies", "trusses", "members", "constraints", "loads", "wind", "solver",
+               "output", "feedback"});
   Scene s;
   s.path = path;
   s.text = composed.text;
@@ -641,6 +642,7 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
     }
   if (const auto ls = f.find("loads"))
     for (const YamlField& l : ls->items()) s.loads.push_back(readLoad(l));
+  if (const auto w = f.find("wind")) s.wind = readWind(*w, s);
   const YamlField solver = f.at("solver");
   s.solver = readSolver(solver);
   s.where_solver = solver.where();

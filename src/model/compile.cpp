@@ -16,6 +16,7 @@
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/member_force_elements.hpp"
 #include "compile_truss.hpp"
+#include "compile_wind.hpp"
 #include "model_building.hpp"
 
 namespace cranesim {
@@ -262,6 +263,8 @@ Model compileModel(const Scene& scene) {
     l.scale = model.attachInput(ls.scale, ls.name, "load scale", ls.where);
     model.loads.push_back(std::move(l));
   }
+
+  if (scene.wind) compileWind(model, scene);
 
   for (const std::string& member : scene.output.section_forces) {
     const auto spec = std::find_if(scene.members.begin(), scene.members.end(), [&](const MemberSpec& m) { return m.name == member; });

@@ -41,6 +41,14 @@ std::string modelSummary(const Assembler& assembler) {
   out += fmt::format("coordinates: {} (q), {} (dq); DAE unknowns: {}\n", model.nq, model.nv, assembler.size());
   out += fmt::format("degrees of freedom: {} (= {} − {})\n", model.nv - rank, model.nv, rank);
   out += fmt::format("drives: {}   loads: {}\n", drives, model.loads.size());
+  if (model.wind) {
+    const WindFieldSpec& w = model.wind->spec();
+    std::string parts;
+    std::size_t elements = 0;
+    for (const WindPart& part : model.wind_parts) parts += (parts.empty() ? "" : ", ") + part.name, elements += part.elements.size();
+    out += fmt::format("wind: {:g} m/s at {:g} m towards [{:g}, {:g}, {:g}] on {} ({} wind elements)\n", w.speed,
+                       w.reference_height, w.direction.x(), w.direction.y(), w.direction.z(), parts, elements);
+  }
   const AbsoluteTolerance& atol = model.solver.atol;
   const std::string atol_text =
       atol.isUniform() ? fmt::format("{:g}", atol.position)

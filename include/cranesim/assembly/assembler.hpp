@@ -36,7 +36,7 @@ struct ConstraintState {
 struct WorkTerms {
   static constexpr int kCount = 4;
   double drive = 0.0;       // rheonomic drives, λ·Φ_t
-  double load = 0.0;        // applied nodal forces and torques, Q·dq
+  double load = 0.0;        // applied nodal forces and torques, Q·dq, and the wind's power
   double winch = 0.0;       // elements' explicit time dependence: ropes reeled in and out
   double dissipated = 0.0;  // material damping, ≥ 0
   /// To and from kCount values in the order of the members (IDAS' quadrature vector).
@@ -91,6 +91,8 @@ class Assembler {
   double potentialEnergy(double t, const double* q) const;
   /// Power of the applied loads, Q·dq.
   double loadPower(double t, const double* q, const double* v) const;
+  /// Power of the wind on the parts exposed to it (WindElement::power); part of WorkTerms::load.
+  double windPower(double t, const double* q, const double* v) const;
   /// max |Φ(q, t)| over all constraint equations, for y = [q, …].
   double constraintResidual(double t, const double* y) const;
   /// Power of the rheonomic drives on the system, λ·Φ_t (constraint forces −Gᵀλ, G dq = −Φ_t).

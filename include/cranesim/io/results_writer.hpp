@@ -43,6 +43,8 @@ class ResultsRecorder final : public SampleSink {
   const std::vector<double>& bodyAngularVelocities(int node) const { return body_omega_[node]; }
   const std::vector<double>& positionResidual() const { return residual_position_; }
   const std::vector<double>& velocityResidual() const { return residual_velocity_; }
+  /// The resultant wind force on Model::wind_parts[part] over time (3 per sample, N, inertial).
+  const std::vector<double>& windForces(int part) const { return wind_forces_[part]; }
 
   /// Memory a run's results take while they are recorded and written (the samples and the
   /// file's image), estimated from the model's size and the number of output samples.
@@ -78,6 +80,7 @@ class ResultsRecorder final : public SampleSink {
   std::vector<std::vector<double>> constraint_loads_;  // per recorded constraint: force and moment, 6 per sample
   std::vector<std::vector<int>> tipping_supports_;     // per output.tipping_lines: its supports, as constraint indices
   std::vector<std::vector<double>> tipping_moments_;   // per tipping line: 1 per sample
+  std::vector<std::vector<double>> wind_forces_;       // per Model::wind_parts: the resultant wind force, 3 per sample
 };
 
 /// Writes an equilibrium as a one-sample results file (`crane-sim static`, formulation "static"):

@@ -73,6 +73,9 @@ struct ElementInput {
   /// up to t), right-sided (starting from a breakpoint at t), or held at their values at t, rates
   /// 0 (statics and modes, whose equilibrium is that of the controls at t).
   ParameterRates rates = ParameterRates::Left;
+  /// The factor on applied loads that statics ramps from 0 to 1 (gravity comes scaled already);
+  /// elements that stand for applied loads (the wind, model/wind_elements.hpp) scale by it.
+  double load_factor = 1.0;
 };
 
 class Element {

@@ -11,6 +11,7 @@
 #include "cranesim/model/constraint_equations.hpp"
 #include "cranesim/model/element.hpp"
 #include "cranesim/model/scene.hpp"
+#include "cranesim/model/wind_field.hpp"
 
 namespace cranesim {
 
@@ -89,6 +90,13 @@ struct ModelInput {
   std::shared_ptr<InputSignal> signal;
 };
 
+/// A part the wind acts on (a body, a member) and the wind elements (model/wind_elements.hpp)
+/// that carry its forces.
+struct WindPart {
+  std::string name;
+  std::vector<int> elements;
+};
+
 struct Model {
   std::string name;
   std::vector<Node> nodes;
@@ -96,6 +104,9 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<Constraint> constraints;
   std::vector<Load> loads;
+  /// The wind field, if the scene has one, and the parts exposed to it.
+  std::shared_ptr<const WindField> wind;
+  std::vector<WindPart> wind_parts;
   /// Pairs of joints joined by a straight line when the mechanism is drawn (members' elements,
   /// truss tubes); rigid bodies are drawn from their origin to each of their joints.
   std::vector<std::array<int, 2>> drawing_lines;

@@ -12,6 +12,7 @@
 #include "cranesim/model/feedback_spec.hpp"
 #include "cranesim/model/source_location.hpp"
 #include "cranesim/model/truss_geometry.hpp"
+#include "cranesim/model/wind_field.hpp"
 
 namespace cranesim {
 
@@ -103,6 +104,35 @@ struct LoadSpec {
   LoadFrame frame = LoadFrame::Inertial;
   Profile scale = Profile(ConstantProfile{1.0});
   SourceLocation where, where_joint;
+};
+
+/// A rigid body exposed to the wind: drag coefficient c and wind area A (m²), acting at one of
+/// its joints or, when `joint` is empty, at its centroid.
+struct WindBodySpec {
+  std::string body;
+  double area = 0.0;
+  double drag_coefficient = 1.2;
+  std::string joint;
+  SourceLocation where, where_body, where_joint;
+};
+
+/// A member exposed to the wind: every element a cylinder of `diameter` (m) with drag
+/// coefficient c; of a truss member every tube, its drag times (1 + η)/2 for the shielding η of
+/// the lee side.
+struct WindMemberSpec {
+  std::string member;
+  double diameter = 0.0;  // not for a truss member: its tubes' own
+  double drag_coefficient = 1.2;
+  double shielding = 1.0;  // η, truss members only
+  SourceLocation where, where_member;
+};
+
+struct WindSpec {
+  WindFieldSpec field;
+  std::vector<WindBodySpec> bodies;
+  std::vector<WindMemberSpec> members;
+  int quadrature = 3;  // Gauss points per member element
+  SourceLocation where;
 };
 
 enum class Formulation { GGL, Baumgarte };
@@ -202,6 +232,7 @@ struct Scene {
   std::vector<MemberSpec> members;
   std::vector<ConstraintSpec> constraints;
   std::vector<LoadSpec> loads;
+  std::optional<WindSpec> wind;
   SolverSpec solver;
   OutputSpec output;
   SourceLocation where_solver;
