@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 import cranesim
-from benchmark_csv import write_rows
+from benchmark_csv import machine, write_rows
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = ROOT / "configs" / "crane_inputs.yaml"
@@ -103,7 +103,8 @@ def main():
     for name, walls in (("C++", cpp), ("Python", python)):
         wall = statistics.median(walls)
         rows.append({"driver": name, "t_end": args.t_end, "sample_interval": 0.02, "reps": args.reps,
-                     "wall_s": f"{wall:.4f}", "real_time_factor": f"{args.t_end / wall:.1f}", "steps": steps[name]})
+                     "wall_s": f"{wall:.4f}", "real_time_factor": f"{args.t_end / wall:.1f}", "steps": steps[name],
+                     "machine": machine()})
     overhead = statistics.median(python) / statistics.median(cpp) - 1.0
     for row in rows:
         row["python_overhead"] = f"{overhead:.4f}"

@@ -71,7 +71,7 @@ class CraneLiftEnv(gymnasium.Env):
 
     **Accuracy**: the crane is integrated at relative tolerance ``rtol`` (absolute ``rtol``/10),
     in place of the scene's; ``None`` keeps the scene's. At the default 1e-3 a minute of random
-    actions on the default scene moves the load within 4 mm of its path at 1e-8, at 1.5 times the
+    actions on the default scene moves the load within 4 mm of its path at 1e-8, at 1.7 times the
     speed of the scene's 1e-4.
     """
 
