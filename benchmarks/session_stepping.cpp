@@ -160,6 +160,7 @@ double largestDistance(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return a.size() == b.size() ? largest : std::numeric_limits<double>::quiet_NaN();
 }
 
+using cranesim_bench::machineName;
 using cranesim_bench::median;
 
 }  // namespace
@@ -195,7 +196,8 @@ int main(int argc, char** argv) {
 
   std::ofstream csv(o.out);
   csv << "method,order,rtol,t_end,sample_interval,wall_s,real_time_factor,steps,jacobians,error_test_failures,"
-         "restarts,hook_error_m,complete\n";
+         "restarts,hook_error_m,complete,machine\n";
+  const std::string machine = machineName();
   bool all_complete = true;
   const auto row = [&](const std::string& method, int order, const std::vector<Run>& runs, const Run& reference) {
     std::vector<double> walls;
@@ -206,9 +208,9 @@ int main(int argc, char** argv) {
                                                                 : std::numeric_limits<double>::quiet_NaN();
     const SolverStatistics& st = r.statistics;
     all_complete = all_complete && r.complete && reference.complete;
-    csv << fmt::format("{},{},{:g},{:g},{:g},{:.4f},{:.1f},{},{},{},{},{:.3e},{}\n", method, order, o.rtol, o.t_end, o.dt,
-                       wall, o.t_end / wall, st.steps, st.jacobian_evaluations, st.error_test_failures, st.restarts,
-                       error, r.complete && reference.complete ? 1 : 0);
+    csv << fmt::format("{},{},{:g},{:g},{:g},{:.4f},{:.1f},{},{},{},{},{:.3e},{},\"{}\"\n", method, order, o.rtol, o.t_end,
+                       o.dt, wall, o.t_end / wall, st.steps, st.jacobian_evaluations, st.error_test_failures, st.restarts,
+                       error, r.complete && reference.complete ? 1 : 0, machine);
     fmt::print("{:<9} order {}  {:7.3f} s  {:6.1f}× real time  steps {:6}  Jacobians {:5}  restarts {:5}  hook error {:.2e} m\n",
                method, order, wall, o.t_end / wall, st.steps, st.jacobian_evaluations, st.restarts, error);
     csv.flush();
