@@ -15,7 +15,7 @@ For each case: the largest swing of the hook about the boom head (m) from 5 to 1
 last stop (or the gust's end) and over the last 10 s of the run, open loop and closed loop, and
 the reduction. Writes benchmarks/results/anti_sway.csv and anti_sway.png (the swing over time).
 
-    python3 benchmarks/anti_sway.py            # ≈ 1 min on 2 cores
+    python3 benchmarks/anti_sway.py            # ≈ 15 s on 2 cores
 """
 
 import argparse

@@ -10,7 +10,7 @@ the accuracy: the largest distance of the load from its path at rtol 1e-8 under 
 
 Writes benchmarks/results/gym_throughput.csv.
 
-    python3 benchmarks/gym_throughput.py            # ≈ 3 min on 2 cores
+    python3 benchmarks/gym_throughput.py            # ≈ 1 min on 2 cores
 """
 
 import argparse

@@ -11,7 +11,7 @@ Gymnasium environment's throughput is measured by gym_throughput.py.
 
 Writes benchmarks/results/python_stepping.csv.
 
-    python3 benchmarks/python_stepping.py            # ≈ 1 min on 2 cores
+    python3 benchmarks/python_stepping.py            # ≈ 10 s on 2 cores
 """
 
 import argparse
