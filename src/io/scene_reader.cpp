@@ -1,7 +1,6 @@
 #include "cranesim/io/scene_reader.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -495,11 +494,8 @@ std::vector<std::string> readConstraintLoadNames(const YamlField& f, const std::
   std::vector<std::string> names;
   for (const YamlField& item : f.items()) {
     const std::string name = item.text();
-    if (std::none_of(constraints.begin(), constraints.end(), [&](const ConstraintSpec& c) { return c.name == name; })) {
-      std::string known;
-      for (const ConstraintSpec& c : constraints) known += (known.empty() ? "" : ", ") + c.name;
-      item.fail(fmt::format("no constraint '{}' (here: {})", name, known.empty() ? "none" : known));
-    }
+    if (std::none_of(constraints.begin(), constraints.end(), [&](const ConstraintSpec& c) { return c.name == name; }))
+      item.fail(fmt::format("no constraint '{}' (here: {})", name, listedNames(namesOf(constraints))));
     if (std::find(names.begin(), names.end(), name) != names.end()) item.fail(fmt::format("'{}' is listed twice", name));
     names.push_back(name);
   }
@@ -567,12 +563,7 @@ FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
   // `name`, an input of the scene that takes speed commands; errors at `field`.
   const auto speedInput = [&](const std::string& name, const YamlField& field) {
     const auto it = inputs.find(name);
-    if (it == inputs.end()) {
-      const std::string closest = closestName(name, names);
-      field.fail(fmt::format("no input named '{}'{}", name,
-                             closest.empty() ? fmt::format("; the scene's inputs: {}", names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", ")))
-                                             : fmt::format(" (did you mean '{}'?)", closest)));
-    }
+    if (it == inputs.end()) field.fail(unknownName("input", name, names));
     if (!it->second) field.fail(fmt::format("input '{}' takes value commands; the feedback commands speeds", name));
   };
   // Each role's input: named under its key, or the input of the role's name.

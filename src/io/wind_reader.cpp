@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "cranesim/math/gauss_legendre.hpp"
+#include "cranesim/model/closest_name.hpp"
 
 namespace cranesim {
 namespace {
@@ -116,11 +117,7 @@ WindBodySpec readExposedBody(const YamlField& f, const Scene& scene) {
   b.body = bf.text();
   b.where_body = bf.where();
   const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const RigidBodySpec& s) { return s.name == b.body; });
-  if (body == scene.bodies.end()) {
-    std::string known;
-    for (const RigidBodySpec& s : scene.bodies) known += (known.empty() ? "" : ", ") + s.name;
-    bf.fail(fmt::format("no body '{}' (here: {})", b.body, known.empty() ? "none" : known));
-  }
+  if (body == scene.bodies.end()) bf.fail(fmt::format("no body '{}' (here: {})", b.body, listedNames(namesOf(scene.bodies))));
   b.drag_coefficient = f.positive("drag_coefficient", 1.2);
   b.area = f.has("area") ? f.at("area").within(1e-6, 1e5, "m²") : kLoadWindAreaPerKilogram * body->mass;
   if (const auto jf = f.find("joint")) {
@@ -144,11 +141,8 @@ WindMemberSpec readExposedMember(const YamlField& f, const Scene& scene) {
   m.member = mf.text();
   m.where_member = mf.where();
   const auto member = std::find_if(scene.members.begin(), scene.members.end(), [&](const MemberSpec& s) { return s.name == m.member; });
-  if (member == scene.members.end()) {
-    std::string known;
-    for (const MemberSpec& s : scene.members) known += (known.empty() ? "" : ", ") + s.name;
-    mf.fail(fmt::format("no member '{}' (here: {})", m.member, known.empty() ? "none" : known));
-  }
+  if (member == scene.members.end())
+    mf.fail(fmt::format("no member '{}' (here: {})", m.member, listedNames(namesOf(scene.members))));
   m.drag_coefficient = f.positive("drag_coefficient", 1.2);
   if (member->type == MemberType::Truss) {
     f.allowKeys({"member", "drag_coefficient", "shielding"});

@@ -1,5 +1,8 @@
 #include "cranesim/model/closest_name.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 
 namespace cranesim {
@@ -27,6 +30,18 @@ std::string closestName(const std::string& name, const std::vector<std::string>&
     if (d < best_distance) best_distance = d, best = candidate;
   }
   return best;
+}
+
+std::string unknownName(const std::string& what, const std::string& name, const std::vector<std::string>& names) {
+  const std::string closest = closestName(name, names);
+  std::string message = fmt::format("no {} named '{}'", what, name);
+  if (!closest.empty()) message += fmt::format(" (did you mean '{}'?)", closest);
+  if (names.empty()) return message + fmt::format("; the scene has no {}s", what);
+  return message + fmt::format("; the scene's {}s: {}", what, listedNames(names));
+}
+
+std::string listedNames(const std::vector<std::string>& names) {
+  return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
 }
 
 }  // namespace cranesim

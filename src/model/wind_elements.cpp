@@ -10,6 +10,15 @@ constexpr int kMaxLocal = 14;
 
 template <int N> using D = Dual<double, N>;
 
+/// ∂Q/∂q of the N generalized forces `force(q)` of N coordinates, by forward AD (column-major).
+template <int N, class Coordinates, class Force> void forwardJacobian(const Coordinates& q, const Force& force, double* Qq) {
+  Eigen::Matrix<D<N>, N, 1> qd;
+  for (int k = 0; k < N; ++k) qd(k) = seeded<double, N>(q(k), k);
+  const Eigen::Matrix<D<N>, N, 1> Qd = force(qd);
+  Eigen::Map<Eigen::Matrix<double, N, N>> dq(Qq);
+  for (int i = 0; i < N; ++i) dq.row(i) = Qd(i).derivatives().transpose();
+}
+
 }  // namespace
 
 WindElement::WindElement(std::shared_ptr<const WindField> wind, std::vector<int> nodes, std::vector<int> q_indices,
@@ -85,11 +94,8 @@ Vec3 BodyWindElement::resultantForce(const ElementInput& in) const {
 /// ∂Q/∂dq: with u = w − ṙ − R (ω × p) and D = ½ρcA ∂(|u|u)/∂u, ∂F/∂ṙ = −D, ∂F/∂ω = D R p̃;
 /// the moment p̃ Rᵀ F follows.
 void BodyWindElement::tangents(const Local& q, const Local& v, double t, double* Qq, double* Qv) const {
-  Eigen::Matrix<D<6>, 6, 1> qd;
-  for (int k = 0; k < 6; ++k) qd(k) = seeded<double, 6>(q(k), k);
-  const Eigen::Matrix<D<6>, 6, 1> Qd = generalizedForce<D<6>>(qd, v.head<6>(), t);
-  Eigen::Map<Eigen::Matrix<double, 6, 6>> dq(Qq), dv(Qv);
-  for (int i = 0; i < 6; ++i) dq.row(i) = Qd(i).derivatives().transpose();
+  forwardJacobian<6>(q, [&](const auto& qd) { return generalizedForce<D<6>>(qd, v.head<6>(), t); }, Qq);
+  Eigen::Map<Eigen::Matrix<double, 6, 6>> dv(Qv);
 
   const Mat3 R = rotationMatrix<double>(Vec3(q.segment<3>(3)));
   const Vec3 moving = v.head<3>() + R * (Vec3(v.segment<3>(3)).cross(point_));
@@ -249,11 +255,8 @@ Vec3 LatticeWindElement::resultantForce(const ElementInput& in) const {
 /// ∂Q/∂q by forward AD; ∂Q/∂dq: node n moves at A_n dq (nodeVelocityMap) and passes A_nᵀ F_n on,
 /// so a tube's Gauss point adds −½ρcd ℓ w_g N_i N_j A_iᵀ ∂(|u⊥|u⊥)/∂u⊥ (I − e eᵀ) A_j.
 void LatticeWindElement::tangents(const Local& q, const Local& v, double t, double* Qq, double* Qv) const {
-  Eigen::Matrix<D<12>, 12, 1> qd;
-  for (int k = 0; k < 12; ++k) qd(k) = seeded<double, 12>(q(k), k);
-  const Eigen::Matrix<D<12>, 12, 1> Qd = generalizedForce<D<12>>(qd, v.head<12>(), t);
-  Eigen::Map<Eigen::Matrix<double, 12, 12>> dq(Qq), dv(Qv);
-  for (int i = 0; i < 12; ++i) dq.row(i) = Qd(i).derivatives().transpose();
+  forwardJacobian<12>(q, [&](const auto& qd) { return generalizedForce<D<12>>(qd, v.head<12>(), t); }, Qq);
+  Eigen::Map<Eigen::Matrix<double, 12, 12>> dv(Qv);
 
   const Mat3 R1 = rotationMatrix<double>(Vec3(q.segment<3>(3))), R2 = rotationMatrix<double>(Vec3(q.segment<3>(9)));
   const Q12 dqv = v.head<12>();

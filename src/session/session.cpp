@@ -13,18 +13,6 @@
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
 namespace cranesim {
-namespace {
-
-/// "no <what> named 'x' (did you mean 'y'?); the scene's <what>s: a, b, …"
-std::string unknownName(const std::string& what, const std::string& name, const std::vector<std::string>& names) {
-  const std::string closest = closestName(name, names);
-  std::string message = fmt::format("no {} named '{}'", what, name);
-  if (!closest.empty()) message += fmt::format(" (did you mean '{}'?)", closest);
-  if (names.empty()) return message + fmt::format("; the scene has no {}s", what);
-  return message + fmt::format("; the scene's {}s: {}", what, fmt::join(names, ", "));
-}
-
-}  // namespace
 
 Session::Session(const std::string& scene_path, bool record) : Session(readScene(scene_path), record) {}
 
