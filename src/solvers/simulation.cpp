@@ -148,6 +148,7 @@ void Simulation::restartAt(DynamicState s) {
 
 SimulationState Simulation::save() {
   if (stopped_) throw std::logic_error("a run that has stopped cannot be saved");
+  if (!restartIfPending()) throw std::runtime_error(message_);
   const Model& model = assembler_.model();
   const DynamicState s = stateOf(assembler_, t_, stepper_->state());
   restartAt(s);
@@ -190,6 +191,7 @@ void Simulation::restore(const SimulationState& saved) {
   sampled_end_ = saved.sampled_end;
   sharing_ = saved.sharing;
   stalled_steps_ = 0;
+  restart_ = PendingRestart::None;
   stopped_ = complete_ = false;
   message_.clear();
 }
@@ -201,6 +203,7 @@ bool Simulation::stop(std::string message) {
 }
 
 bool Simulation::step(double target, const SimulationControl& control) {
+  if (!restartIfPending()) return false;
   const Model& model = assembler_.model();
   const double t_end = model.solver.t_end, dt_out = model.output.interval;
   const double t_break = next_break_ < breakpoints_.size() ? breakpoints_[next_break_] : t_end;
@@ -252,19 +255,29 @@ bool Simulation::step(double target, const SimulationControl& control) {
   if ((at_break || changed > 0) && t_ < t_end) {
     if (at_break) ++next_break_;
     counts_.reparameterisations += changed;
-    ++counts_.restarts;
-    DynamicState s = stateOf(assembler_, t_, y);
-    try {
-      // A drive's velocity may jump at a breakpoint: the masses' response to the impulse, whose
-      // work is the drives', then the coming segment's accelerations and multipliers.
-      if (at_break && model.m > 0) {
-        const ConstraintState C = assembler_.constraints(t_, s.q.data(), s.v.data(), Limit::Right);
-        if (C.phi_dot.cwiseAbs().maxCoeff() > 0.0) drive_impulses_ += jumpVelocities(assembler_, s, C);
-      }
-      restartAt(s);
-    } catch (const std::exception& e) {
-      return stop(e.what());
+    // Restarted when the run goes on: until then the step's history interpolates any time within
+    // it (an advance's target the step passed on its way to a breakpoint).
+    restart_ = at_break ? PendingRestart::AtBreak : PendingRestart::Reparameterised;
+  }
+  return true;
+}
+
+bool Simulation::restartIfPending() {
+  if (restart_ == PendingRestart::None) return true;
+  const bool at_break = restart_ == PendingRestart::AtBreak;
+  restart_ = PendingRestart::None;
+  ++counts_.restarts;
+  DynamicState s = stateOf(assembler_, t_, stepper_->state());
+  try {
+    // A drive's velocity may jump at a breakpoint: the masses' response to the impulse, whose
+    // work is the drives', then the coming segment's accelerations and multipliers.
+    if (at_break && assembler_.model().m > 0) {
+      const ConstraintState C = assembler_.constraints(t_, s.q.data(), s.v.data(), Limit::Right);
+      if (C.phi_dot.cwiseAbs().maxCoeff() > 0.0) drive_impulses_ += jumpVelocities(assembler_, s, C);
     }
+    restartAt(s);
+  } catch (const std::exception& e) {
+    return stop(e.what());
   }
   return true;
 }

@@ -92,8 +92,11 @@ class Simulation {
   SimulationOutcome outcome() const;
 
  private:
-  /// One integrator step and what follows it: samples, stall check, restart. False: stopped.
+  /// One integrator step and what follows it: samples, stall check, a restart due. False: stopped.
   bool step(double target, const SimulationControl& control);
+  /// Restarts the integrator where a step left one due (a breakpoint: with the drives' velocity
+  /// jump; a reparameterised rotation). False: stopped.
+  bool restartIfPending();
   bool stop(std::string message);
   /// Restarts the integrator from s with its accelerations and multipliers solved anew.
   void restartAt(DynamicState s);
@@ -125,6 +128,8 @@ class Simulation {
   std::string message_;
   std::chrono::steady_clock::duration wall_{};
   std::vector<double> sample_;
+  enum class PendingRestart { None, AtBreak, Reparameterised };
+  PendingRestart restart_ = PendingRestart::None;
 };
 
 }  // namespace cranesim
