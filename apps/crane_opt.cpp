@@ -1,7 +1,8 @@
 // crane-opt: quasi-static optimal control of a crane (thesis chapter 6, 8.4).
 //   crane-opt plan TARGET [-o plan.h5] [--threads N] [--quiet]
 //       static map → fitted surface → QR end-point trajectory (Ipopt) → control trajectory →
-//       verification by simulation (its full results beside the plan: <plan>_simulation.h5)
+//       verification by simulation (its full results beside the plan: <plan>_simulation.h5); with
+//       the target's feedback:, each case open loop and tracked by anti-sway feedback
 //   crane-opt map TARGET [-o map.h5] [--threads N] [--quiet]
 //       the static map alone
 //   mpirun -n N crane-opt plan|map …: the static map's rows farmed out to N ranks
@@ -10,12 +11,14 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <chrono>
 #include <filesystem>
 #include <optional>
 
 #include "cranesim/io/command_line.hpp"
 #include "cranesim/io/plan_writer.hpp"
 #include "cranesim/parallel/task_farm.hpp"
+#include "cranesim/planning/plan_tracking.hpp"
 #include "cranesim/planning/quasi_static_plan.hpp"
 #ifdef CRANESIM_WITH_MPI
 #include "cranesim/parallel/mpi_farm.hpp"
@@ -74,6 +77,11 @@ int plan(const std::string& target_path, const std::string& out_arg, int threads
   const std::string simulation = std::filesystem::path(out).replace_extension().string() + "_simulation.h5";
   try {
     verifyPlan(*target, result, simulation, log);
+    if (target->feedback) {
+      const auto t0 = std::chrono::steady_clock::now();
+      result.tracking = verifyTracking(*target, result, log);
+      result.tracking_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
   } catch (const std::runtime_error& e) {
     writePlan(out, *target, result);
     fmt::print(stderr, "error: {}\n  plan written to {} (verification incomplete)\n", e.what(), out);

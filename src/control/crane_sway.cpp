@@ -43,7 +43,8 @@ CraneSwayController::CraneSwayController(Session& session, const CraneSwaySpec& 
     : session_(session), slewing_(session.input(spec.slewing)), luffing_(session.input(spec.luffing_rope)),
       hoist_(session.input(spec.hoist_rope)), hook_(session.joint(spec.hook)), sheave_(session.joint(spec.sheave)),
       slewing_unit_(inputUnit(session.model(), slewing_)), across_(spec.across), along_(spec.along),
-      slewing_reference_(session.inputValue(slewing_)), luffing_reference_(session.inputValue(luffing_)) {
+      slewing_reference_(session.inputValue(slewing_)), luffing_reference_(session.inputValue(luffing_)),
+      hoist_reference_(session.inputValue(hoist_)), hoist_gain_(spec.hoist_gain) {
   // dR/dl by central differences of the equilibria at the table's lengths ± 1 cm.
   const InputSpec& luffing = session.model().inputs[static_cast<std::size_t>(luffing_)].signal->spec();
   const double now = session.inputValue(luffing_);
@@ -76,27 +77,42 @@ double CraneSwayController::headPerLuff(double length) const {
 
 std::vector<double> CraneSwayController::apply(double slewing_speed, double luffing_speed, double hoist_speed) {
   const double dt = across_.spec().sample_time;
+  CraneSwayReference reference;
+  reference.slewing = slewing_reference_;
+  reference.slewing_speed = slewing_speed;
+  reference.luffing = luffing_reference_;
+  reference.luffing_speed = luffing_speed;
+  reference.hoist = hoist_reference_;
+  reference.hoist_speed = hoist_speed;
+  slewing_reference_ += slewing_speed * dt;
+  luffing_reference_ += luffing_speed * dt;
+  hoist_reference_ += hoist_speed * dt;
+  return apply(reference);
+}
+
+std::vector<double> CraneSwayController::apply(const CraneSwayReference& reference) {
   const Vec3 head = session_.jointPosition(sheave_);
   const double radius = horizontal(head);
   const double length = (session_.jointPosition(hook_) - head).norm();
   const Session::Sway sway = session_.sway(hook_, sheave_);
 
   const double slewing = session_.inputValue(slewing_), slewing_rate = session_.inputRate(slewing_);
-  const double across = across_.command(length, radius * slewing_unit_ * (slewing - slewing_reference_),
-                                        radius * slewing_unit_ * slewing_rate, radius * slewing_unit_ * slewing_speed,
-                                        sway.across, sway.across_rate);
+  const double to_head = radius * slewing_unit_;
+  const double across = across_.command(length, to_head * (slewing - reference.slewing), to_head * slewing_rate,
+                                        to_head * reference.slewing_speed, sway.across - reference.sway.across,
+                                        sway.across_rate - reference.sway.across_rate);
   const double luffing = session_.inputValue(luffing_), luffing_rate = session_.inputRate(luffing_);
   const double ratio = headPerLuff(luffing);
-  const double along = along_.command(length, ratio * (luffing - luffing_reference_), ratio * luffing_rate,
-                                      ratio * luffing_speed, sway.radial, sway.radial_rate);
-  slewing_reference_ += slewing_speed * dt;
-  luffing_reference_ += luffing_speed * dt;
+  const double along = along_.command(length, ratio * (luffing - reference.luffing), ratio * luffing_rate,
+                                      ratio * reference.luffing_speed, sway.radial - reference.sway.radial,
+                                      sway.radial_rate - reference.sway.radial_rate);
+  const double hoist = reference.hoist_speed + hoist_gain_ * (reference.hoist - session_.inputValue(hoist_));
 
   std::vector<double> held(session_.model().inputs.size());
   for (std::size_t k = 0; k < held.size(); ++k) held[k] = session_.model().inputs[k].signal->held();
-  held[static_cast<std::size_t>(slewing_)] = session_.setInput(slewing_, across / (radius * slewing_unit_));
+  held[static_cast<std::size_t>(slewing_)] = session_.setInput(slewing_, across / to_head);
   held[static_cast<std::size_t>(luffing_)] = session_.setInput(luffing_, along / ratio);
-  held[static_cast<std::size_t>(hoist_)] = session_.setInput(hoist_, hoist_speed);
+  held[static_cast<std::size_t>(hoist_)] = session_.setInput(hoist_, hoist);
   return held;
 }
 

@@ -185,6 +185,34 @@ void writeVerification(Hdf5File& file, const QuasiStaticPlan& plan) {
   file.attribute("/verification", "steps", v.outcome.statistics.steps);
 }
 
+/// The feedback cases as a table, one row per run (docs/plan-format.md).
+void writeTracking(Hdf5File& file, const QuasiStaticPlan& plan) {
+  const std::vector<TrackingRun>& runs = plan.tracking;
+  const hsize_t n = runs.size();
+  std::vector<std::string> names, loops;
+  std::vector<double> arrival, after, settling, tension, factor, peaks, controller;
+  for (const TrackingRun& r : runs) {
+    names.push_back(r.name);
+    loops.push_back(r.closed_loop ? "closed" : "open");
+    arrival.push_back(r.sway_at_arrival);
+    after.push_back(r.sway_after_5_s);
+    settling.push_back(r.settling_time);
+    tension.push_back(r.peak_tension);
+    factor.push_back(r.dynamic_factor);
+    for (const auto& drive : r.peaks) peaks.insert(peaks.end(), {drive[0], drive[1]});
+    controller.push_back(r.samples > 0 ? r.controller_s / static_cast<double>(r.samples) : 0.0);
+  }
+  file.writeStrings("/feedback/case", {n}, names);
+  file.writeStrings("/feedback/loop", {n}, loops);
+  writeVector(file, "/feedback/sway_at_arrival", arrival);
+  writeVector(file, "/feedback/sway_after_5_s", after);
+  writeVector(file, "/feedback/settling_time", settling);
+  writeVector(file, "/feedback/peak_tension", tension);
+  writeVector(file, "/feedback/dynamic_factor", factor);
+  file.writeDoubles("/feedback/drive_peaks", {n, 3, 2}, peaks.data());
+  writeVector(file, "/feedback/controller_s_per_sample", controller);
+}
+
 }  // namespace
 
 void writePlan(const std::string& path, const TargetSpec& target, const QuasiStaticPlan& plan, bool map_only) {
@@ -200,11 +228,13 @@ void writePlan(const std::string& path, const TargetSpec& target, const QuasiSta
       writePath(file, target, plan);
       writeControls(file, target, plan);
       writeVerification(file, plan);
+      if (!plan.tracking.empty()) writeTracking(file, plan);
     }
     file.ensureGroup("/timing");
     for (const auto& [name, seconds] : {std::pair{"map_s", plan.map_s}, std::pair{"fit_s", plan.fit_s},
                                         std::pair{"trajectory_s", plan.trajectory_s}, std::pair{"controls_s", plan.controls_s},
-                                        std::pair{"inversion_s", plan.inversion_s}, std::pair{"verification_s", plan.verification_s}})
+                                        std::pair{"inversion_s", plan.inversion_s}, std::pair{"verification_s", plan.verification_s},
+                                        std::pair{"feedback_s", plan.tracking_s}})
       file.attribute("/timing", name, seconds);
   });
 }

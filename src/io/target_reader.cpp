@@ -10,6 +10,7 @@
 
 #include "bounded_yaml.hpp"
 #include "cranesim/io/scene_reader.hpp"
+#include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
 #include "solver_reader.hpp"
@@ -173,6 +174,76 @@ void readTrajectory(const YamlField& f, TargetSpec& t) {
   }
 }
 
+/// A number within [low, high] (either sign), `what` saying what it means.
+double between(const YamlField& f, double low, double high, const char* what) {
+  const double x = f.number();
+  if (!(x >= low && x <= high)) f.fail(fmt::format("{:g} lies outside [{:g}, {:g}]: {}", x, low, high, what));
+  return x;
+}
+
+TrackingCase readTrackingCase(const YamlField& f) {
+  f.allowKeys({"name", "load_mass", "hoist_rope", "initial_sway", "gust"});
+  TrackingCase c;
+  c.where = f.where();
+  c.name = f.at("name").text();
+  if (const auto m = f.find("load_mass")) c.load_mass = between(*m, 0.1, 10.0, "a factor on the planned load's mass and inertia");
+  if (const auto h = f.find("hoist_rope"))
+    c.hoist_rope = between(*h, -0.5, 0.5, "the fraction by which the real hoist rope is longer than the planned one");
+  if (const auto s = f.find("initial_sway")) c.initial_sway = between(*s, -20.0, 20.0, "m the load starts displaced outwards");
+  if (const auto g = f.find("gust")) {
+    g->allowKeys({"force", "start", "duration", "direction"});
+    TrackingGust gust;
+    gust.force = between(g->at("force"), -1e8, 1e8, "N, the gust's peak force on the load");
+    if (const auto s = g->find("start")) gust.start = s->nonNegative();
+    if (const auto d = g->find("duration")) gust.duration = d->positive();
+    if (const auto d = g->find("direction")) gust.across = d->choice({"across", "radial"}) == "across";
+    c.gust = gust;
+  }
+  return c;
+}
+
+TrackingSpec readTracking(const YamlField& f, const TargetSpec& target) {
+  f.allowKeys({"sample_time", "slewing", "sheave", "settle_band", "rtol", "atol", "cases"});
+  TrackingSpec spec;
+  spec.where = f.where();
+  spec.slewing = target.slewing ? target.slewing->constraint : "slewing";
+  if (const auto s = f.find("slewing")) spec.slewing = s->text();
+  const auto driven = std::find_if(target.scene.constraints.begin(), target.scene.constraints.end(),
+                                   [&](const ConstraintSpec& c) { return c.name == spec.slewing && c.drive; });
+  if (driven == target.scene.constraints.end()) {
+    std::vector<std::string> names;
+    for (const ConstraintSpec& c : target.scene.constraints)
+      if (c.drive) names.push_back(c.name);
+    (f.find("slewing") ? *f.find("slewing") : f)
+        .fail(fmt::format("the feedback damps the swing across the boom by slewing the crane: {} (name the slewing "
+                          "drive with feedback.slewing)",
+                          unknownName("driven constraint", spec.slewing, names)));
+  }
+  if (const auto s = f.find("sample_time")) spec.sample_time = s->within(1e-4, 1.0, "s");
+  if (const auto b = f.find("settle_band")) spec.settle_band = b->positive();
+  if (const auto r = f.find("rtol")) spec.rtol = readRelativeTolerance(*r);
+  if (const auto a = f.find("atol")) spec.atol = readAbsoluteTolerance(*a);
+  if (const auto s = f.find("sheave")) {
+    spec.sheave = s->text();
+    std::vector<std::string> joints;
+    for (const RigidBodySpec& b : target.scene.bodies)
+      for (const JointSpec& j : b.joints) joints.push_back(b.name + "." + j.name);
+    if (std::find(joints.begin(), joints.end(), spec.sheave) == joints.end())
+      s->fail(unknownName("joint", spec.sheave, joints));
+  }
+  const YamlField cases = f.at("cases");
+  if (!cases.isSequence() || cases.items().empty())
+    cases.fail("a list of cases, each a crane that differs from the planned one: {name: …, load_mass: …, hoist_rope: …, "
+               "initial_sway: …, gust: {…}}");
+  for (const YamlField& item : cases.items()) {
+    TrackingCase c = readTrackingCase(item);
+    for (const TrackingCase& other : spec.cases)
+      if (other.name == c.name) item.at("name").fail(fmt::format("a second case named '{}'", c.name));
+    spec.cases.push_back(std::move(c));
+  }
+  return spec;
+}
+
 }  // namespace
 
 TargetSpec readTarget(const std::string& path) {
@@ -182,7 +253,7 @@ TargetSpec readTarget(const std::string& path) {
   // An empty document has no mark of its own: the defect is the file from its first line on.
   if (!f.isMap()) throw SceneError({"<document>", 1, 1}, "a target file is a mapping (scene, crane, map, fit, trajectory, …)");
   f.allowKeys({"name", "scene", "method", "crane", "slewing", "drive_limits", "map", "fit", "trajectory", "control_spline",
-               "verification"});
+               "verification", "feedback"});
 
   TargetSpec t;
   t.path = path;
@@ -241,6 +312,7 @@ TargetSpec readTarget(const std::string& path) {
                             t.settle_time, kMaxSettleTime));
     }
   }
+  if (const auto fb = f.find("feedback")) t.feedback = readTracking(*fb, t);
   return t;
 }
 

@@ -21,6 +21,19 @@ struct CraneSwaySpec {
   std::string sheave = "head.sheave";         // joint at its upper end, on the boom head
   // The boom's sideways mode (0.76 Hz) and its luffing modes stay out of the feedback: 0.3 Hz.
   SwayAxisSpec across{.measurement_cutoff = 0.3}, along{.angle = 0.02, .angle_rate = 0.02, .measurement_cutoff = 0.3};
+  /// 1/s: the hoist winch's speed command corrects its length towards the reference's at this
+  /// rate (0: the hoist speed passes through, an operator's lever).
+  double hoist_gain = 0.0;
+};
+
+/// Where the crane should be at one sample: the drives' values (in the inputs' units) and
+/// speeds, and the swing the load should have there (a plan's swing while it accelerates; zero
+/// to hold it still).
+struct CraneSwayReference {
+  double slewing = 0.0, slewing_speed = 0.0;
+  double luffing = 0.0, luffing_speed = 0.0;
+  double hoist = 0.0, hoist_speed = 0.0;
+  Session::Sway sway;
 };
 
 class CraneSwayController {
@@ -36,6 +49,11 @@ class CraneSwayController {
   /// the session's inputs (clipped to their limits).
   std::vector<double> apply(double slewing_speed, double luffing_speed, double hoist_speed);
 
+  /// Sets the session's inputs for the next sample so that the crane tracks `reference`: the
+  /// reference speeds plus the LQR feedback on the head's distance from where the reference puts
+  /// it and on the swing's difference from the reference's (plan tracking).
+  std::vector<double> apply(const CraneSwayReference& reference);
+
   /// The boom head's radius per metre of luffing rope at luffing rope length `length` (the table).
   double headPerLuff(double length) const;
   const SwayAxisController& across() const { return across_; }
@@ -47,7 +65,8 @@ class CraneSwayController {
   double slewing_unit_;  // rad per unit of the slewing input (π/180 for degrees)
   SwayAxisController across_, along_;
   std::vector<double> table_length_, table_ratio_;  // dR/dl at luffing rope lengths
-  double slewing_reference_, luffing_reference_;    // where the head should be, in the inputs' values
+  double slewing_reference_, luffing_reference_, hoist_reference_;  // where the speeds lead, in the inputs' values
+  double hoist_gain_;
 };
 
 }  // namespace cranesim

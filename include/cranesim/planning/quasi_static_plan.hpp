@@ -96,6 +96,9 @@ struct QuasiStaticPlan {
   double lead_time = 0.0;                  // steady time before the motion in the splines and the simulation
   std::vector<InversionCheck> inversion_checks;
   Verification verification;
+  /// The target's feedback cases, each open and closed loop (planning/plan_tracking.hpp).
+  std::vector<TrackingRun> tracking;
+  double tracking_s = 0.0;
   double map_s = 0.0, fit_s = 0.0, trajectory_s = 0.0, controls_s = 0.0, inversion_s = 0.0, verification_s = 0.0;
 };
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cranesim/model/scene.hpp"
+#include "cranesim/planning/plan_tracking.hpp"
 #include "cranesim/planning/qr_trajectory.hpp"
 #include "cranesim/planning/static_map.hpp"
 #include "cranesim/planning/surface_fit.hpp"
@@ -75,6 +76,8 @@ struct TargetSpec {
   /// The verification run's tolerances, when the target sets them (the scene's otherwise).
   std::optional<double> verification_rtol;
   std::optional<AbsoluteTolerance> verification_atol;
+  /// The plan tracked by anti-sway feedback on cranes that differ from the planned one.
+  std::optional<TrackingSpec> feedback;
 };
 
 /// Reads and validates a target file (the scene path in it is relative to the file). Throws
