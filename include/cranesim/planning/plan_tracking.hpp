@@ -1,6 +1,6 @@
 #pragma once
 // A plan tracked by anti-sway feedback on a crane that differs from the one it was planned on
-// (a target's `feedback:`, docs/control.md#plan-tracking). The plan's control splines are the
+// (a target's `feedback:`, docs/control.md#tracking-a-plan). The plan's control splines are the
 // feed-forward; the reference the feedback holds the crane to is the plan simulated on the
 // nominal crane, sampled at the controller's rate: the drives' values and speeds and the swing
 // the plan gives the load on its way. On the nominal crane the feedback has nothing to correct;
