@@ -235,6 +235,11 @@ TrackingSpec readTracking(const YamlField& f, const TargetSpec& target) {
   if (!cases.isSequence() || cases.items().empty())
     cases.fail("a list of cases, each a crane that differs from the planned one: {name: …, load_mass: …, hoist_rope: …, "
                "initial_sway: …, gust: {…}}");
+  const std::string load = target.controls.end_point.substr(0, target.controls.end_point.find('.'));
+  if (std::none_of(target.scene.bodies.begin(), target.scene.bodies.end(),
+                   [&](const RigidBodySpec& b) { return b.name == load; }))
+    f.fail(fmt::format("the feedback's cases act on the load, a body: the end point '{}' is not a body's joint",
+                       target.controls.end_point));
   for (const YamlField& item : cases.items()) {
     TrackingCase c = readTrackingCase(item);
     for (const TrackingCase& other : spec.cases)

@@ -44,7 +44,7 @@ RigidBodySpec& loadBody(Scene& scene, const std::string& end_point) {
   const std::string body = end_point.substr(0, end_point.find('.'));
   for (RigidBodySpec& b : scene.bodies)
     if (b.name == body) return b;
-  throw std::invalid_argument(fmt::format("the end point '{}' is not a joint of a body: feedback cases scale a body's mass", end_point));
+  throw std::logic_error("the end point '" + end_point + "' is not a body's joint (readTarget rules this out)");
 }
 
 Profile driveInput(double value, const DriveLimits& limits) {
