@@ -258,6 +258,17 @@ std::vector<TrackingRun> verifyTracking(const TargetSpec& target, const QuasiSta
                                : std::string()));
     }
   }
+  if (log) {
+    double open = 0.0, closed = 0.0;
+    int settled = 0;
+    for (const TrackingRun& r : runs) {
+      (r.closed_loop ? closed : open) = std::max(r.closed_loop ? closed : open, r.sway_after_5_s);
+      if (r.closed_loop && r.settling_time >= 0.0 && r.settling_time <= 5.0) ++settled;
+    }
+    log(fmt::format("feedback: from 5 s after arrival the load sways ≤ {:.3f} m tracked, ≤ {:.3f} m open loop; tracked "
+                    "within {:g} m by 5 s after arrival in {} of {} cases",
+                    closed, open, spec.settle_band, settled, spec.cases.size()));
+  }
   return runs;
 }
 
