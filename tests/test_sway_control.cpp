@@ -12,6 +12,7 @@
 #include "cranesim/control/crane_sway.hpp"
 #include "cranesim/control/low_pass.hpp"
 #include "cranesim/control/lqr.hpp"
+#include "cranesim/control/shaped_reference.hpp"
 #include "cranesim/control/sway_axis.hpp"
 #include "scene_fixtures.hpp"
 
@@ -42,6 +43,31 @@ TEST_CASE("The held model is the continuous model integrated over a sample", "[c
   const Eigen::VectorXd u = Eigen::VectorXd::Constant(1, 0.7);
   const Eigen::VectorXd exact = heldRk4(m.A, m.B, x0, u, 0.02, 200);
   CHECK((d.A * x0 + d.B * u - exact).norm() < 1e-13);
+}
+
+TEST_CASE("A lever's stop-and-go shaped for the pendulum ends rest to rest with the reference pendulum still",
+          "[control]") {
+  // The ZV shaper's two half commands, T/2 apart, excite swings of equal amplitude and opposite
+  // phase; with the same acceleration ramps (5 units/s², none overlapping the next) they cancel
+  // to the rounding of T/2 to the 20 ms samples. 3 units/s for 6 s, then −3 for 4 s, on a head
+  // moving 0.1 m per unit.
+  const double period = 17.1, dt = 0.02, metres_per_unit = 0.1;
+  const double omega = 2.0 * std::numbers::pi / period;
+  const auto lever = [](double t) { return t < 6.0 ? 3.0 : 14.0 <= t && t < 18.0 ? -3.0 : 0.0; };
+  ShapedReference reference(period, 5.0, dt, 5.0);
+  CHECK(reference.delay() == Approx(8.56).margin(1e-12));
+  double largest = 0.0;
+  ShapedReference::Sample r;
+  for (int k = 0; k <= 3000; ++k) {
+    r = reference.advance(lever(k * dt), metres_per_unit);
+    if (k * dt < 18.0 + reference.delay() + 2.0) largest = std::max(largest, std::hypot(r.angle, r.angle_rate / omega));
+  }
+  CHECK(r.position == Approx(5.0 + 3.0 * 6.0 - 3.0 * 4.0).epsilon(1e-12));  // rest to rest, where the lever left it
+  CHECK(r.speed == 0.0);
+  // The swing while it moves (measured 0.010 rad), and below a hundredth of it once the shaped
+  // motion has stopped (measured 4.5e-5 rad).
+  CHECK(largest > 0.005);
+  CHECK(std::hypot(r.angle, r.angle_rate / omega) < 0.01 * largest);
 }
 
 TEST_CASE("The LQR gain of a scalar system is the closed form's", "[control]") {

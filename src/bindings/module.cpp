@@ -286,12 +286,16 @@ NB_MODULE(_core, m) {
           "__init__",
           [](CraneSwayController* self, Session& session, const std::string& slewing, const std::string& luffing_rope,
              const std::string& hoist_rope, const std::string& hook, const std::string& sheave, const SwayAxisController& across,
-             const SwayAxisController& along) {
+             const SwayAxisController& along, double shaping_across, double shaping_along) {
             nb::gil_scoped_release released;
-            new (self) CraneSwayController(session, {slewing, luffing_rope, hoist_rope, hook, sheave, across.spec(), along.spec()});
+            CraneSwaySpec spec{slewing, luffing_rope, hoist_rope, hook, sheave, across.spec(), along.spec()};
+            spec.shaping_across = shaping_across;
+            spec.shaping_along = shaping_along;
+            new (self) CraneSwayController(session, spec);
           },
           nb::arg("session"), nb::arg("slewing"), nb::arg("luffing_rope"), nb::arg("hoist_rope"), nb::arg("hook"),
-          nb::arg("sheave"), nb::arg("across"), nb::arg("along"), nb::keep_alive<1, 2>())
+          nb::arg("sheave"), nb::arg("across"), nb::arg("along"), nb::arg("shaping_across") = 0.0,
+          nb::arg("shaping_along") = 0.0, nb::keep_alive<1, 2>())
       .def(
           "apply",
           [](CraneSwayController& c, double slewing, double luffing, double hoist) {

@@ -45,6 +45,12 @@ CraneSwayController::CraneSwayController(Session& session, const CraneSwaySpec& 
       slewing_unit_(inputUnit(session.model(), slewing_)), across_(spec.across), along_(spec.along),
       slewing_reference_(session.inputValue(slewing_)), luffing_reference_(session.inputValue(luffing_)),
       hoist_reference_(session.inputValue(hoist_)), hoist_gain_(spec.hoist_gain) {
+  const auto shaper = [&](double period, int input) {
+    return ShapedReference(period, session.model().inputs[static_cast<std::size_t>(input)].signal->spec().max_acceleration,
+                           across_.spec().sample_time, session.inputValue(input));
+  };
+  if (spec.shaping_across > 0.0) shaped_across_.emplace(shaper(spec.shaping_across, slewing_));
+  if (spec.shaping_along > 0.0) shaped_along_.emplace(shaper(spec.shaping_along, luffing_));
   // dR/dl by central differences of the equilibria at the table's lengths ± 1 cm.
   const InputSpec& luffing = session.model().inputs[static_cast<std::size_t>(luffing_)].signal->spec();
   const double now = session.inputValue(luffing_);
@@ -84,6 +90,21 @@ std::vector<double> CraneSwayController::apply(double slewing_speed, double luff
   reference.luffing_speed = luffing_speed;
   reference.hoist = hoist_reference_;
   reference.hoist_speed = hoist_speed;
+  if (shaped_across_) {
+    const ShapedReference::Sample r =
+        shaped_across_->advance(slewing_speed, horizontal(session_.jointPosition(sheave_)) * slewing_unit_);
+    reference.slewing = r.position;
+    reference.slewing_speed = r.speed;
+    reference.sway.across = r.angle;
+    reference.sway.across_rate = r.angle_rate;
+  }
+  if (shaped_along_) {
+    const ShapedReference::Sample r = shaped_along_->advance(luffing_speed, headPerLuff(session_.inputValue(luffing_)));
+    reference.luffing = r.position;
+    reference.luffing_speed = r.speed;
+    reference.sway.radial = r.angle;
+    reference.sway.radial_rate = r.angle_rate;
+  }
   slewing_reference_ += slewing_speed * dt;
   luffing_reference_ += luffing_speed * dt;
   hoist_reference_ += hoist_speed * dt;

@@ -551,7 +551,8 @@ std::map<std::string, bool> sceneInputs(const Scene& s) {
 /// `feedback: {type: anti_sway, sample_time, start, slewing, luffing_rope, hoist_rope, hook,
 /// sheave, references: {input: profile}}`, its inputs checked against the scene's.
 FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
-  f.allowKeys({"type", "sample_time", "start", "slewing", "luffing_rope", "hoist_rope", "hook", "sheave", "references"});
+  f.allowKeys({"type", "sample_time", "start", "slewing", "luffing_rope", "hoist_rope", "hook", "sheave", "shaping",
+               "references"});
   f.at("type").choice({"anti_sway"});
   FeedbackSpec spec;
   spec.where = f.where();
@@ -575,6 +576,11 @@ FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
   }
   if (const auto x = f.find("hook")) spec.hook = x->text();
   if (const auto x = f.find("sheave")) spec.sheave = x->text();
+  if (const auto shaping = f.find("shaping")) {
+    shaping->allowKeys({"across", "along"});
+    if (const auto a = shaping->find("across")) spec.shaping_across = a->within(0.1, 1000.0, "s");
+    if (const auto a = shaping->find("along")) spec.shaping_along = a->within(0.1, 1000.0, "s");
+  }
   if (const auto refs = f.find("references"))
     for (const std::string& name : refs->keys()) {
       const YamlField reference = refs->at(name);

@@ -5,9 +5,11 @@
 // the swing. It reads what a crane measures: the drives' encoders (the inputs' values and rates),
 // the hoist rope's angles at the boom head and its length.
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "cranesim/control/shaped_reference.hpp"
 #include "cranesim/control/sway_axis.hpp"
 #include "cranesim/session/session.hpp"
 
@@ -24,6 +26,11 @@ struct CraneSwaySpec {
   /// 1/s: the hoist winch's speed command corrects its length towards the reference's at this
   /// rate (0: the hoist speed passes through, an operator's lever).
   double hoist_gain = 0.0;
+  /// s: the operator's slewing and luffing speeds are shaped for a pendulum of these periods
+  /// (control/shaped_reference.hpp; the crane's sway periods across and along the boom), and the
+  /// swing the shaped reference gives the load is the feedback's reference; 0: not shaped, the
+  /// reference swing is zero.
+  double shaping_across = 0.0, shaping_along = 0.0;
 };
 
 /// Where the crane should be at one sample: the drives' values (in the inputs' units) and
@@ -44,8 +51,8 @@ class CraneSwayController {
   CraneSwayController(Session& session, const CraneSwaySpec& spec);
 
   /// Sets the session's inputs for the next sample: the head follows the reference speeds (the
-  /// slewing rate in the slewing input's unit per s, the luffing rope's speed in m/s) while the
-  /// swing is damped; the hoist speed passes through. Returns the commands as held, in the order of
+  /// slewing rate in the slewing input's unit per s, the luffing rope's speed in m/s; shaped when
+  /// the spec says so) while the swing is damped; the hoist speed passes through. Returns the commands as held, in the order of
   /// the session's inputs (clipped to their limits).
   std::vector<double> apply(double slewing_speed, double luffing_speed, double hoist_speed);
 
@@ -67,6 +74,7 @@ class CraneSwayController {
   std::vector<double> table_length_, table_ratio_;  // dR/dl at luffing rope lengths
   double slewing_reference_, luffing_reference_, hoist_reference_;  // where the speeds lead, in the inputs' values
   double hoist_gain_;
+  std::optional<ShapedReference> shaped_across_, shaped_along_;
 };
 
 }  // namespace cranesim
