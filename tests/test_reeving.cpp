@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "cranesim/model/reeved_rope_element.hpp"
 #include "cranesim/solvers/dynamics.hpp"
@@ -264,4 +265,59 @@ TEST_CASE("Reeved rope keeps the books: dqᵀF = dV/dt − P_winch + P_sheaves +
     CHECK(dissipated >= 0.0);
     CHECK(winch != 0.0);
   }
+}
+
+TEST_CASE("A hook block on n collinear falls sways with the period of a pendulum from the head sheave",
+          "[reeving][dynamics]") {
+  // The hook's sheaves at its centre of mass, 10 m under the head sheave in equilibrium: the n
+  // falls hold W along their common line, so the lateral stiffness is W/h and the period
+  // 2π √(h/g) (1 + θ₀²/16) for the amplitude θ₀, whatever n (the stretch sets h; the rope's
+  // axial modes are damped). Released 1 cm aside: θ₀ = 1e-3.
+  const int falls = GENERATE(2, 4, 8);
+  const double h = 10.0, lead = 8.0, EA = 1.0e11 * kRopeArea;
+  const double unstretched = (lead + falls * h) / (1.0 + kWeight / (falls * EA));
+  Scene scene = parseScene(fmt::format(R"(
+name: swaying hook block
+ground:
+  joints: [{{name: winch, position: [-8, 0, 20]}}, {{name: head, position: [0, 0, 20]}}]
+bodies:
+  - name: hook
+    mass: {}
+    inertia: [1000, 1000, 1000]
+    position: [0, 0.01, {}]
+    joints: [{{name: sheaves, position: [0, 0, 0]}}]
+members:
+  - name: hoist
+    type: rope
+    element: reeved
+    falls: {}
+    winch: ground.winch
+    head: {{joint: ground.head, radius: 0.3}}
+    hook: {{joint: hook.sheaves, radius: 0.3}}
+    efficiency: 0.96
+    section: {{radius: 0.01}}
+    material: {{density: 7800, youngs_modulus: 1.0e11, poisson_ratio: 0.3}}
+    damping: 0.05
+    length: {:.17g}
+solver: {{t_end: 26, rtol: 1.0e-10, atol: 1.0e-12}}
+output: {{interval: 0.002}}
+)",
+                                       kHookMass, 20.0 - std::sqrt(h * h - 1e-4), falls, unstretched),
+                           "<test>");
+  const test::SimulationRun run(scene);
+  REQUIRE(run.outcome.complete);
+  const std::vector<double>& t = run.recorder.time();
+  const std::vector<double>& r = run.jointPositions("hook.origin");
+  std::vector<double> crossings;  // downward zero crossings of y, interpolated linearly
+  for (std::size_t i = 1; i < t.size(); ++i) {
+    const double y0 = r[3 * (i - 1) + 1], y1 = r[3 * i + 1];
+    if (y0 > 0.0 && y1 <= 0.0) crossings.push_back(t[i - 1] + (t[i] - t[i - 1]) * y0 / (y0 - y1));
+  }
+  REQUIRE(crossings.size() >= 4);
+  const double period = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const double amplitude = 0.01 / h;
+  const double expected = 2.0 * std::numbers::pi * std::sqrt(h / kGravity) * (1.0 + amplitude * amplitude / 16.0);
+  INFO(falls << " falls: period " << period << " s over " << crossings.size() - 1 << " swings, pendulum " << expected
+             << " s, relative " << period / expected - 1.0);
+  CHECK(std::abs(period / expected - 1.0) < 1e-8);
 }
