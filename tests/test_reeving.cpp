@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -320,4 +321,29 @@ output: {{interval: 0.002}}
   INFO(falls << " falls: period " << period << " s over " << crossings.size() - 1 << " swings, pendulum " << expected
              << " s, relative " << period / expected - 1.0);
   CHECK(std::abs(period / expected - 1.0) < 1e-8);
+}
+
+TEST_CASE("The thesis crane on 8 falls: the falls carry hook block and load, equal parts at rest", "[reeving][crane]") {
+  const Scene scene = test::loadScene("crane_reeved.yaml");
+  const Model model = compileModel(scene);
+  const StaticResult eq = solveEquilibrium(scene, model, 0.0);
+  REQUIRE(eq.converged);
+  const ReevedRopeElement& rope = reevedRope(model);
+  const VecX v = VecX::Zero(model.nv);
+  const ElementInput in{eq.q.data(), v.data(), nullptr, 0.0, model.gravity};
+  VecX r(rope.size());
+  rope.residual(in, r.data());
+  const Node& hook = model.nodes[model.joints[model.findJoint("hook_block.origin")].node];
+  const auto& at = rope.velocityIndices();
+  const int z = static_cast<int>(std::find(at.begin(), at.end(), hook.v + 2) - at.begin());
+  REQUIRE(z < rope.size());
+  const double carried = (390000.6 + 8000.0) * 9.8;  // load and hook block
+  const std::vector<double> T = tensions(model, eq.q.data(), v.data(), 0.0);
+  REQUIRE(T.size() == 9);
+  const auto [lowest, highest] = std::minmax_element(T.begin(), T.end());
+  INFO("rope's lift on the hook block " << -r(z) << " N against " << carried << " N; parts " << *lowest << " … " << *highest
+                                        << " N");
+  CHECK(std::abs(-r(z) / carried - 1.0) < 1e-9);
+  CHECK(*highest / *lowest - 1.0 < 1e-12);
+  CHECK(std::abs(T[0] / (carried / 8.0) - 1.0) < 1e-5);  // the falls lean by 0.15 m over 52 m: cos = 1 − 4e-6
 }
