@@ -42,7 +42,11 @@ struct ReevedRopeKernel : ReeledLength {
   double speed_band = 1e-3;  // b of the direction's smoothing σ = tanh(w/b), m/s
   int points = 2;           // path points, winch and dead end included
   /// η_i of the sheave at inner point i (index i − 1), 1 for a frictionless sheave.
-  std::array<double, kMaxPoints> efficiency{};
+  std::array<double, kMaxPoints> efficiency = [] {
+    std::array<double, kMaxPoints> frictionless;
+    frictionless.fill(1.0);
+    return frictionless;
+  }();
 
   template <class S> using Points = std::array<Vec3T<S>, kMaxPoints>;
 
