@@ -9,9 +9,10 @@ constexpr int kMaxNodeDirections = 7;
 using NodeDual = Dual<double, kMaxNodeDirections>;
 }  // namespace
 
-ReevedRopeElement::ReevedRopeElement(ReevedRopeKernel kernel, std::vector<PathPoint> path, std::vector<Slot> slots,
-                                     std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices)
-    : kernel_(std::move(kernel)), path_(std::move(path)), slots_(std::move(slots)), nodes_(std::move(nodes)),
+ReevedRopeElement::ReevedRopeElement(std::string name, ReevedRopeKernel kernel, std::vector<PathPoint> path,
+                                     std::vector<Slot> slots, std::vector<int> nodes, std::vector<int> q_indices,
+                                     std::vector<int> v_indices)
+    : name_(std::move(name)), kernel_(std::move(kernel)), path_(std::move(path)), slots_(std::move(slots)), nodes_(std::move(nodes)),
       q_(std::move(q_indices)), v_(std::move(v_indices)) {}
 
 ReevedRopeElement::Local<double> ReevedRopeElement::gather(const double* x, const std::vector<int>& at) const {

@@ -7,6 +7,7 @@
 // code, one node at a time (a node's coordinates or velocities seeded, at most 7 directions).
 //   residual   r = F(q, dq, t): the rope's forces on the nodes (no mass)
 
+#include <string>
 #include <vector>
 
 #include "cranesim/elements/reeved_rope.hpp"
@@ -35,9 +36,11 @@ class ReevedRopeElement final : public Element {
     Vec3 offset = Vec3::Zero();
   };
 
-  ReevedRopeElement(ReevedRopeKernel kernel, std::vector<PathPoint> path, std::vector<Slot> slots, std::vector<int> nodes,
-                    std::vector<int> q_indices, std::vector<int> v_indices);
+  ReevedRopeElement(std::string name, ReevedRopeKernel kernel, std::vector<PathPoint> path, std::vector<Slot> slots,
+                    std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);
 
+  /// The rope member's name.
+  const std::string& name() const { return name_; }
   const ReevedRopeKernel& kernel() const { return kernel_; }
   const std::vector<int>& nodes() const override { return nodes_; }
   int size() const override { return static_cast<int>(v_.size()); }
@@ -68,6 +71,7 @@ class ReevedRopeElement final : public Element {
   void tangent(const ElementInput& in, bool velocities, double* J) const;
   Local<double> gather(const double* x, const std::vector<int>& at) const;
 
+  std::string name_;
   ReevedRopeKernel kernel_;
   std::vector<PathPoint> path_;
   std::vector<Slot> slots_;
