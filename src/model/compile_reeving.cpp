@@ -56,6 +56,7 @@ void compileReevedRope(Model& model, const MemberSpec& m) {
   if (m.length) model.parameter_profiles.push_back(*m.length);
   for (std::size_t p = 0; p + 1 < points.size(); ++p)
     model.drawing_lines.push_back({model.findJoint(points[p].joint), model.findJoint(points[p + 1].joint)});
+  model.reeved_ropes.push_back(static_cast<int>(model.elements.size()));
   model.elements.push_back(std::make_unique<ReevedRopeElement>(m.name, std::move(k), std::move(path), std::move(slots),
                                                                std::move(nodes), std::move(q), std::move(v)));
 }
