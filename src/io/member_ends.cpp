@@ -45,6 +45,7 @@ class DrawnJoints {
     if (placed_.count(m.name)) return;
     placing_.insert(m.name);
     chain_.push_back(m.name);
+    if (m.reeving) placeReeving(m);
     if (!m.start_joint.empty()) m.start = position(m.start_joint, m.where_start);
     if (!m.end_joint.empty()) m.end = position(m.end_joint, m.where_end);
     chain_.pop_back();
@@ -53,6 +54,35 @@ class DrawnJoints {
   }
 
  private:
+  /// A reeved rope's drawn path: its ends (start: the winch, end: the dead end) and the sum of
+  /// its parts' chords, each part at least as long as its sheaves' radii.
+  void placeReeving(MemberSpec& m) {
+    ReevingSpec& r = *m.reeving;
+    std::vector<Vec3> points = {position(r.winch, r.where_winch)};
+    std::vector<double> radii = {0.0};
+    std::vector<SourceLocation> where = {r.where_winch};
+    for (const SheaveSpec& s : r.sheaves) {
+      points.push_back(position(s.joint, s.where));
+      radii.push_back(s.radius);
+      where.push_back(s.where);
+    }
+    points.push_back(position(r.dead_end, r.where_dead_end));
+    radii.push_back(0.0);
+    where.push_back(r.where_dead_end);
+    r.drawn_length = 0.0;
+    for (std::size_t k = 0; k + 1 < points.size(); ++k) {
+      const double chord = (points[k + 1] - points[k]).norm();
+      if (!(chord > radii[k] + radii[k + 1]))
+        throw SceneError(where[k + 1], fmt::format("rope '{}': its part {} (from path point {} to {}) is {:.6g} m long in "
+                                                   "the drawing, not longer than its sheaves' radii ({:g} m): the points "
+                                                   "of a path must lie apart", m.name, k + 1, k, k + 1, chord,
+                                                   radii[k] + radii[k + 1]));
+      r.drawn_length += chord;
+    }
+    m.start = points.front();
+    m.end = points.back();
+  }
+
   Vec3 position(const std::string& name, const SourceLocation& where) {
     const std::size_t dot = name.find('.');
     if (dot == std::string::npos || dot == 0 || dot + 1 == name.size())
@@ -121,6 +151,7 @@ void placeMemberEnds(Scene& scene) {
   DrawnJoints joints(scene);
   for (MemberSpec& m : scene.members) joints.place(m);
   for (const MemberSpec& m : scene.members) {
+    if (m.reeving) continue;  // its path is checked by placeReeving
     const double distance = (m.end - m.start).norm();
     if (distance < 1e-9) throw SceneError(m.where_end, "a member needs distinct start and end points");
     if (m.type != MemberType::Truss) continue;

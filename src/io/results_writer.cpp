@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "cranesim/assembly/constraint_reaction.hpp"
+#include "cranesim/model/reeved_rope_element.hpp"
 #include "cranesim/model/wind_elements.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 #include "cranesim/version.hpp"
@@ -64,7 +65,8 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
       joint_position_(assembler.model().joints.size()),
       joint_rotation_(assembler.model().joints.size()),
       section_forces_(assembler.model().section_force_groups.size()),
-      wind_forces_(assembler.model().wind_parts.size()) {
+      wind_forces_(assembler.model().wind_parts.size()),
+      part_tensions_(assembler.model().reeved_ropes.size()) {
   const Model& model = assembler.model();
   for (const std::string& name : model.output.constraint_loads) load_constraints_.push_back(model.findConstraint(name));
   constraint_loads_.resize(load_constraints_.size());
@@ -82,7 +84,7 @@ void ResultsRecorder::keepBefore(double t) {
   if (kept == recorded) return;
   const auto keep = [&](std::vector<double>& series) { series.resize(series.size() / recorded * kept); };
   for (auto* group : {&body_position_, &body_rotation_, &body_velocity_, &body_omega_, &joint_position_, &joint_rotation_,
-                      &section_forces_, &constraint_loads_, &tipping_moments_, &wind_forces_})
+                      &section_forces_, &constraint_loads_, &tipping_moments_, &wind_forces_, &part_tensions_})
     for (std::vector<double>& series : *group) keep(series);
   for (auto* series : {&time_, &state_, &kinetic_, &potential_, &drive_work_, &load_work_, &winch_work_, &dissipated_,
                        &balance_, &residual_position_, &residual_velocity_})
@@ -153,6 +155,12 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
     for (const int e : model.wind_parts[p].elements) force += dynamic_cast<const WindElement&>(*model.elements[e]).resultantForce(in);
     append(wind_forces_[p], force.data(), 3);
   }
+  for (std::size_t r = 0; r < model.reeved_ropes.size(); ++r) {
+    const auto& rope = dynamic_cast<const ReevedRopeElement&>(*model.elements[model.reeved_ropes[r]]);
+    double tensions[ReevedRopeKernel::kMaxPoints];
+    rope.partTensions(in, tensions);
+    append(part_tensions_[r], tensions, rope.kernel().parts());
+  }
   for (std::size_t k = 0; k < load_constraints_.size(); ++k) {
     const ConstraintReaction load = constraintReaction(model, model.constraints[load_constraints_[k]], C.G, q, motion.lambda.data());
     append(constraint_loads_[k], load.force.data(), 3);
@@ -192,6 +200,7 @@ double ResultsRecorder::estimatedBytes(const Model& model, double samples) {
   // the recorded section forces and wind forces; twice: recorded, then the file's image.
   double section_forces = 0.0;
   for (const Model::SectionForceGroup& g : model.section_force_groups) section_forces += (g.rope ? kTensionPoints : 12.0) * g.elements.size();
+  for (const int e : model.reeved_ropes) section_forces += static_cast<double>(model.elements[e]->size());  // ≥ its parts
   const double per_sample = 8.0 * (model.nq + model.nv + model.m + 18.0 * model.nodes.size() + 12.0 * model.joints.size() + 10.0 +
                                    section_forces + 6.0 * model.output.constraint_loads.size() +
                                    static_cast<double>(model.output.tipping_lines.size()) + 3.0 * model.wind_parts.size());
@@ -294,6 +303,10 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     }
     for (std::size_t p = 0; p < model.wind_parts.size(); ++p)
       file.writeDoubles("/wind/" + model.wind_parts[p].name + "/force", {N, 3}, wind_forces_[p].data());
+    for (std::size_t r = 0; r < model.reeved_ropes.size(); ++r) {
+      const auto& rope = dynamic_cast<const ReevedRopeElement&>(*model.elements[model.reeved_ropes[r]]);
+      file.writeDoubles("/ropes/" + rope.name() + "/part_tension", {N, hsize_t(rope.kernel().parts())}, part_tensions_[r].data());
+    }
     for (std::size_t k = 0; k < load_constraints_.size(); ++k) writeConstraintLoads(file, model.constraints[load_constraints_[k]], constraint_loads_[k]);
     for (std::size_t k = 0; k < tipping_moments_.size(); ++k) {
       const TippingLineSpec& line = model.output.tipping_lines[k];

@@ -14,6 +14,7 @@
 #include "cranesim/model/closest_name.hpp"
 #include "member_ends.hpp"
 #include "profile_reader.hpp"
+#include "reeving_reader.hpp"
 #include "scene_composition.hpp"
 #include "solver_reader.hpp"
 #include "wind_reader.hpp"
@@ -299,6 +300,22 @@ Profile readDrive(const YamlField& f) {
   return p;
 }
 
+/// A massless rope reeved over sheaves (`element: reeved`): its path, section, material,
+/// length and damping; no start, end or segments.
+MemberSpec readReevedRope(const YamlField& f, MemberSpec& m) {
+  std::vector<const char*> keys = {"name", "type", "element", "section", "material", "length", "damping"};
+  keys.insert(keys.end(), std::begin(kReevingKeys), std::end(kReevingKeys));
+  f.allowKeys(keys);
+  m.rope_element = RopeElement::Reeved;
+  m.reeving = readReeving(f);
+  double poisson = 0.3;
+  m.material = readMaterial(f.at("material"), poisson);
+  m.section = readSection(f.at("section"), poisson);
+  if (const auto d = f.find("damping")) m.damping = d->nonNegative();
+  if (const auto l = f.find("length")) m.length = readDrive(*l);
+  return m;
+}
+
 /// `section: {EA, EI_y, EI_z, GJ, rhoA, rhoI_y, rhoI_z, [GA_y, GA_z], [rhoI_p]}`: a beam's section
 /// by its properties per unit length (section.hpp); without GA_y and GA_z the beam is
 /// shear-rigid; ρI_p defaults to ρI_y + ρI_z (a section's polar moment).
@@ -340,6 +357,9 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
            : type == "spline_beam" ? MemberType::SplineBeam
            : type == "rope"        ? MemberType::Rope
                                    : MemberType::Truss;
+  if (m.type == MemberType::Rope)
+    if (const auto e = f.find("element"); e && e->choice({"spline", "cable", "reeved"}) == "reeved")
+      return readReevedRope(f, m);
   std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "damping"};
   if (m.type == MemberType::Truss) keys.insert(keys.end(), {"truss", "fidelity", "element"});
   else keys.insert(keys.end(), {"section", "material"});
@@ -469,7 +489,7 @@ LoadSpec readLoad(const YamlField& f) {
 /// `output.section_forces`: names of members made of beams, or of ropes (their tensions).
 std::vector<std::string> readSectionForceMembers(const YamlField& f, const std::vector<MemberSpec>& members) {
   const auto hasBeams = [](const MemberSpec& m) {
-    return m.type == MemberType::Timoshenko || m.type == MemberType::Rope ||
+    return m.type == MemberType::Timoshenko || (m.type == MemberType::Rope && !m.reeving) ||
            (m.type == MemberType::Truss && (m.fidelity == TrussFidelity::Members || m.fidelity == TrussFidelity::Beam));
   };
   std::string eligible;
@@ -480,8 +500,8 @@ std::vector<std::string> readSectionForceMembers(const YamlField& f, const std::
     const std::string name = item.text();
     const auto m = std::find_if(members.begin(), members.end(), [&](const MemberSpec& spec) { return spec.name == name; });
     if (m == members.end() || !hasBeams(*m))
-      item.fail(fmt::format("{} '{}': section forces are recorded for timoshenko members, ropes and trusses of fidelity "
-                            "members or beam (here: {})", m == members.end() ? "no member" : "no beams in member", name,
+      item.fail(fmt::format("{} '{}': section forces are recorded for timoshenko members, ropes (not reeved) and trusses "
+                            "of fidelity members or beam (here: {})", m == members.end() ? "no member" : "no beams in member", name,
                             eligible.empty() ? "none" : eligible));
     if (std::find(names.begin(), names.end(), name) != names.end()) item.fail(fmt::format("'{}' is listed twice", name));
     names.push_back(name);

@@ -15,6 +15,7 @@
 #include "cranesim/model/arc.hpp"
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/member_force_elements.hpp"
+#include "compile_reeving.hpp"
 #include "compile_truss.hpp"
 #include "compile_wind.hpp"
 #include "model_building.hpp"
@@ -216,17 +217,21 @@ Model compileModel(const Scene& scene) {
     }
   }
 
+  std::vector<MemberSpec> reeved;  // after every other member: their paths run over their nodes
   for (const MemberSpec& m : scene.members) {
     if (m.type != MemberType::Truss) {
       MemberSpec member = m;
       if (member.length) member.length = model.attachInput(*m.length, m.name, "rope length", m.where);
-      compileMember(model, member);
+      if (member.reeving) reeved.push_back(std::move(member));
+      else compileMember(model, member);
       continue;
     }
     const auto type = std::find_if(scene.trusses.begin(), scene.trusses.end(), [&](const TrussDescription& d) { return d.name == m.truss; });
     if (type == scene.trusses.end()) throw SceneError(m.where, fmt::format("unknown truss type '{}'", m.truss));
     compileTrussMember(model, m, *type);
   }
+
+  for (const MemberSpec& m : reeved) compileReevedRope(model, m);
 
   const auto resolve = [&](const std::string& name, const SourceLocation& where) {
     const int j = model.findJoint(name);

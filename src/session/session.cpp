@@ -188,6 +188,7 @@ std::vector<double> Session::ropeTensions(const std::string& rope) const {
       if (m.type == MemberType::Rope) ropes.push_back(m.name);
     throw std::invalid_argument(unknownName("rope", rope, ropes));
   }
+  if (spec->reeving) throw std::invalid_argument(fmt::format("rope '{}' is reeved: its parts' tensions are not observed yet", rope));
   const VecX zero = VecX::Zero(model_->nv);
   const ElementInput in{state(), zero.data(), zero.data(), observed_t_, model_->gravity};
   std::vector<double> tensions;

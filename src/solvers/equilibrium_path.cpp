@@ -89,7 +89,9 @@ VecX predict(const Model& model, const VecX& x, const VecX& tangent, double h) {
 
 // At the chord itself every Gauss point sits on the kink of the tension-only law, where the
 // rope has no stiffness, and Newton's first step lets the boom fall.
-double drawnRopeLength(const MemberSpec& rope) { return (1.0 - 1e-3) * (rope.end - rope.start).norm(); }
+double drawnRopeLength(const MemberSpec& rope) {
+  return (1.0 - 1e-3) * (rope.reeving ? rope.reeving->drawn_length : (rope.end - rope.start).norm());
+}
 
 std::vector<PathControl> pathControls(const Scene& scene, const Model& model, const VecX& q_drawn, double t) {
   std::vector<PathControl> controls;

@@ -45,6 +45,9 @@ class ResultsRecorder final : public SampleSink {
   const std::vector<double>& velocityResidual() const { return residual_velocity_; }
   /// The resultant wind force on Model::wind_parts[part] over time (3 per sample, N, inertial).
   const std::vector<double>& windForces(int part) const { return wind_forces_[part]; }
+  /// The part tensions of Model::reeved_ropes[rope] over time (its parts per sample, N, from the
+  /// winch to the dead end).
+  const std::vector<double>& partTensions(int rope) const { return part_tensions_[rope]; }
 
   /// Memory a run's results take while they are recorded and written (the samples and the
   /// file's image), estimated from the model's size and the number of output samples.
@@ -81,6 +84,7 @@ class ResultsRecorder final : public SampleSink {
   std::vector<std::vector<int>> tipping_supports_;     // per output.tipping_lines: its supports, as constraint indices
   std::vector<std::vector<double>> tipping_moments_;   // per tipping line: 1 per sample
   std::vector<std::vector<double>> wind_forces_;       // per Model::wind_parts: the resultant wind force, 3 per sample
+  std::vector<std::vector<double>> part_tensions_;     // per Model::reeved_ropes: its parts' tensions, one each per sample
 };
 
 /// Writes an equilibrium as a one-sample results file (`crane-sim static`, formulation "static"):

@@ -107,6 +107,8 @@ struct Model {
   /// The wind field, if the scene has one, and the parts exposed to it.
   std::shared_ptr<const WindField> wind;
   std::vector<WindPart> wind_parts;
+  /// The reeved ropes' elements (model/reeved_rope_element.hpp), in the scene's order.
+  std::vector<int> reeved_ropes;
   /// Pairs of joints joined by a straight line when the mechanism is drawn (members' elements,
   /// truss tubes); rigid bodies are drawn from their origin to each of their joints.
   std::vector<std::array<int, 2>> drawing_lines;

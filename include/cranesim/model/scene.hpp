@@ -42,9 +42,29 @@ enum class MemberType { StrutTie, Timoshenko, SplineBeam, Rope, Truss };
 /// an equivalent Timoshenko beam, or every tube its own beam.
 enum class TrussFidelity { SuperTruss, Condensed, Beam, Members };
 
-/// How a rope is modelled: cubic spline elements (sag, string vibration) or straight two-node
-/// cables (elements/cable.hpp).
-enum class RopeElement { Spline, Cable };
+/// How a rope is modelled: cubic spline elements (sag, string vibration), straight two-node
+/// cables (elements/cable.hpp), or one massless rope reeved over sheaves
+/// (elements/reeved_rope.hpp).
+enum class RopeElement { Spline, Cable, Reeved };
+
+/// A sheave a reeved rope runs over: a joint at its centre, on a body; its radius and the
+/// efficiency of its bearing (the tension ratio across it while the rope runs).
+struct SheaveSpec {
+  std::string joint;
+  double radius = 0.0;      // m
+  double efficiency = 1.0;  // η ∈ (0, 1]
+  SourceLocation where;
+};
+
+/// A reeved rope's path: from its winch (the joint where its length is reeled) over its
+/// sheaves, in order, to its dead end.
+struct ReevingSpec {
+  std::string winch, dead_end;
+  SourceLocation where_winch, where_dead_end;
+  std::vector<SheaveSpec> sheaves;
+  double speed_band = 1e-3;  // m/s: the rope's running speed over which a sheave's loss turns
+  double drawn_length = 0.0;  // Σ of the parts' drawn chords (placeMemberEnds)
+};
 
 /// A flexible member: a straight line of `segments` elements from `start` to `end`, with nodes
 /// `<name>.n0 … <name>.n<segments>` (joints of the same names; `<name>.start`, `<name>.end`
@@ -74,6 +94,7 @@ struct MemberSpec {
   double damping = 0.0;           // Kelvin–Voigt retardation time η of the material, s (0: undamped)
   double transverse_damping = 0.0;  // rope: damping of its sideways turning against its chords, N·s
   RopeElement rope_element = RopeElement::Spline;
+  std::optional<ReevingSpec> reeving;  // rope element Reeved: its path (no start and end)
   std::string truss;              // truss: the truss type's name
   TrussFidelity fidelity = TrussFidelity::Members;
   MemberType tube_element = MemberType::Timoshenko;  // truss with fidelity Members: the tubes' beam element

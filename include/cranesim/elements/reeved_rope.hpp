@@ -1,0 +1,159 @@
+#pragma once
+// Massless reeved rope (docs/scene-format.md#reeved-ropes): one rope from its winch over a
+// sequence of sheaves to its dead end, each part between consecutive path points a straight,
+// tension-only spring, the whole path sharing one unstretched length L(t) (the winch).
+//
+// Path points x_0 (winch) … x_m (dead end); part k runs from x_k to x_{k+1}, chord ℓ_k,
+// direction u_k, rate ℓ̇_k = u_k·(ẋ_{k+1} − ẋ_k). A sheave sits at each inner point
+// x_1 … x_{m−1}, the rope's line of action through its centre (the geometric model and its
+// error: docs/scene-format.md#reeved-ropes).
+// - Strain of the whole path ε = Σℓ/L − 1, rate ε̇ = Σℓ̇/L − Σℓ L̇/L² (the material's, as the
+//   cable's); the lead part's tension T_0 = EA max(ε + η ε̇, 0) (Kelvin–Voigt η).
+// - Material speed over sheave i towards the dead end, for rigid parts: w_i = Σ_{k≥i} ℓ̇_k (the
+//   rope beyond the sheave lengthens). The sheave's bearing friction holds the rope back:
+//   T_i = T_{i−1} η_i^(−σ(w_i)), σ(w) = tanh(w / b), so hoisting (w < 0) drops the tension by
+//   η_i at each sheave away from the winch and lowering raises it by 1/η_i; at rest (|w| ≪ b)
+//   the ratio is 1, the middle of the friction band. b: `speed_band`.
+// - Forces: part k pulls its ends together, F = Σ T_k ∂ℓ_k/∂x (−T_k u_k on x_k, +T_k u_k on
+//   x_{k+1}); the rope has no mass and no weight.
+// - Energy books (model/element.hpp): V = ½ EA L max(ε, 0)². Summation by parts gives
+//   Σ T_k ℓ̇_k = T_0 Σℓ̇ + Σ_i (T_i − T_{i−1}) w_i, so with the lead part's law the books close
+//   exactly: the winch's power L̇ ∂V/∂L at fixed state (plus the damping stress' power on the
+//   stretch rate that L̇ causes, as the cable's), the dissipation
+//   L EA (σ − σ₀) ε̇ + Σ_i (T_i − T_{i−1}) w_i, each sheave's term ≥ 0 since
+//   T_i/T_{i−1} − 1 has the sign of w_i.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "cranesim/elements/reeled_length.hpp"
+#include "cranesim/elements/section.hpp"
+
+namespace cranesim {
+
+struct ReevedRopeKernel : ReeledLength {
+  /// Path points a kernel call holds on the stack: a rope on 30 falls and its lead part.
+  static constexpr int kMaxPoints = 34;
+
+  Section section;
+  Material material;
+  double damping = 0.0;     // Kelvin–Voigt retardation time η, s
+  double speed_band = 1e-3;  // b of the direction's smoothing σ = tanh(w/b), m/s
+  int points = 2;           // path points, winch and dead end included
+  /// η_i of the sheave at inner point i (index i − 1), 1 for a frictionless sheave.
+  std::array<double, kMaxPoints> efficiency = [] {
+    std::array<double, kMaxPoints> frictionless;
+    frictionless.fill(1.0);
+    return frictionless;
+  }();
+
+  template <class S> using Points = std::array<Vec3T<S>, kMaxPoints>;
+
+  /// The tensions T_k of the m = points − 1 parts (N) at path positions x and velocities xd.
+  template <class S>
+  void partTensions(const Points<S>& x, const Points<S>& xd, double t, ParameterRates rates, S* tension) const {
+    const Chords<S> c = chords(x, xd);
+    const double L = segmentLength(t);
+    S strain = c.total / L - 1.0;
+    if (damping > 0.0) strain += damping * (c.total_rate / L - c.total * segmentRate(t, rates) / (L * L));
+    tension[0] = strain > 0.0 ? S(axialStiffness() * strain) : S(0.0);
+    S beyond = c.total_rate;  // w_i = Σ_{k≥i} ℓ̇_k
+    for (int i = 1; i < parts(); ++i) {
+      beyond -= c.rate[i - 1];
+      tension[i] = tension[i - 1] * sheaveRatio(i, beyond);
+    }
+  }
+
+  /// Forces F on the path points (the left side's: the rope's resistance, −(force on the body)).
+  template <class S>
+  void pointForces(const Points<S>& x, const Points<S>& xd, double t, ParameterRates rates, Points<S>& force) const {
+    std::array<S, kMaxPoints> tension;
+    partTensions(x, xd, t, rates, tension.data());
+    for (int p = 0; p < points; ++p) force[p].setZero();
+    for (int k = 0; k < parts(); ++k) {
+      const Vec3T<S> d = x[k + 1] - x[k];
+      using std::sqrt;
+      const Vec3T<S> pull = (tension[k] / sqrt(d.squaredNorm())) * d;
+      force[k] -= pull;
+      force[k + 1] += pull;
+    }
+  }
+
+  /// ½ EA L max(ε, 0)².
+  double potentialEnergy(const Points<double>& x, double t) const {
+    double length = 0.0;
+    for (int k = 0; k < parts(); ++k) length += (x[k + 1] - x[k]).norm();
+    const double strain = std::max(length / segmentLength(t) - 1.0, 0.0);
+    return 0.5 * axialStiffness() * segmentLength(t) * strain * strain;
+  }
+
+  /// The winch's power: L̇ ∂V/∂L at fixed state, ∂ε/∂L = −Σℓ/L², plus the damping stress' power
+  /// on the stretch rate that L̇ causes (file comment).
+  double explicitTimePower(const Points<double>& x, const Points<double>& xd, double t) const {
+    const double rate = segmentRate(t);
+    if (rate == 0.0) return 0.0;
+    const Chords<double> c = chords(x, xd);
+    const double L = segmentLength(t), EA = axialStiffness();
+    const double strain = std::max(c.total / L - 1.0, 0.0), strain_L = -c.total / (L * L);
+    return rate * (0.5 * EA * strain * strain + EA * L * strain * strain_L +
+                   L * EA * dampingStress(c, t) * strain_L);
+  }
+
+  /// Kelvin–Voigt power plus every sheave's (T_i − T_{i−1}) w_i ≥ 0.
+  double dissipatedPower(const Points<double>& x, const Points<double>& xd, double t) const {
+    const Chords<double> c = chords(x, xd);
+    const double L = segmentLength(t);
+    double power = L * axialStiffness() * dampingStress(c, t) * (c.total_rate / L - c.total * segmentRate(t) / (L * L));
+    std::array<double, kMaxPoints> tension;
+    partTensions(x, xd, t, ParameterRates::Left, tension.data());
+    double beyond = c.total_rate;
+    for (int i = 1; i < parts(); ++i) {
+      beyond -= c.rate[i - 1];
+      power += (tension[i] - tension[i - 1]) * beyond;
+    }
+    return power;
+  }
+
+  int parts() const { return points - 1; }
+  double axialStiffness() const { return material.youngs_modulus * section.area; }
+
+ private:
+  template <class S> struct Chords {
+    std::array<S, kMaxPoints> rate;  // ℓ̇_k
+    S total, total_rate;            // Σℓ, Σℓ̇
+  };
+
+  template <class S> Chords<S> chords(const Points<S>& x, const Points<S>& xd) const {
+    using std::sqrt;
+    Chords<S> c;
+    c.total = S(0.0), c.total_rate = S(0.0);
+    for (int k = 0; k < parts(); ++k) {
+      const Vec3T<S> d = x[k + 1] - x[k];
+      const S length = sqrt(d.squaredNorm());
+      c.rate[k] = d.dot(Vec3T<S>(xd[k + 1] - xd[k])) / length;
+      c.total += length;
+      c.total_rate += c.rate[k];
+    }
+    return c;
+  }
+
+  /// T_i / T_{i−1} = η_i^(−σ(w_i)) across the sheave at inner point i.
+  template <class S> S sheaveRatio(int i, const S& speed) const {
+    const double log_efficiency = std::log(efficiency[i - 1]);
+    if (log_efficiency == 0.0) return S(1.0);
+    using std::exp;
+    using std::tanh;
+    return exp(-log_efficiency * tanh(speed / speed_band));
+  }
+
+  /// (σ − σ₀)/E: the damped law's stress less the elastic one.
+  double dampingStress(const Chords<double>& c, double t) const {
+    if (damping == 0.0) return 0.0;
+    const double L = segmentLength(t), strain = c.total / L - 1.0;
+    const double rate = c.total_rate / L - c.total * segmentRate(t) / (L * L);
+    return std::max(strain + damping * rate, 0.0) - std::max(strain, 0.0);
+  }
+};
+
+}  // namespace cranesim
