@@ -90,6 +90,20 @@ insert_before:
   CHECK(names == std::vector<std::string>{"above", "top", "middle", "tip"});
 }
 
+TEST_CASE("Adding to a list the base lacks creates it", "[scene][list_edits]") {
+  const Scene scene = composed(R"(
+base: pendulum.yaml
+add:
+  loads:
+    - {name: push, joint: rod.tip, force: [0, 0, -1]}
+)");
+  REQUIRE(scene.loads.size() == 1);
+  CHECK(scene.loads[0].joint == "rod.tip");
+  const SceneError e = composeError("base: pendulum.yaml\nadd:\n  lods: [{name: push, joint: rod.tip}]\n");
+  CHECK(e.where().path == "add.lods");
+  CHECK_THAT(e.what(), Catch::Contains("the base scene has no list 'lods' here"));
+}
+
 TEST_CASE("An item removed and added again replaces the base's", "[scene][list_edits]") {
   const Scene scene = composed(R"(
 base: pendulum.yaml
