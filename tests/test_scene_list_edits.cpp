@@ -101,7 +101,7 @@ add:
   CHECK(scene.loads[0].joint == "rod.tip");
   const SceneError e = composeError("base: pendulum.yaml\nadd:\n  lods: [{name: push, joint: rod.tip}]\n");
   CHECK(e.where().path == "add.lods");
-  CHECK_THAT(e.what(), Catch::Contains("the base scene has no list 'lods' here"));
+  CHECK_THAT(e.what(), Catch::Contains("the base scene has no list 'lods' here (did you mean 'loads'?)"));
 }
 
 TEST_CASE("An item removed and added again replaces the base's", "[scene][list_edits]") {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "cranesim/model/closest_name.hpp"
 #include "scene_path.hpp"
 
 namespace cranesim {
@@ -23,8 +24,11 @@ YAML::Node listAt(YAML::Node base, const YamlField& entry, const std::vector<std
   YAML::Node parent = sceneNode(base, entry, parent_parts);
   const std::string& key = parts.back();
   if (parent.IsMap() && !static_cast<const YAML::Node&>(parent)[key]) {
-    if (!create || !kNamedLists.count(key))
-      entry.fail(fmt::format("the base scene has no list '{}' here", key));
+    if (!create || !kNamedLists.count(key)) {
+      const std::string closest = closestName(key, std::vector<std::string>(kNamedLists.begin(), kNamedLists.end()));
+      entry.fail(fmt::format("the base scene has no list '{}' here{}", key,
+                             closest.empty() ? "" : fmt::format(" (did you mean '{}'?)", closest)));
+    }
     parent[key] = YAML::Node(YAML::NodeType::Sequence);
   }
   YAML::Node list = sceneNode(base, entry, parts);
