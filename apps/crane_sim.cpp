@@ -18,6 +18,7 @@
 #include <memory>
 
 #include "cranesim/control/closed_loop.hpp"
+#include "cranesim/crane/crane_figures.hpp"
 #include "cranesim/io/command_line.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_info.hpp"
@@ -195,8 +196,10 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
 /// The equilibrium `static` and `modes` start from, solved from the scene's consistent initial
 /// state and reported.
 StaticResult reportedEquilibrium(const Scene& scene, const Model& model, const Assembler& assembler) {
+  locateCrane(scene, model);
   const StaticResult eq = sceneEquilibrium(scene, model, assembler, false);
   printEquilibriumReport(model, eq);
+  fmt::print("{}", describeCraneFigures(craneFigures(scene, model, eq.q.data(), eq.t)));
   return eq;
 }
 
@@ -207,7 +210,8 @@ int statics(const std::string& scene_path, std::string out) {
   const Assembler assembler(model);
   const StaticResult eq = reportedEquilibrium(scene, model, assembler);
   const std::string unstable = equilibriumInstability(model, eq, false);
-  writeEquilibriumResults(out, assembler, eq, scene_path, scene.text, unstable);
+  const CraneFigures figures = craneFigures(scene, model, eq.q.data(), eq.t);
+  writeEquilibriumResults(out, assembler, eq, scene_path, scene.text, unstable, &figures);
   fmt::print(stderr, "  results: {}{}\n", out, unstable.empty() ? "" : " (incomplete)");
   if (unstable.empty()) return 0;
   fmt::print(stderr, "error: {}\n", unstable);
@@ -237,14 +241,37 @@ int modes(const std::string& scene_path, std::string out, int count) {
   return 0;
 }
 
+/// Each truss section with its type and fidelity, marked where the fidelity is the scene's
+/// defaults.truss_fidelity.
+void printTrussFidelities(const Scene& scene) {
+  const auto word = [](TrussFidelity f) {
+    switch (f) {
+      case TrussFidelity::SuperTruss: return "super_truss";
+      case TrussFidelity::Condensed: return "condensed";
+      case TrussFidelity::Beam: return "beam";
+      case TrussFidelity::Members: return "members";
+    }
+    return "";
+  };
+  bool header = false;
+  for (const MemberSpec& m : scene.members) {
+    if (m.type != MemberType::Truss) continue;
+    if (!header) fmt::print("{:<24} {:<12} {}\n", "truss section", "type", "fidelity");
+    header = true;
+    fmt::print("{:<24} {:<12} {}{}\n", m.name, m.truss, word(m.fidelity), m.fidelity_by_default ? " (defaults.truss_fidelity)" : "");
+  }
+}
+
 int check(const std::string& scene_path) {
   const Scene scene = readScene(scene_path);
   const Model model = compileModel(scene);
+  locateCrane(scene, model);
   requireResultsFit(scene, model);
   const Assembler assembler(model);
   AssemblyMove move;
   assembledInitialState(assembler, model.solver.t_start, model.q0, model.v0, model.solver.assembly_tolerance, &move);
   fmt::print("{}", modelSummary(assembler));
+  printTrussFidelities(scene);
   if (move.visible())
     fmt::print("initial state: assembled; largest move {} (solver.assembly_tolerance = {:g})\n", move.describe(),
                model.solver.assembly_tolerance);

@@ -54,6 +54,25 @@ void writeConstraintLoads(Hdf5File& file, const Constraint& c, const std::vector
   file.attribute(path, "axes", "the first joint's, moment about the second joint's origin, on the second joint's side");
 }
 
+/// `/crane`: the boom's figures as attributes, `/crane/ropes/<rope>` each rope's end tensions.
+void writeCraneFigures(Hdf5File& file, const CraneFigures& crane) {
+  file.ensureGroup("/crane");
+  if (const auto& boom = crane.boom) {
+    file.attribute("/crane", "boom_angle_deg", boom->boom_angle_deg);
+    file.attribute("/crane", "head_height", boom->head_height);
+    file.attribute("/crane", "hook_radius", boom->hook_radius);
+    file.attribute("/crane", "hook_height", boom->hook_height);
+    if (boom->load_radius) file.attribute("/crane", "load_radius", *boom->load_radius);
+    if (boom->load_height) file.attribute("/crane", "load_height", *boom->load_height);
+  }
+  for (const RopeTension& rope : crane.ropes) {
+    const std::string path = "/crane/ropes/" + rope.rope;
+    file.ensureGroup(path);
+    file.attribute(path, "tension_start", rope.at_start);
+    file.attribute(path, "tension_end", rope.at_end);
+  }
+}
+
 }  // namespace
 
 ResultsRecorder::ResultsRecorder(const Assembler& assembler)
@@ -321,6 +340,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
       file.attribute(path, "supports", supports);
       file.attribute(path, "sign", kTippingMomentSign);
     }
+    if (meta.crane) writeCraneFigures(file, *meta.crane);
     file.writeDoubles("/residual/position", {N}, residual_position_.data());
     file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());
 
@@ -348,14 +368,15 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
 }
 
 void writeEquilibriumResults(const std::string& path, const Assembler& assembler, const StaticResult& eq,
-                             const std::string& scene_path, const std::string& scene_text, const std::string& unstable) {
+                             const std::string& scene_path, const std::string& scene_text, const std::string& unstable,
+                             const CraneFigures* crane) {
   ResultsRecorder recorder(assembler);
   recorder.sample(eq.t, equilibriumSample(assembler, eq).data(), WorkTerms{});
   SimulationOutcome outcome;
   outcome.complete = unstable.empty();
   outcome.t_reached = eq.t;
   outcome.message = unstable;
-  recorder.write(path, {scene_path, scene_text, "static", eq.t}, outcome);
+  recorder.write(path, {scene_path, scene_text, "static", eq.t, crane}, outcome);
 }
 
 void requireResultsFit(const Scene& scene, const Model& model) {

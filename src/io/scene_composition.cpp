@@ -4,11 +4,12 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <sstream>
 #include <vector>
 
 #include "bounded_yaml.hpp"
 #include "cranesim/model/source_location.hpp"
+#include "scene_list_edits.hpp"
+#include "scene_path.hpp"
 #include "yaml_field.hpp"
 
 namespace cranesim {
@@ -22,43 +23,17 @@ std::string keysOf(const YAML::Node& mapping) {
   return keys;
 }
 
-std::vector<std::string> splitDots(const std::string& key) {
-  std::vector<std::string> parts;
-  std::stringstream in(key);
-  for (std::string part; std::getline(in, part, '.');) parts.push_back(part);
-  return parts;
-}
-
 /// The mapping that holds the last part of `key` in `base`, and that part.
 std::pair<YAML::Node, std::string> fieldParent(YAML::Node base, const YamlField& entry, const std::string& key) {
-  const std::vector<std::string> parts = splitDots(key);
-  if (parts.size() < 2 || std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
-    entry.fail("expected <list>.<item name>.<field> or <mapping>.<field>");
-  YAML::Node target = base[parts[0]];
-  if (!target) entry.fail(fmt::format("the base scene has no '{}'", parts[0]));
-  std::size_t next = 1;
-  if (target.IsSequence()) {
-    if (parts.size() < 3) entry.fail(fmt::format("name the item of '{}' and the field to set: {}.<name>.<field>", parts[0], parts[0]));
-    YAML::Node item;
-    bool found = false;
-    std::string known;
-    for (YAML::Node candidate : target) {
-      const std::string name = candidate.IsMap() && candidate["name"] ? candidate["name"].as<std::string>() : "";
-      known += (known.empty() ? "" : ", ") + name;
-      if (name == parts[1] && !found) item.reset(candidate), found = true;
-    }
-    if (!found) entry.fail(fmt::format("the base scene's {} have no item named '{}' (known: {})", parts[0], parts[1], known));
-    target.reset(item);  // rebind: assigning a Node would overwrite the list with the item
-    next = 2;
-  }
-  for (; next + 1 < parts.size(); ++next) {
-    if (!target.IsMap()) entry.fail(fmt::format("'{}' is not a mapping in the base scene", parts[next - 1]));
-    YAML::Node child = target[parts[next]];
-    if (!child) entry.fail(fmt::format("the base scene has no field '{}' here", parts[next]));
-    target.reset(child);
-  }
-  if (!target.IsMap()) entry.fail(fmt::format("'{}' is not a mapping in the base scene", parts[next - 1]));
-  return {target, parts.back()};
+  std::vector<std::string> parts = scenePathParts(entry, key);
+  if (parts.size() < 2) entry.fail("expected <list>.<item name>.<field> or <mapping>.<field>");
+  const std::string field = parts.back();
+  parts.pop_back();
+  const YAML::Node parent = sceneNode(base, entry, parts);
+  if (parent.IsSequence())
+    entry.fail(fmt::format("name the item of '{}' and the field to set: {}.<name>.<field>", parts.back(), parts.back()));
+  if (!parent.IsMap()) entry.fail(fmt::format("'{}' is not a mapping in the base scene", parts.back()));
+  return {parent, field};
 }
 
 }  // namespace
@@ -80,6 +55,11 @@ YAML::Node sceneField(YAML::Node base, const YamlField& entry, const std::string
 
 namespace {
 
+bool isCompositionKey(const std::string& key) {
+  return key == "base" || key == "modify" ||
+         std::find(kListEditKeys.begin(), kListEditKeys.end(), key) != kListEditKeys.end();
+}
+
 ComposedScene compose(const std::string& text, const std::string& path, const BaseValidator& validate, int depth) {
   ComposedScene out;
   out.text = text;
@@ -91,7 +71,8 @@ ComposedScene compose(const std::string& text, const std::string& path, const Ba
   }
   if (!out.root.IsMap()) return out;  // the scene reader reports it
   if (!out.root["base"]) {
-    if (out.root["modify"]) YamlField(out.root["modify"], "modify").fail("'modify' needs a 'base' scene");
+    for (const std::string key : {"modify", "remove", "add", "insert_before", "insert_after"})
+      if (out.root[key]) YamlField(out.root[key], key).fail(fmt::format("'{}' needs a 'base' scene", key));
     return out;
   }
   // The base takes this file's keys one by one, so a duplicate key would win silently.
@@ -112,8 +93,9 @@ ComposedScene compose(const std::string& text, const std::string& path, const Ba
   ComposedScene base = composeBase();
   for (const auto& kv : out.root) {
     const std::string key = kv.first.as<std::string>();
-    if (key != "base" && key != "modify") base.root[key] = kv.second;
+    if (!isCompositionKey(key)) base.root[key] = kv.second;
   }
+  const std::vector<RemovedItem> removed = applyListEdits(base.root, out.root);
   if (const YAML::Node modify = out.root["modify"]) {
     const YamlField field(modify, "modify");
     if (!modify.IsMap()) field.fail("expected a mapping of <path>: <value>");
@@ -123,6 +105,7 @@ ComposedScene compose(const std::string& text, const std::string& path, const Ba
       modifyScene(base.root, YamlField(kv.second, "modify." + key), key, kv.second);
     }
   }
+  rejectDanglingReferences(base.root, removed);
   out.root.reset(base.root);
   out.text = fmt::format("{}\n# ---- base scene: {} ----\n{}", text, base_path.string(), base.text);
   return out;

@@ -10,8 +10,9 @@
 //
 // A `modify` key is `<list>.<item name>.<field>[.<field>…]` for the named items of a top-level
 // list (bodies, trusses, members, constraints, loads) or `<mapping>.<field>[.<field>…]` for a
-// top-level mapping (solver, output, ground). The base is validated on its own first, so an error
-// in it names the base file.
+// top-level mapping (solver, output, ground). `add`, `insert_before`, `insert_after` and `remove`
+// edit the base's lists first (scene_list_edits.hpp). The base is validated on its own first, so
+// an error in it names the base file.
 
 #include <yaml-cpp/yaml.h>
 

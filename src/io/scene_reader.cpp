@@ -9,6 +9,7 @@
 #include <set>
 
 #include "bounded_yaml.hpp"
+#include "crane_reader.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/rotation.hpp"
 #include "cranesim/model/closest_name.hpp"
@@ -256,8 +257,29 @@ void requireRopeLength(const MemberSpec& m, const YamlField& f, const SolverSpec
                        m.name, longest, when_longest, type, YamlField::kMaxCoordinate));
 }
 
+TrussFidelity readFidelity(const YamlField& f) {
+  const std::string chosen = f.choice({"super_truss", "condensed", "beam", "members"});
+  return chosen == "members"     ? TrussFidelity::Members
+         : chosen == "condensed" ? TrussFidelity::Condensed
+         : chosen == "beam"      ? TrussFidelity::Beam
+                                 : TrussFidelity::SuperTruss;
+}
+
+/// `defaults:`, what members take where they leave a key out.
+struct MemberDefaults {
+  std::optional<TrussFidelity> truss_fidelity;
+};
+
+MemberDefaults readDefaults(const YamlField& f) {
+  f.allowKeys({"truss_fidelity"});
+  MemberDefaults d;
+  if (const auto fidelity = f.find("truss_fidelity")) d.truss_fidelity = readFidelity(*fidelity);
+  return d;
+}
+
 /// `type: truss`: a placed truss type (its drawn length is checked by placeMemberEnds).
-void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussDescription>& trusses) {
+void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussDescription>& trusses,
+                     const MemberDefaults& defaults) {
   const YamlField tf = f.at("truss");
   m.truss = tf.text();
   const auto type = std::find_if(trusses.begin(), trusses.end(), [&](const TrussDescription& d) { return d.name == m.truss; });
@@ -266,12 +288,14 @@ void readTrussMember(const YamlField& f, MemberSpec& m, const std::vector<TrussD
     for (const TrussDescription& d : trusses) known += (known.empty() ? "" : ", ") + d.name;
     tf.fail(fmt::format("unknown truss type '{}' (types under trusses: {})", m.truss, known.empty() ? "none" : known));
   }
-  const YamlField fidelity = f.at("fidelity");
-  const std::string chosen = fidelity.choice({"super_truss", "condensed", "beam", "members"});
-  m.fidelity = chosen == "members"     ? TrussFidelity::Members
-               : chosen == "condensed" ? TrussFidelity::Condensed
-               : chosen == "beam"      ? TrussFidelity::Beam
-                                       : TrussFidelity::SuperTruss;
+  if (const auto fidelity = f.find("fidelity")) {
+    m.fidelity = readFidelity(*fidelity);
+  } else if (defaults.truss_fidelity) {
+    m.fidelity = *defaults.truss_fidelity;
+    m.fidelity_by_default = true;
+  } else {
+    f.fail("missing field 'fidelity': give the section its fidelity, or the scene's defaults.truss_fidelity");
+  }
   if (const auto e = f.find("element")) {
     if (m.fidelity != TrussFidelity::Members) e->fail("'element' chooses the tubes' beam element of fidelity 'members' only");
     e->choice({"timoshenko"});
@@ -346,7 +370,7 @@ Section readSectionProperties(const YamlField& f) {
   return s;
 }
 
-MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& trusses) {
+MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& trusses, const MemberDefaults& defaults) {
   MemberSpec m;
   m.where = f.where();
   m.name = f.at("name").identifier();
@@ -410,7 +434,7 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
                           "their number", m.segments));
   }
   if (m.type == MemberType::Truss) {
-    readTrussMember(f, m, trusses);
+    readTrussMember(f, m, trusses, defaults);
     return m;
   }
   const YamlField section = f.at("section");
@@ -619,7 +643,7 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
   const YamlField f(root, "");
   if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
   f.allowKeys({"name", "gravity", "ground", "bodies", "trusses", "members", "constraints", "loads", "wind", "solver",
-               "output", "feedback"});
+               "output", "feedback", "crane", "defaults"});
   Scene s;
   s.path = path;
   s.text = composed.text;
@@ -643,9 +667,10 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
       for (std::size_t i = 0; i + 1 < s.trusses.size(); ++i)
         if (s.trusses[i].name == s.trusses.back().name) t.at("name").fail(fmt::format("duplicate truss type name '{}'", s.trusses.back().name));
     }
+  const MemberDefaults defaults = f.has("defaults") ? readDefaults(f.at("defaults")) : MemberDefaults{};
   if (const auto members = f.find("members"))
     for (const YamlField& m : members->items()) {
-      s.members.push_back(readMember(m, s.trusses));
+      s.members.push_back(readMember(m, s.trusses, defaults));
       if (!body_names.insert(s.members.back().name).second)
         m.at("name").fail(fmt::format("duplicate body or member name '{}'", s.members.back().name));
     }
@@ -677,6 +702,7 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
     if (const auto tl = o->find("tipping_lines")) s.output.tipping_lines = readTippingLines(*tl, s.constraints);
   }
   if (const auto fb = f.find("feedback")) s.feedback = readFeedback(*fb, s);
+  if (const auto crane = f.find("crane")) s.crane = readCrane(*crane, s);
   return s;
 }
 

@@ -19,6 +19,7 @@ class YamlField {
   YamlField(YAML::Node node, std::string path) : node_(std::move(node)), path_(std::move(path)) {}
 
   const std::string& path() const { return path_; }
+  const YAML::Node& node() const { return node_; }
   SourceLocation where() const;
   [[noreturn]] void fail(const std::string& message) const;
 

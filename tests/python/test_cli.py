@@ -524,3 +524,49 @@ def test_reeved_rope_part_tensions_are_recorded(tmp_path: Path):
     assert steady[:, 1:] / steady[:, :-1] == pytest.approx(eta, rel=1e-9)
     # The falls lean 0.1 m over 10 m: the line pull is 5e-5 above the formula's for vertical falls.
     assert steady[:, 0] == pytest.approx(weight * (1 - eta) / (eta * (1 - eta**4)), rel=2e-4)
+
+
+def test_static_reports_the_crane_in_an_engineers_terms(tmp_path: Path):
+    """The thesis crane's `crane:` block: boom angle, head height, hook and load radius and height,
+    and each rope's tensions, on stdout and under /crane in the results file. The hoist rope
+    carries the 390 t load at the hook: W = 390000.6 kg × 9.8 m/s²."""
+    out = tmp_path / "crane_static.h5"
+    result = crane_sim("static", SOURCE_DIR / "configs" / "crane.yaml", "-o", out, cwd=tmp_path, timeout=120)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert "crane" in lines
+    figures = {" ".join(line.split()[:3]): float(line.split()[3]) for line in lines
+               if line.startswith("  ") and "[" in line and len(line.split()) >= 4}
+    assert 84.0 < figures["boom angle [deg]"] < 85.0  # drawn at 85°, lowered by the luffing system's stretch
+    load = [float(v) for v in next(line.split()[1:] for line in lines if line.startswith("load "))]
+    assert figures["hook radius [m]"] == pytest.approx(math.hypot(load[0], load[1]), abs=1e-4)
+    assert figures["load height [m]"] == pytest.approx(figures["hook height [m]"] - 1.0, abs=1e-3)
+    hoist = next(line.split() for line in lines if line.startswith("  hoist_rope "))
+    assert float(hoist[2]) == pytest.approx(390000.6 * 9.8, rel=1e-5)
+    with h5py.File(out, "r") as f:
+        assert f["/crane"].attrs["boom_angle_deg"] == pytest.approx(figures["boom angle [deg]"], abs=1e-4)
+        assert f["/crane"].attrs["head_height"] == pytest.approx(figures["head height [m]"], abs=1e-4)
+        assert f["/crane/ropes/hoist_rope"].attrs["tension_end"] == pytest.approx(float(hoist[2]), rel=1e-5)
+
+
+def test_check_lists_each_truss_sections_fidelity(tmp_path: Path):
+    """A section that leaves out its fidelity takes defaults.truss_fidelity, and check says so."""
+    scene = tmp_path / "defaulted.yaml"
+    scene.write_text(f"base: {SOURCE_DIR / 'configs' / 'crane.yaml'}\n"
+                     "defaults: {truss_fidelity: condensed}\n"
+                     "remove: [constraints.boom12, constraints.boom23, members.boom2]\n"
+                     "insert_after:\n"
+                     "  members.boom1:\n"
+                     "    - {name: boom2, type: truss, truss: type2, damping: 1.0e-3, start: [-0.435779, 0, 4.980973],\n"
+                     "       end: [-1.743115, 0, 19.923894], z_axis: [-0.9961947, 0, -0.0871557]}\n"
+                     "add:\n"
+                     "  constraints:\n"
+                     "    - {name: boom12, type: fixed, joints: [boom1.end, boom2.start]}\n"
+                     "    - {name: boom23, type: fixed, joints: [boom2.end, boom3.start]}\n", encoding="utf-8")
+    result = crane_sim("check", scene, cwd=tmp_path, timeout=120)
+    assert result.returncode == 0, result.stderr
+    sections = {line.split()[0]: line.split()[1:] for line in result.stdout.splitlines()
+                if line.startswith(("boom", "derrick"))}
+    assert sections["boom1"] == ["type1", "super_truss"]
+    assert sections["boom2"] == ["type2", "condensed", "(defaults.truss_fidelity)"]
+    assert sections["derrick3"] == ["type6", "super_truss"]

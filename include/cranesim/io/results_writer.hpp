@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cranesim/assembly/assembler.hpp"
+#include "cranesim/crane/crane_figures.hpp"
 #include "cranesim/solvers/dynamics.hpp"
 #include "cranesim/solvers/statics.hpp"
 
@@ -56,6 +57,7 @@ class ResultsRecorder final : public SampleSink {
   struct Metadata {
     std::string scene_path, scene_text, formulation;
     double t_end_requested = 0.0;
+    const CraneFigures* crane = nullptr;  // an equilibrium's figures (`crane-sim static`): /crane
   };
   /// Writes the samples so far to `path` as a checkpoint of a run that is still going: status
   /// incomplete, a message saying so. A run killed outright (SIGKILL, power loss) leaves this.
@@ -90,7 +92,8 @@ class ResultsRecorder final : public SampleSink {
 /// Writes an equilibrium as a one-sample results file (`crane-sim static`, formulation "static"):
 /// complete, or incomplete with `unstable` as its message when that says why it is unstable.
 void writeEquilibriumResults(const std::string& path, const Assembler& assembler, const StaticResult& eq,
-                             const std::string& scene_path, const std::string& scene_text, const std::string& unstable);
+                             const std::string& scene_path, const std::string& scene_text, const std::string& unstable,
+                             const CraneFigures* crane = nullptr);
 
 /// Refuses, before any work, a run whose results would not fit in memory (more than 4 GiB):
 /// throws SceneError at output.interval with the estimate.

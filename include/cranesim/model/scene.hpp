@@ -9,6 +9,7 @@
 #include "cranesim/elements/section.hpp"
 #include "cranesim/math/profile.hpp"
 #include "cranesim/math/types.hpp"
+#include "cranesim/model/crane_spec.hpp"
 #include "cranesim/model/feedback_spec.hpp"
 #include "cranesim/model/source_location.hpp"
 #include "cranesim/model/truss_geometry.hpp"
@@ -97,6 +98,7 @@ struct MemberSpec {
   std::optional<ReevingSpec> reeving;  // rope element Reeved: its path (no start and end)
   std::string truss;              // truss: the truss type's name
   TrussFidelity fidelity = TrussFidelity::Members;
+  bool fidelity_by_default = false;  // truss: the scene's defaults.truss_fidelity, not its own
   MemberType tube_element = MemberType::Timoshenko;  // truss with fidelity Members: the tubes' beam element
   SourceLocation where;
 };
@@ -258,6 +260,7 @@ struct Scene {
   OutputSpec output;
   SourceLocation where_solver;
   std::optional<FeedbackSpec> feedback;
+  std::optional<CraneSpec> crane;
 };
 
 }  // namespace cranesim
