@@ -11,7 +11,6 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include <chrono>
 #include <filesystem>
 #include <optional>
 
@@ -77,11 +76,7 @@ int plan(const std::string& target_path, const std::string& out_arg, int threads
   const std::string simulation = std::filesystem::path(out).replace_extension().string() + "_simulation.h5";
   try {
     verifyPlan(*target, result, simulation, log);
-    if (target->feedback) {
-      const auto t0 = std::chrono::steady_clock::now();
-      result.tracking = verifyTracking(*target, result, log);
-      result.tracking_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    }
+    if (target->feedback) verifyTracking(*target, result, log);
   } catch (const std::runtime_error& e) {
     writePlan(out, *target, result);
     fmt::print(stderr, "error: {}\n  plan written to {} (verification incomplete)\n", e.what(), out);

@@ -225,11 +225,8 @@ TrackingSpec readTracking(const YamlField& f, const TargetSpec& target) {
   if (const auto a = f.find("atol")) spec.atol = readAbsoluteTolerance(*a);
   if (const auto s = f.find("sheave")) {
     spec.sheave = s->text();
-    std::vector<std::string> joints;
-    for (const RigidBodySpec& b : target.scene.bodies)
-      for (const JointSpec& j : b.joints) joints.push_back(b.name + "." + j.name);
-    if (std::find(joints.begin(), joints.end(), spec.sheave) == joints.end())
-      s->fail(unknownName("joint", spec.sheave, joints));
+    const Model model = compileModel(target.scene);
+    if (model.findJoint(spec.sheave) < 0) s->fail(unknownName("joint", spec.sheave, namesOf(model.joints)));
   }
   const YamlField cases = f.at("cases");
   if (!cases.isSequence() || cases.items().empty())

@@ -35,6 +35,11 @@ double rateAt(const TableProfile& spline, double t) {
   return Profile(spline)(D(t, D::Derivatives::Ones()), Limit::Right).derivatives()(0);
 }
 
+/// m: how much longer the case's hoist rope is than the plan's (and its encoder's) at the start.
+double hoistRopeLonger(const TrackingCase& c, const QuasiStaticPlan& plan) {
+  return c.hoist_rope * plan.hoist_spline.y.front();
+}
+
 TableProfile shifted(TableProfile spline, double by) {
   for (double& y : spline.y) y += by;
   return spline;
@@ -82,7 +87,7 @@ Scene caseScene(const TargetSpec& target, const QuasiStaticPlan& plan, const Tra
   RigidBodySpec& load = loadBody(scene, target.controls.end_point);
   load.mass *= c.load_mass;
   load.inertia *= c.load_mass;
-  const double longer = c.hoist_rope * plan.hoist_spline.y.front();
+  const double longer = hoistRopeLonger(c, plan);
   for (MemberSpec& m : scene.members) {
     if (m.name == target.controls.hoist_rope)
       m.length = inputs ? driveInput(plan.hoist_spline.y.front() + longer, target.drive_limits.hoist)
@@ -95,9 +100,7 @@ Scene caseScene(const TargetSpec& target, const QuasiStaticPlan& plan, const Tra
     const auto constraint = std::find_if(scene.constraints.begin(), scene.constraints.end(),
                                          [&](const ConstraintSpec& s) { return s.name == slewing && s.drive; });
     if (constraint == scene.constraints.end())
-      throw std::invalid_argument(fmt::format("the feedback turns the crane by the driven constraint '{}', which the scene "
-                                              "does not have",
-                                              slewing));
+      throw std::logic_error("the feedback's slewing drive '" + slewing + "' is missing (readTarget rules this out)");
     constraint->drive = driveInput(target.slewing ? plan.slewing_spline.y.front() : (*constraint->drive)(0.0),
                                    target.drive_limits.slewing);
   }
@@ -173,13 +176,13 @@ TrackingRun runCase(const TargetSpec& target, const QuasiStaticPlan& plan, const
   run.closed_loop = reference != nullptr;
   Session session(caseScene(target, plan, c, run.closed_loop));
   const std::string sheave = spec.sheave.empty() ? target.controls.hoist_rope + ".start" : spec.sheave;
-  const int hook = session.joint(target.controls.end_point);
-  Sampler sampler(session, hook, session.joint(sheave), target.controls.hoist_rope, plan.lead_time + plan.path.t.back(),
+  const int hook = session.joint(target.controls.end_point), pivot = session.joint(sheave);
+  Sampler sampler(session, hook, pivot, target.controls.hoist_rope, plan.lead_time + plan.path.t.back(),
                   spec.settle_band);
 
   std::optional<CraneSwayController> controller;
   int inputs[3] = {-1, -1, -1};  // luffing, hoist, slewing
-  const double longer = c.hoist_rope * plan.hoist_spline.y.front();
+  const double longer = hoistRopeLonger(c, plan);
   if (run.closed_loop) {
     CraneSwaySpec s;
     s.slewing = spec.slewing;
@@ -199,7 +202,7 @@ TrackingRun runCase(const TargetSpec& target, const QuasiStaticPlan& plan, const
   for (long k = 0;; ++k) {
     const double t = static_cast<double>(k) * spec.sample_time;
     sampler.sample();
-    if (record) record->push_back(session.sway(hook, session.joint(sheave)));
+    if (record) record->push_back(session.sway(hook, pivot));
     if (controller) {
       const auto tc = Clock::now();
       const std::size_t at = std::min(static_cast<std::size_t>(k), reference->size() - 1);
@@ -233,8 +236,8 @@ TrackingRun runCase(const TargetSpec& target, const QuasiStaticPlan& plan, const
 
 }  // namespace
 
-std::vector<TrackingRun> verifyTracking(const TargetSpec& target, const QuasiStaticPlan& plan,
-                                        const std::function<void(const std::string&)>& log) {
+void verifyTracking(const TargetSpec& target, QuasiStaticPlan& plan, const std::function<void(const std::string&)>& log) {
+  const auto t0 = Clock::now();
   const TrackingSpec& spec = *target.feedback;
   SwayReference reference;
   TrackingCase planned;
@@ -243,7 +246,8 @@ std::vector<TrackingRun> verifyTracking(const TargetSpec& target, const QuasiSta
   if (log)
     log(fmt::format("feedback: the plan's reference swing sampled every {:g} s on the nominal crane ({:.1f} s)",
                     spec.sample_time, nominal.wall_s));
-  std::vector<TrackingRun> runs;
+  std::vector<TrackingRun>& runs = plan.tracking;
+  runs.clear();
   for (const TrackingCase& c : spec.cases) {
     for (const bool closed : {false, true}) {
       runs.push_back(runCase(target, plan, spec, c, closed ? &reference : nullptr, nullptr));
@@ -269,7 +273,7 @@ std::vector<TrackingRun> verifyTracking(const TargetSpec& target, const QuasiSta
                     "within {:g} m by 5 s after arrival in {} of {} cases",
                     closed, open, spec.settle_band, settled, spec.cases.size()));
   }
-  return runs;
+  plan.tracking_s = secondsSince(t0);
 }
 
 }  // namespace cranesim

@@ -68,8 +68,8 @@ struct TrackingRun {
 };
 
 /// Runs every case of `target.feedback` open and closed loop (after the plan's own
-/// verification). Throws std::runtime_error when a run fails.
-std::vector<TrackingRun> verifyTracking(const TargetSpec& target, const QuasiStaticPlan& plan,
-                                        const std::function<void(const std::string&)>& log = {});
+/// verification) into plan.tracking and plan.tracking_s. Throws std::runtime_error when a run
+/// fails.
+void verifyTracking(const TargetSpec& target, QuasiStaticPlan& plan, const std::function<void(const std::string&)>& log = {});
 
 }  // namespace cranesim
