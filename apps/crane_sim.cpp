@@ -166,9 +166,12 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   const SolverStatistics& st = outcome.statistics;
   const double drift = recorder.relativeBalanceDrift();
   const auto& rp = recorder.positionResidual();
+  const std::vector<EnvelopeEvent> envelope = recorder.envelope().events();
+  const bool left_envelope = recorder.envelope().leftEnvelope();
   if (!quiet || !outcome.complete) {
-    fmt::print(stderr, "{} t = {:g} … {:g} s in {:.3g} s wall (real-time factor {:.3g})\n",
-               outcome.complete ? "completed" : "stopped", model.solver.t_start, outcome.t_reached, st.wall_time_s,
+    fmt::print(stderr, "{}{} t = {:g} … {:g} s in {:.3g} s wall (real-time factor {:.3g})\n",
+               outcome.complete ? "completed" : "stopped", left_envelope ? ", leaving the crane's envelope," : "",
+               model.solver.t_start, outcome.t_reached, st.wall_time_s,
                (outcome.t_reached - model.solver.t_start) / std::max(st.wall_time_s, 1e-9));
     fmt::print(stderr, "  steps {}, residual evaluations {}, Jacobians {}, error-test failures {}, "
                        "nonlinear failures {}, restarts {}\n",
@@ -179,6 +182,15 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
                st.max_step_constraint_residual, rp.empty() ? 0.0 : *std::max_element(rp.begin(), rp.end()), drift,
                recorder.energyScale());
     fmt::print(stderr, "  results: {}{}\n", out, outcome.complete ? "" : " (incomplete)");
+  }
+  if (left_envelope || (!quiet && !envelope.empty())) {
+    fmt::print(stderr, "{}\n", left_envelope ? "warning: the run left the crane's envelope:" : "envelope: within; contacts:");
+    std::string lines = describeEnvelopeEvents(envelope);
+    for (std::size_t at = 0; at < lines.size();) {
+      const std::size_t end = lines.find('\n', at);
+      fmt::print(stderr, "  {}\n", lines.substr(at, end - at));
+      at = end + 1;
+    }
   }
   if (balanceOff(recorder, model.solver.rtol))
     fmt::print(stderr, "warning: the energy balance drifts by {:.2g} of the run's energy scale, more than {:g} × rtol = {:.2g}: "

@@ -44,9 +44,9 @@ BoomFigures boomFigures(const Scene& scene, const Model& model, const double* q)
   const Vec3 foot_point = model.jointFrame(q, foot.joint1).r;
   const Vec3 head = model.jointFrame(q, model.findJoint(spec.boom_head)).r;
   const Vec3 hook = model.jointFrame(q, model.findJoint(spec.hook)).r;
-  const Vec3 boom = head - foot_point;
   BoomFigures f;
-  f.boom_angle_deg = std::asin(std::clamp(boom.dot(up) / boom.norm(), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  const EnvelopeBoom& envelope = *model.envelope.boom;
+  f.boom_angle_deg = boomAngle(foot_point, head, up, model.jointFrame(q, envelope.superstructure_joint).R * envelope.forward);
   f.head_height = head.dot(up);
   f.hook_radius = radius(hook, axis_point, axis);
   f.hook_height = hook.dot(up);

@@ -19,10 +19,22 @@ std::string revoluteConstraint(const YamlField& f, const Scene& scene) {
   return name;
 }
 
+BackstopSpec readBackstop(const YamlField& f) {
+  f.allowKeys({"angle", "stiffness", "damping", "smoothing", "joint"});
+  BackstopSpec b;
+  b.where = b.where_joint = f.where();
+  if (const auto jf = f.find("joint")) b.joint = jf->text(), b.where_joint = jf->where();
+  b.angle_deg = f.at("angle").within(1.0, 179.0, "deg");
+  b.stiffness = f.at("stiffness").within(1.0, 1e15, "N·m/rad");
+  b.damping = f.at("damping").nonNegative();
+  if (const auto sf = f.find("smoothing")) b.smoothing_deg = sf->within(1e-4, 10.0, "deg");
+  return b;
+}
+
 }  // namespace
 
 CraneSpec readCrane(const YamlField& f, const Scene& scene) {
-  f.allowKeys({"slewing", "boom_foot", "boom_head", "hook", "load", "ropes"});
+  f.allowKeys({"slewing", "boom_foot", "boom_head", "hook", "load", "ropes", "backstop", "boom_angle_limit"});
   CraneSpec c;
   c.slewing = revoluteConstraint(f.at("slewing"), scene);
   c.where_slewing = f.at("slewing").where();
@@ -47,6 +59,12 @@ CraneSpec readCrane(const YamlField& f, const Scene& scene) {
       if (std::find(c.ropes.begin(), c.ropes.end(), name) != c.ropes.end()) item.fail(fmt::format("'{}' is listed twice", name));
       c.ropes.push_back(name);
     }
+  if (const auto bf = f.find("backstop")) c.backstop = readBackstop(*bf);
+  if (const auto lf = f.find("boom_angle_limit")) c.boom_angle_limit_deg = lf->within(1.0, 180.0, "deg");
+  if (c.backstop && c.backstop->angle_deg > c.boom_angle_limit_deg)
+    f.at("backstop").at("angle").fail(fmt::format("the backstop engages at {:g}°, beyond the boom angle limit {:g}°: the boom "
+                                                  "would leave its envelope before touching it", c.backstop->angle_deg,
+                                                  c.boom_angle_limit_deg));
   return c;
 }
 

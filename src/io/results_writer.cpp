@@ -73,6 +73,46 @@ void writeCraneFigures(Hdf5File& file, const CraneFigures& crane) {
   }
 }
 
+/// /envelope: the series the envelope is judged by, and its events (crane/envelope_monitor.hpp).
+void writeEnvelope(Hdf5File& file, const Model& model, const EnvelopeMonitor& envelope) {
+  const hsize_t N = envelope.time().size();
+  file.ensureGroup("/envelope");
+  file.attribute("/envelope", "left_envelope", static_cast<long>(envelope.leftEnvelope()));
+  if (const auto& boom = model.envelope.boom) {
+    file.writeDoubles("/envelope/boom_angle", {N}, envelope.boomAngle().data());
+    file.attribute("/envelope/boom_angle", "limit_deg", boom->limit_deg);
+    if (boom->backstop_element >= 0) {
+      file.writeDoubles("/envelope/backstop_moment", {N}, envelope.backstopMoment().data());
+      file.attribute("/envelope/backstop_moment", "angle_deg", boom->backstop_angle_deg);
+      file.writeDoubles("/envelope/backstop_compression", {N}, envelope.backstopCompression().data());
+    }
+  }
+  for (std::size_t r = 0; r < envelope.ropeTensions().size(); ++r) {
+    const std::string path = "/envelope/rope_tension/" + envelope.ropeTensions()[r].name;
+    file.writeDoubles(path, {N}, envelope.ropeTensions()[r].values.data());
+    file.attribute(path, "breaking_force", model.envelope.ropes[r].breaking_force);
+  }
+  for (const EnvelopeSeries& s : envelope.lowestPoints()) file.writeDoubles("/envelope/lowest_point/" + s.name, {N}, s.values.data());
+  if (model.envelope.ground_height) file.attribute("/envelope", "ground_height", *model.envelope.ground_height);
+  for (const EnvelopeSeries& s : envelope.contactForces()) file.writeDoubles("/envelope/ground_force/" + s.name, {N}, s.values.data());
+  for (const EnvelopeSeries& s : envelope.contactDepths()) file.writeDoubles("/envelope/ground_penetration/" + s.name, {N}, s.values.data());
+  const std::vector<EnvelopeEvent> events = envelope.events();
+  for (std::size_t k = 0; k < events.size(); ++k) {
+    const EnvelopeEvent& e = events[k];
+    const std::string path = fmt::format("/envelope/events/{}", k);
+    file.ensureGroup(path);
+    file.attribute(path, "what", e.what);
+    file.attribute(path, "part", e.part);
+    file.attribute(path, "leaves_envelope", static_cast<long>(e.leaves_envelope));
+    file.attribute(path, "first_time", e.first_time);
+    file.attribute(path, "peak_time", e.peak_time);
+    file.attribute(path, "peak", e.peak);
+    file.attribute(path, "limit", e.limit);
+    file.attribute(path, "unit", e.unit);
+    if (!e.depth_unit.empty()) file.attribute(path, "depth", e.depth), file.attribute(path, "depth_unit", e.depth_unit);
+  }
+}
+
 }  // namespace
 
 ResultsRecorder::ResultsRecorder(const Assembler& assembler)
@@ -85,7 +125,8 @@ ResultsRecorder::ResultsRecorder(const Assembler& assembler)
       joint_rotation_(assembler.model().joints.size()),
       section_forces_(assembler.model().section_force_groups.size()),
       wind_forces_(assembler.model().wind_parts.size()),
-      part_tensions_(assembler.model().reeved_ropes.size()) {
+      part_tensions_(assembler.model().reeved_ropes.size()),
+      envelope_(assembler.model()) {
   const Model& model = assembler.model();
   for (const std::string& name : model.output.constraint_loads) load_constraints_.push_back(model.findConstraint(name));
   constraint_loads_.resize(load_constraints_.size());
@@ -108,6 +149,7 @@ void ResultsRecorder::keepBefore(double t) {
   for (auto* series : {&time_, &state_, &kinetic_, &potential_, &drive_work_, &load_work_, &winch_work_, &dissipated_,
                        &balance_, &residual_position_, &residual_velocity_})
     keep(*series);
+  envelope_.keep(kept);
 }
 
 DynamicState ResultsRecorder::motionAt(double t, const double* y, const ConstraintState& constraints,
@@ -189,6 +231,7 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
     const TippingLineSpec& line = model.output.tipping_lines[k];
     tipping_moments_[k].push_back(supportMoment(model, tipping_supports_[k], line.from, line.to, C.G, q, motion.lambda.data()));
   }
+  envelope_.sample(t, q, v);
   if (model.m > 0) {
     residual_position_.push_back(C.phi.cwiseAbs().maxCoeff());
     residual_velocity_.push_back(C.phi_dot.cwiseAbs().maxCoeff());
@@ -341,6 +384,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
       file.attribute(path, "sign", kTippingMomentSign);
     }
     if (meta.crane) writeCraneFigures(file, *meta.crane);
+    if (!envelope_.empty()) writeEnvelope(file, model, envelope_);
     file.writeDoubles("/residual/position", {N}, residual_position_.data());
     file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());
 

@@ -18,6 +18,7 @@
 #include "reeving_reader.hpp"
 #include "scene_composition.hpp"
 #include "solver_reader.hpp"
+#include "ground_reader.hpp"
 #include "wind_reader.hpp"
 #include "yaml_field.hpp"
 
@@ -327,7 +328,7 @@ Profile readDrive(const YamlField& f) {
 /// A massless rope reeved over sheaves (`element: reeved`): its path, section, material,
 /// length and damping; no start, end or segments.
 MemberSpec readReevedRope(const YamlField& f, MemberSpec& m) {
-  std::vector<const char*> keys = {"name", "type", "element", "section", "material", "length", "damping"};
+  std::vector<const char*> keys = {"name", "type", "element", "section", "material", "length", "damping", "breaking_force"};
   keys.insert(keys.end(), std::begin(kReevingKeys), std::end(kReevingKeys));
   f.allowKeys(keys);
   m.rope_element = RopeElement::Reeved;
@@ -337,6 +338,7 @@ MemberSpec readReevedRope(const YamlField& f, MemberSpec& m) {
   m.section = readSection(f.at("section"), poisson);
   if (const auto d = f.find("damping")) m.damping = d->nonNegative();
   if (const auto l = f.find("length")) m.length = readDrive(*l);
+  if (const auto b = f.find("breaking_force")) m.breaking_force = b->within(1.0, 1e12, "N");
   return m;
 }
 
@@ -387,7 +389,7 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
   std::vector<const char*> keys = {"name", "type", "start", "end", "z_axis", "segments", "quadrature", "damping"};
   if (m.type == MemberType::Truss) keys.insert(keys.end(), {"truss", "fidelity", "element"});
   else keys.insert(keys.end(), {"section", "material"});
-  if (m.type == MemberType::Rope) keys.insert(keys.end(), {"length", "transverse_damping", "element"});
+  if (m.type == MemberType::Rope) keys.insert(keys.end(), {"length", "transverse_damping", "element", "breaking_force"});
   if (m.type == MemberType::StrutTie) keys.insert(keys.end(), {"constant_volume", "smoothing"});
   if (m.type == MemberType::Timoshenko) keys.push_back("arc");
   f.allowKeys(keys);
@@ -416,6 +418,7 @@ MemberSpec readMember(const YamlField& f, const std::vector<TrussDescription>& t
       f.at("quadrature").fail(fmt::format("Gauss points must be 1…{}, found {}", kMaxGaussPoints, m.quadrature));
   }
   if (const auto d = f.find("damping")) m.damping = d->nonNegative();
+  if (const auto b = f.find("breaking_force")) m.breaking_force = b->within(1.0, 1e12, "N");
   if (m.type == MemberType::Rope)
     if (const auto e = f.find("element"))
       m.rope_element = e->choice({"spline", "cable"}) == "cable" ? RopeElement::Cable : RopeElement::Spline;
@@ -650,8 +653,8 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
   s.name = f.has("name") ? f.at("name").text() : path;
   s.gravity = f.vec3("gravity", s.gravity);
   if (const auto g = f.find("ground")) {
-    g->allowKeys({"joints"});
-    s.ground_joints = readJoints(g->at("joints"));
+    g->allowKeys({"joints", "surface"});
+    if (g->has("joints")) s.ground_joints = readJoints(g->at("joints"));
   }
   std::set<std::string> body_names;
   if (const auto bodies = f.find("bodies"))
@@ -685,6 +688,7 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
   if (const auto ls = f.find("loads"))
     for (const YamlField& l : ls->items()) s.loads.push_back(readLoad(l));
   if (const auto w = f.find("wind")) s.wind = readWind(*w, s);
+  if (const auto g = f.find("ground"); g && g->has("surface")) s.ground_surface = readGroundSurface(g->at("surface"), s);
   const YamlField solver = f.at("solver");
   s.solver = readSolver(solver);
   s.where_solver = solver.where();

@@ -15,6 +15,7 @@
 #include "cranesim/model/arc.hpp"
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/member_force_elements.hpp"
+#include "compile_contacts.hpp"
 #include "compile_reeving.hpp"
 #include "compile_truss.hpp"
 #include "compile_wind.hpp"
@@ -270,6 +271,7 @@ Model compileModel(const Scene& scene) {
   }
 
   if (scene.wind) compileWind(model, scene);
+  compileContacts(model, scene);
 
   for (const std::string& member : scene.output.section_forces) {
     const auto spec = std::find_if(scene.members.begin(), scene.members.end(), [&](const MemberSpec& m) { return m.name == member; });

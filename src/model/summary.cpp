@@ -49,6 +49,20 @@ std::string modelSummary(const Assembler& assembler) {
     out += fmt::format("wind: {:g} m/s at {:g} m towards [{:g}, {:g}, {:g}] on {} ({} wind elements)\n", w.speed,
                        w.reference_height, w.direction.x(), w.direction.y(), w.direction.z(), parts, elements);
   }
+  const Envelope& envelope = model.envelope;
+  if (envelope.ground_height) {
+    std::string parts;
+    std::size_t points = 0;
+    for (const GroundContactPart& part : envelope.ground_contacts) parts += (parts.empty() ? "" : ", ") + part.name, points += part.elements.size();
+    out += fmt::format("ground: surface at {:g} m; {}\n", *envelope.ground_height,
+                       parts.empty() ? std::string("nothing rests on it (watched only)") : fmt::format("resting on it: {} ({} contact point{})", parts, points, points == 1 ? "" : "s"));
+  }
+  if (envelope.boom && envelope.boom->backstop_element >= 0)
+    out += fmt::format("backstop: engages at a boom angle of {:g}°; boom angle limit {:g}°\n", envelope.boom->backstop_angle_deg,
+                       envelope.boom->limit_deg);
+  std::string limited;
+  for (const EnvelopeRope& rope : envelope.ropes) limited += fmt::format("{}{} {:.4g} MN", limited.empty() ? "" : ", ", rope.name, rope.breaking_force / 1e6);
+  if (!limited.empty()) out += fmt::format("breaking forces: {}\n", limited);
   const AbsoluteTolerance& atol = model.solver.atol;
   const std::string atol_text =
       atol.isUniform() ? fmt::format("{:g}", atol.position)

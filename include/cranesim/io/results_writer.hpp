@@ -6,6 +6,7 @@
 
 #include "cranesim/assembly/assembler.hpp"
 #include "cranesim/crane/crane_figures.hpp"
+#include "cranesim/crane/envelope_monitor.hpp"
 #include "cranesim/solvers/dynamics.hpp"
 #include "cranesim/solvers/statics.hpp"
 
@@ -49,6 +50,8 @@ class ResultsRecorder final : public SampleSink {
   /// The part tensions of Model::reeved_ropes[rope] over time (its parts per sample, N, from the
   /// winch to the dead end).
   const std::vector<double>& partTensions(int rope) const { return part_tensions_[rope]; }
+  /// The crane's envelope over the samples: what left it, when, how far (/envelope).
+  const EnvelopeMonitor& envelope() const { return envelope_; }
 
   /// Memory a run's results take while they are recorded and written (the samples and the
   /// file's image), estimated from the model's size and the number of output samples.
@@ -87,6 +90,7 @@ class ResultsRecorder final : public SampleSink {
   std::vector<std::vector<double>> tipping_moments_;   // per tipping line: 1 per sample
   std::vector<std::vector<double>> wind_forces_;       // per Model::wind_parts: the resultant wind force, 3 per sample
   std::vector<std::vector<double>> part_tensions_;     // per Model::reeved_ropes: its parts' tensions, one each per sample
+  EnvelopeMonitor envelope_;
 };
 
 /// Writes an equilibrium as a one-sample results file (`crane-sim static`, formulation "static"):

@@ -10,6 +10,7 @@
 
 #include "cranesim/model/constraint_equations.hpp"
 #include "cranesim/model/element.hpp"
+#include "cranesim/model/envelope.hpp"
 #include "cranesim/model/scene.hpp"
 #include "cranesim/model/wind_field.hpp"
 
@@ -109,6 +110,8 @@ struct Model {
   std::vector<WindPart> wind_parts;
   /// The reeved ropes' elements (model/reeved_rope_element.hpp), in the scene's order.
   std::vector<int> reeved_ropes;
+  /// What a run is checked against (model/envelope.hpp), with the ground's contacts.
+  Envelope envelope;
   /// Pairs of joints joined by a straight line when the mechanism is drawn (members' elements,
   /// truss tubes); rigid bodies are drawn from their origin to each of their joints.
   std::vector<std::array<int, 2>> drawing_lines;

@@ -95,6 +95,8 @@ struct MemberSpec {
   double damping = 0.0;           // Kelvin–Voigt retardation time η of the material, s (0: undamped)
   double transverse_damping = 0.0;  // rope: damping of its sideways turning against its chords, N·s
   RopeElement rope_element = RopeElement::Spline;
+  /// rope: its minimum breaking force, N; a run reports a tension above it (crane/envelope.hpp).
+  std::optional<double> breaking_force;
   std::optional<ReevingSpec> reeving;  // rope element Reeved: its path (no start and end)
   std::string truss;              // truss: the truss type's name
   TrussFidelity fidelity = TrussFidelity::Members;
@@ -155,6 +157,28 @@ struct WindSpec {
   std::vector<WindBodySpec> bodies;
   std::vector<WindMemberSpec> members;
   int quadrature = 3;  // Gauss points per member element
+  SourceLocation where;
+};
+
+/// A part that rests on the ground's surface: a sphere about a body's centroid, or about every
+/// node of a member (exactly one of `body`, `member`).
+struct GroundContactSpec {
+  std::string body, member;
+  double radius = 0.0;  // m
+  SourceLocation where;
+};
+
+/// The ground's surface (`ground.surface`): the plane at `height` along −gravity, the penalty law
+/// and friction of its contacts (model/contact_elements.hpp), and the parts that rest on it.
+/// Every other part passing below it is reported (crane/envelope.hpp).
+struct GroundSurfaceSpec {
+  double height = 0.0;       // m
+  double stiffness = 0.0;    // N/m per contact
+  double damping = 0.0;      // N·s/m per contact
+  double smoothing = 0.005;  // m
+  double friction = 0.5;
+  double friction_speed = 0.05;  // m/s
+  std::vector<GroundContactSpec> contacts;
   SourceLocation where;
 };
 
@@ -250,6 +274,7 @@ struct Scene {
   std::string text;
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
   std::vector<JointSpec> ground_joints;
+  std::optional<GroundSurfaceSpec> ground_surface;
   std::vector<RigidBodySpec> bodies;
   std::vector<TrussDescription> trusses;  // truss types, referenced by truss members
   std::vector<MemberSpec> members;

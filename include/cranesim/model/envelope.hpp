@@ -1,0 +1,61 @@
+#pragma once
+// What a run checks to stay within the crane's physical envelope, compiled from the scene
+// (model/compile_contacts.cpp) and checked at every output sample (crane/envelope_monitor.hpp):
+// ropes against their breaking force, the boom against its angle limit and its backstop, parts
+// against the ground's surface.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cranesim/math/types.hpp"
+
+namespace cranesim {
+
+struct EnvelopeRope {
+  std::string name;
+  double breaking_force = 0.0;  // N
+  std::vector<int> elements;    // its rope elements
+};
+
+/// The boom's angle: the line from the foot hinge's joint to the head joint above the
+/// horizontal, in degrees, measured on past the vertical (up to 180°, a boom lying backwards):
+/// `forward` is the boom's drawn horizontal direction in the superstructure joint's axes (the
+/// slewing constraint's joint on the turning side), which turns with the crane.
+struct EnvelopeBoom {
+  int foot_joint = -1, head_joint = -1, superstructure_joint = -1;
+  Vec3 forward = Vec3::UnitX();
+  double limit_deg = 90.0;
+  int backstop_element = -1;  // −1: none
+  double backstop_angle_deg = 0.0;
+};
+
+/// The parts that rest on the ground (a body, a member) and their contact elements.
+struct GroundContactPart {
+  std::string name;
+  std::vector<int> elements;
+};
+
+struct Envelope {
+  std::vector<EnvelopeRope> ropes;
+  std::optional<EnvelopeBoom> boom;
+  /// The ground's surface: its height along `up`; the nodes resting on it through contacts.
+  std::optional<double> ground_height;
+  Vec3 up = Vec3::UnitZ();
+  std::vector<GroundContactPart> ground_contacts;
+  std::vector<bool> node_in_contact;  // per node
+};
+
+/// The boom angle (EnvelopeBoom) from the foot and head positions, `up`, and the boom's forward
+/// direction now; in degrees: the elevation of the boom's line while its head is forward of the
+/// foot, 180° minus it once the head has passed over to the back.
+inline double boomAngle(const Vec3& foot, const Vec3& head, const Vec3& up, const Vec3& forward) {
+  const Vec3 boom = head - foot;
+  const double rise = std::asin(std::clamp(boom.dot(up) / boom.norm(), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  return boom.dot(forward) >= 0.0 ? rise : 180.0 - rise;
+}
+
+}  // namespace cranesim
