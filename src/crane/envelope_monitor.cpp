@@ -112,6 +112,10 @@ void EnvelopeMonitor::sample(double t, const double* q, const double* v) {
     for (const int n : part_nodes_[p]) lowest = std::min(lowest, e.up.dot(model_.nodeFrame(q, n).r));
     lowest_[p].values.push_back(lowest);
   }
+  last_outside_ = false;
+  for (std::size_t r = 0; r < e.ropes.size(); ++r) last_outside_ |= rope_tension_[r].values.back() > e.ropes[r].breaking_force;
+  if (e.boom) last_outside_ |= boom_angle_.back() > e.boom->limit_deg;
+  for (const EnvelopeSeries& s : lowest_) last_outside_ |= s.values.back() < *e.ground_height;
 }
 
 void EnvelopeMonitor::keep(std::size_t kept) {

@@ -20,7 +20,7 @@ double readRelativeTolerance(const YamlField& f) {
 SolverSpec readSolver(const YamlField& f) {
   f.allowKeys({"formulation", "t_start", "t_end", "rtol", "atol", "atol_multipliers", "newton_coefficient", "work_error_control", "max_step", "max_step_growth", "max_order", "initial_step",
                "integrator", "rho_inf", "fixed_step",
-               "baumgarte", "assembly_tolerance", "initial_state", "statics"});
+               "baumgarte", "assembly_tolerance", "initial_state", "statics", "outside_envelope"});
   SolverSpec s;
   if (const auto form = f.find("formulation"))
     s.formulation = form->choice({"ggl", "baumgarte"}) == "ggl" ? Formulation::GGL : Formulation::Baumgarte;
@@ -32,6 +32,7 @@ SolverSpec readSolver(const YamlField& f) {
   s.atol_multipliers = f.positive("atol_multipliers", s.atol_multipliers);
   s.newton_coefficient = f.positive("newton_coefficient", s.newton_coefficient);
   if (const auto w = f.find("work_error_control")) s.work_error_control = w->boolean();
+  if (const auto e = f.find("outside_envelope")) s.stop_outside_envelope = e->choice({"warn", "stop"}) == "stop";
   if (s.newton_coefficient >= 1.0) f.at("newton_coefficient").fail("must lie in (0, 1)");
   if (const auto ms = f.find("max_step")) s.max_step = ms->positive();
   if (const auto h0 = f.find("initial_step")) s.initial_step = h0->positive();

@@ -570,3 +570,34 @@ def test_check_lists_each_truss_sections_fidelity(tmp_path: Path):
     assert sections["boom1"] == ["type1", "super_truss"]
     assert sections["boom2"] == ["type2", "condensed", "(defaults.truss_fidelity)"]
     assert sections["derrick3"] == ["type6", "super_truss"]
+
+
+def test_a_run_reports_leaving_the_envelope_and_can_stop_there(tmp_path: Path):
+    """The hard case's first 2.5 s: the hoist rope's snatch above its breaking force is named with
+    its time and force on stderr and under /envelope; with solver.outside_envelope: stop the run
+    ends at the first sample outside, marked incomplete, exit 1."""
+    base = SOURCE_DIR / "configs" / "crane_hoist_payout.yaml"
+    warned = tmp_path / "warned.yaml"
+    warned.write_text(f"base: {base}\nmodify:\n  solver.t_end: 2.5\n", encoding="utf-8")
+    result = crane_sim("run", warned, "-o", tmp_path / "warned.h5", cwd=tmp_path, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert "completed, leaving the crane's envelope" in result.stderr
+    assert re.search(r"rope overload: hoist_rope carried 1[3-9]\.\d+ MN at t = 2\.\d+ s, above its breaking force 13\.08 MN",
+                     result.stderr), result.stderr
+    assert "boom on its backstop: from t = 1.5 s" in result.stderr
+    with h5py.File(tmp_path / "warned.h5") as f:
+        assert f["/envelope"].attrs["left_envelope"] == 1
+        events = [dict(f[f"/envelope/events/{k}"].attrs) for k in f["/envelope/events"]]
+        snap = next(e for e in events if e["what"] == "rope overload")
+        assert snap["part"] == "hoist_rope" and snap["peak"] > snap["limit"] == 13.08e6
+        tension = f["/envelope/rope_tension/hoist_rope"][:]
+        assert max(tension) == snap["peak"]
+
+    stopped = tmp_path / "stopped.yaml"
+    stopped.write_text(f"base: {base}\nmodify:\n  solver.t_end: 2.5\n  solver.outside_envelope: stop\n", encoding="utf-8")
+    result = crane_sim("run", stopped, "-o", tmp_path / "stopped.h5", cwd=tmp_path, timeout=120)
+    assert result.returncode == 1, result.stderr
+    assert "the run left the crane's envelope (solver.outside_envelope: stop)" in result.stderr
+    with h5py.File(tmp_path / "stopped.h5") as f:
+        assert f.attrs["status"] == "incomplete"
+        assert 1.8 <= f["/time"][-1] <= 2.1

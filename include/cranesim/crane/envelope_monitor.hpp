@@ -52,6 +52,8 @@ class EnvelopeMonitor {
   std::vector<EnvelopeEvent> events() const;
   /// Whether any event leaves the envelope.
   bool leftEnvelope() const;
+  /// Whether the last sample lies outside the envelope (cheap: for stopping a run there).
+  bool lastSampleOutside() const { return last_outside_; }
 
   const std::vector<double>& time() const { return time_; }
   const std::vector<double>& boomAngle() const { return boom_angle_; }
@@ -68,6 +70,7 @@ class EnvelopeMonitor {
   std::vector<double> time_, boom_angle_, backstop_moment_, backstop_compression_;
   std::vector<EnvelopeSeries> rope_tension_, lowest_, contact_force_, contact_depth_;
   std::vector<std::vector<int>> part_nodes_;  // per entry of lowest_: its nodes without a contact
+  bool last_outside_ = false;
 };
 
 /// One line per event, e.g. "rope overload: hoist_rope 15.1 MN at t = 2.02 s, above its breaking

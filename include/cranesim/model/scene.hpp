@@ -217,6 +217,9 @@ struct SolverSpec {
   /// Include the work of drives and loads in the error test. Off by default: the integrand
   /// λ·Φ_t carries the multipliers' Newton-level noise, and controlling it costs many steps.
   bool work_error_control = false;
+  /// `crane-sim run` stops at the first output sample outside the crane's envelope
+  /// (crane/envelope_monitor.hpp) instead of reporting it at the end.
+  bool stop_outside_envelope = false;
   double max_step = 0.0;  // 0: unlimited
   /// BDF only: the largest factor by which IDAS may grow the step after a successful one
   /// (IDASetEtaMax; IDAS' own bound is 2). 1.5 ends a chatter at order 1 in which every doubled
