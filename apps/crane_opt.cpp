@@ -6,7 +6,8 @@
 //   crane-opt map TARGET [-o map.h5] [--threads N] [--quiet]
 //       the static map alone
 //   mpirun -n N crane-opt plan|map …: the static map's rows farmed out to N ranks
-// Exit codes: 0 success, 1 solver failure, 2 bad input (the message names the YAML path and line).
+// Exit codes: 0 success, 1 solver failure, 2 bad input (the message names the YAML path and line),
+// 3 the verified motion comes closer to an obstacle than the target's clearance margin.
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -83,6 +84,17 @@ int plan(const std::string& target_path, const std::string& out_arg, int threads
     return kExitSolverFailure;
   }
   writePlan(out, *target, result);
+  if (const auto& c = result.clearance) {
+    const std::string closest = c->part >= 0 ? fmt::format("{} to {} at t = {:.1f} s", c->parts[c->part], c->obstacles[c->obstacle], c->t)
+                                             : std::string("no parts");
+    fmt::print("minimum clearance {:.2f} m: {}\n", c->distance, closest);
+    if (c->failed()) {
+      fmt::print(stderr, "error: the verified motion comes closer than the clearance margin {:.3g} m: {} is {:.3g} m from "
+                         "obstacle '{}' at t = {:.2f} s\n  plan written to {} (clearance failed)\n",
+                 c->margin, c->parts[c->part], c->distance, c->obstacles[c->obstacle], c->t, out);
+      return kExitClearanceFailure;
+    }
+  }
   fmt::print(stderr, "plan written to {}; verification run in {}\n", out, simulation);
   return 0;
 }

@@ -217,6 +217,24 @@ void writeTracking(Hdf5File& file, const QuasiStaticPlan& plan) {
   writeVector(file, "/feedback/t_reached", simulated);
 }
 
+/// Per obstacle (rows) and part (columns) the smallest signed distance over the verification run
+/// and when; the smallest of all as attributes (docs/plan-format.md).
+void writeClearance(Hdf5File& file, const ClearanceRecord& c) {
+  file.writeStrings("/clearance/obstacle", {hsize_t(c.obstacles.size())}, c.obstacles);
+  file.writeStrings("/clearance/part", {hsize_t(c.parts.size())}, c.parts);
+  writeMatrix(file, "/clearance/minimum", c.minimum);
+  writeMatrix(file, "/clearance/time", c.time);
+  file.attribute("/clearance", "status", std::string(c.failed() ? "failed" : "clear"));
+  file.attribute("/clearance", "margin", c.margin);
+  file.attribute("/clearance", "distance", c.distance);
+  file.attribute("/clearance", "t", c.t);
+  file.attribute("/clearance", "closest_part", c.part >= 0 ? c.parts[c.part] : std::string());
+  file.attribute("/clearance", "closest_obstacle", c.obstacle >= 0 ? c.obstacles[c.obstacle] : std::string());
+  file.attribute("/clearance", "samples", static_cast<long>(c.samples));
+  file.attribute("/clearance", "largest_interval", c.largest_interval);
+  file.attribute("/clearance", "compute_s", c.compute_s);
+}
+
 }  // namespace
 
 void writePlan(const std::string& path, const TargetSpec& target, const QuasiStaticPlan& plan, bool map_only) {
@@ -233,6 +251,7 @@ void writePlan(const std::string& path, const TargetSpec& target, const QuasiSta
       writeControls(file, target, plan);
       writeVerification(file, plan);
       if (!plan.tracking.empty()) writeTracking(file, plan);
+      if (plan.clearance) writeClearance(file, *plan.clearance);
     }
     file.ensureGroup("/timing");
     for (const auto& [name, seconds] : {std::pair{"map_s", plan.map_s}, std::pair{"fit_s", plan.fit_s},

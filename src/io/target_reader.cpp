@@ -246,6 +246,57 @@ TrackingSpec readTracking(const YamlField& f, const TargetSpec& target) {
   return spec;
 }
 
+/// `{name, shape: box, centre, size, yaw}` (yaw in degrees), `{name, shape: cylinder, base, radius,
+/// height}` or `{name, shape: prism, footprint: [[x, y], …], bottom, top}` (a convex footprint).
+Obstacle readObstacle(const YamlField& f) {
+  if (!f.isMap()) f.fail("an obstacle is a mapping: {name: …, shape: box | cylinder | prism, …}");
+  Obstacle o;
+  o.where = f.where();
+  o.name = f.at("name").text();
+  const std::string shape = f.at("shape").choice({"box", "cylinder", "prism"});
+  if (shape == "box") {
+    f.allowKeys({"name", "shape", "centre", "size", "yaw"});
+    BoxShape box;
+    box.centre = f.at("centre").vec3();
+    const YamlField size = f.at("size");
+    box.size = size.vec3();
+    if (!(box.size.array() > 0.0).all())
+      size.fail(fmt::format("a box's edge lengths must be positive, found [{:g}, {:g}, {:g}]", box.size.x(), box.size.y(),
+                            box.size.z()));
+    if (const auto yaw = f.find("yaw")) box.yaw = yaw->number() * std::numbers::pi / 180.0;
+    o.shape = box;
+  } else if (shape == "cylinder") {
+    f.allowKeys({"name", "shape", "base", "radius", "height"});
+    o.shape = CylinderShape{f.at("base").vec3(), f.at("radius").positive(), f.at("height").positive()};
+  } else {
+    f.allowKeys({"name", "shape", "footprint", "bottom", "top"});
+    PrismShape prism;
+    const YamlField footprint = f.at("footprint");
+    if (!footprint.isSequence() || footprint.items().size() < 3)
+      footprint.fail("a footprint is a polygon of at least 3 points [[x, y], …]");
+    for (const YamlField& point : footprint.items()) prism.footprint.push_back(readVector<2>(point));
+    if (!makeConvexCounterClockwise(prism.footprint))
+      footprint.fail("the footprint is not convex (or has three points on a line): split it into convex prisms");
+    prism.bottom = f.at("bottom").number();
+    prism.top = f.at("top").number();
+    if (!(prism.top > prism.bottom)) f.at("top").fail(fmt::format("must be above bottom ({:g}), found {:g}", prism.bottom, prism.top));
+    o.shape = prism;
+  }
+  return o;
+}
+
+std::vector<Obstacle> readObstacles(const YamlField& f) {
+  if (!f.isSequence()) f.fail("a list of obstacles, each {name: …, shape: box | cylinder | prism, …}");
+  std::vector<Obstacle> obstacles;
+  for (const YamlField& item : f.items()) {
+    Obstacle o = readObstacle(item);
+    for (const Obstacle& other : obstacles)
+      if (other.name == o.name) item.at("name").fail(fmt::format("a second obstacle named '{}'", o.name));
+    obstacles.push_back(std::move(o));
+  }
+  return obstacles;
+}
+
 }  // namespace
 
 TargetSpec readTarget(const std::string& path) {
@@ -255,7 +306,7 @@ TargetSpec readTarget(const std::string& path) {
   // An empty document has no mark of its own: the defect is the file from its first line on.
   if (!f.isMap()) throw SceneError({"<document>", 1, 1}, "a target file is a mapping (scene, crane, map, fit, trajectory, …)");
   f.allowKeys({"name", "scene", "method", "crane", "slewing", "drive_limits", "map", "fit", "trajectory", "control_spline",
-               "verification", "feedback"});
+               "verification", "feedback", "obstacles", "clearance_margin", "load_radius"});
 
   TargetSpec t;
   t.path = path;
@@ -315,6 +366,9 @@ TargetSpec readTarget(const std::string& path) {
     }
   }
   if (const auto fb = f.find("feedback")) t.feedback = readTracking(*fb, t);
+  if (const auto o = f.find("obstacles")) t.obstacles = readObstacles(*o);
+  if (const auto m = f.find("clearance_margin")) t.clearance_margin = m->nonNegative();
+  if (const auto r = f.find("load_radius")) t.load_radius = r->nonNegative();
   return t;
 }
 

@@ -121,6 +121,27 @@ SwayPeriods swayPeriods(const Model& model, const VecX& q, double t, const Crane
   return periods;
 }
 
+/// Refuses a start or target whose load (a sphere of the target's load radius) lies within the
+/// clearance margin of an obstacle, or inside one.
+void checkEndsClear(const TargetSpec& target, const SlewingPlane& plane) {
+  const Eigen::Vector2d origin = target.origin;
+  const double turn = target.slewing ? target.slewing->turn : 0.0;
+  for (const auto& [point, where, what, phi] : {std::tuple{target.trajectory.start, target.where_start, "start", 0.0},
+                                                std::tuple{target.trajectory.target, target.where_target, "target", turn}}) {
+    const Vec3 load = plane.place(origin.x() + point(0), origin.y() + point(1), phi);
+    for (const Obstacle& o : target.obstacles) {
+      const double d = signedDistance(o.shape, Capsule{load, load, target.load_radius});
+      if (d >= target.clearance_margin) continue;
+      throw SceneError(where, fmt::format("the load at the {} ({:.4g}, {:.4g}, {:.4g}) m {} obstacle '{}' (line {}): {}", what,
+                                          load.x(), load.y(), load.z(), d < 0.0 ? "is inside" : "is too close to", o.name,
+                                          o.where.line,
+                                          d < 0.0 ? fmt::format("it reaches {:.3g} m into it", -d)
+                                                  : fmt::format("{:.3g} m away, within the clearance margin of {:.3g} m", d,
+                                                                target.clearance_margin)));
+    }
+  }
+}
+
 }  // namespace
 
 MapFit fitStaticMap(const StaticMap& map, const SurfaceSpec& spec) {
@@ -354,6 +375,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
       (k == 0 ? plan.sway_period_across_start : plan.sway_period_across_end) = target.slewing ? periods.across : periods.along;
     }
   }
+  checkEndsClear(target, plan.plane);
   // Between the path's ends the sway period changes with the rope (Table 8-2: 15.5 → 12.0 s); the
   // mean puts the shaper's period error at either end near half that range.
   plan.sway_period = 0.5 * (plan.sway_period_start + plan.sway_period_end);
@@ -496,12 +518,19 @@ void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::stri
     v.residual_sway = halfHorizontalExtent(settling);
     v.final_error = (mean / static_cast<double>(settling.size()) - goal_point).norm();
   }
+  if (!target.obstacles.empty())
+    plan.clearance = measureClearance(target.obstacles, craneParts(scene, model, target.controls.end_point, target.load_radius),
+                                      recorder, target.clearance_margin);
   plan.verification_s = secondsSince(t0);
   if (log)
     log(fmt::format("verification: {:.1f} s simulated in {:.1f} s; tracking error max {:.3g} m, RMS {:.3g} m; "
                     "within 10 s of the arrival ≤ {:.3g} m from the target; residual sway ±{:.3g} m, final error {:.3g} m",
                     v.outcome.t_reached, plan.verification_s, v.max_error, v.rms_error, v.arrival_sway, v.residual_sway,
                     v.final_error));
+  if (log && plan.clearance)
+    log(fmt::format("clearance: {} parts × {} obstacles at {} samples (at most {:.3g} s apart) in {:.3g} s", plan.clearance->parts.size(),
+                    plan.clearance->obstacles.size(), plan.clearance->samples, plan.clearance->largest_interval,
+                    plan.clearance->compute_s));
   if (!v.outcome.complete) throw std::runtime_error("verification run stopped: " + v.outcome.message);
 }
 

@@ -11,6 +11,7 @@ Environment: CRANEOPT_BIN (default <repo>/build/crane-opt), CRANESIM_BIN (defaul
 """
 
 import os
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -459,3 +460,78 @@ def hermite(t_query, t, y, slopes):
     s = (t_query - t[i]) / h
     return ((2 * s**3 - 3 * s**2 + 1) * y[i] + (s**3 - 2 * s**2 + s) * h * slopes[i] + (-2 * s**3 + 3 * s**2) * y[i + 1]
             + (s**3 - s**2) * h * slopes[i + 1])
+
+
+WALL_TARGET = SOURCE_DIR / "configs" / "target_wall.yaml"
+BUILDING_TARGET = SOURCE_DIR / "configs" / "target_building.yaml"
+
+
+def plan_jib_with_obstacles(tmp_path: Path, obstacles: str) -> tuple[subprocess.CompletedProcess, Path]:
+    """The luffing jib's plan (the load from x = −10, z = 7.5 to x = −14, z = 10) with obstacles."""
+    target = tmp_path / "target.yaml"
+    text = JIB_TARGET.read_text(encoding="utf-8").replace("scene: luffing_jib.yaml", f"scene: {JIB_TARGET.parent / 'luffing_jib.yaml'}")
+    target.write_text(text + obstacles, encoding="utf-8")
+    out = tmp_path / "plan.h5"
+    return crane_opt("plan", target, "-o", out, "--quiet", cwd=tmp_path), out
+
+
+def box_distance(points: np.ndarray, centre, size) -> np.ndarray:
+    """Signed distance of points [n, 3] from an axis-aligned box (negative inside)."""
+    q = np.abs(points - np.asarray(centre)) - 0.5 * np.asarray(size)
+    return np.linalg.norm(np.maximum(q, 0.0), axis=1) + np.minimum(q.max(axis=1), 0.0)
+
+
+def test_jib_passes_over_a_low_wall_with_its_clearance_reported(tmp_path: Path):
+    """A 5 m wall between pick (x = −10) and set (x = −14): the load, a 1 m sphere about the hook,
+    passes over it. The load's clearance in /clearance is the box distance of the simulated hook
+    recomputed here, less the radius; the stdout line names the closest part."""
+    wall = {"centre": [-12, 0, 2.5], "size": [0.4, 10, 5]}
+    result, out = plan_jib_with_obstacles(
+        tmp_path, f"obstacles:\n  - {{name: wall, shape: box, centre: {wall['centre']}, size: {wall['size']}}}\n"
+                  "clearance_margin: 0.5\n")
+    assert result.returncode == 0, result.stderr
+    line = re.fullmatch(r"minimum clearance (\d+\.\d\d) m: (\w+) to wall at t = (\d+\.\d) s\n", result.stdout)
+    assert line, result.stdout
+    with h5py.File(out, "r") as f:
+        c = f["clearance"]
+        assert c.attrs["status"] == "clear" and c.attrs["margin"] == 0.5
+        parts = list(c["part"].asstr()[...])
+        assert parts == ["luffing_rope", "hoist_rope", "load"] and list(c["obstacle"].asstr()[...]) == ["wall"]
+        minimum, time = c["minimum"][...], c["time"][...]
+        assert c.attrs["distance"] == minimum.min() and c.attrs["closest_part"] == line[2]
+        assert float(line[1]) == pytest.approx(minimum.min(), abs=0.005)
+        hook = f["verification/simulated"][...]
+        load = box_distance(hook, **wall) - 1.0
+        assert minimum[0, parts.index("load")] == pytest.approx(load.min(), abs=1e-9)
+        assert time[0, parts.index("load")] == f["verification/t"][int(np.argmin(load))]
+        assert 1.0 < load.min() < 4.0  # the hook crosses x = −12 about 8.7 m up
+        assert c.attrs["samples"] == len(hook) and c.attrs["largest_interval"] <= 0.05 + 1e-9
+
+
+def test_a_wall_too_high_fails_the_verified_plan(tmp_path: Path):
+    """A 12 m wall across the jib's path: the straight path cannot go over it, the verified motion
+    runs into it. Exit 3 naming the part, the wall, the time and the depth; the plan is written and
+    its /clearance marked failed."""
+    result, out = plan_jib_with_obstacles(
+        tmp_path, "obstacles:\n  - {name: wall, shape: box, centre: [-12, 0, 6], size: [0.4, 10, 12]}\n")
+    assert result.returncode == 3, result.stderr
+    failure = re.search(r"error: the verified motion comes closer than the clearance margin 0.5 m: (\w+) is (-[\d.]+) m "
+                        r"from obstacle 'wall' at t = ([\d.]+) s", result.stderr)
+    assert failure, result.stderr
+    with h5py.File(out, "r") as f:
+        c = f["clearance"].attrs
+        assert c["status"] == "failed" and c["closest_obstacle"] == "wall" and c["closest_part"] == failure[1]
+        assert c["distance"] == pytest.approx(float(failure[2]), rel=1e-2) and c["distance"] < -0.1
+        assert f["verification"].attrs["status"] == "complete"
+
+
+@pytest.mark.parametrize("target", [WALL_TARGET, BUILDING_TARGET], ids=["wall", "building"])
+def test_shipped_obstacle_targets_plan_clear(target: Path, tmp_path: Path):
+    """The shipped targets with obstacles plan and verify clear of them, by more than the margin."""
+    out = tmp_path / "plan.h5"
+    result = crane_opt("plan", target, "-o", out, "--quiet", cwd=tmp_path, timeout=600)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.startswith("minimum clearance ")
+    with h5py.File(out, "r") as f:
+        c = f["clearance"].attrs
+        assert c["status"] == "clear" and c["distance"] > c["margin"]

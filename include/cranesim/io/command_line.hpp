@@ -8,6 +8,7 @@ namespace cranesim {
 
 inline constexpr int kExitSolverFailure = 1;  // results kept, marked incomplete
 inline constexpr int kExitBadInput = 2;       // nothing written
+inline constexpr int kExitClearanceFailure = 3;  // crane-opt plan: the verified motion came too close to an obstacle; plan kept, marked failed
 
 /// `out`, or `<stem of input_path><suffix>` in the working directory when `out` is empty.
 /// Throws SceneError (bad input, reported at "-o") before any work when the results could not be

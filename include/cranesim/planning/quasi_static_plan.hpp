@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cranesim/math/profile.hpp"
+#include "cranesim/planning/clearance.hpp"
 #include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/planning/input_shaping.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
@@ -96,6 +97,8 @@ struct QuasiStaticPlan {
   double lead_time = 0.0;                  // steady time before the motion in the splines and the simulation
   std::vector<InversionCheck> inversion_checks;
   Verification verification;
+  /// The verified motion's clearance from the target's obstacles (none without obstacles).
+  std::optional<ClearanceRecord> clearance;
   /// The target's feedback cases, each open and closed loop (planning/plan_tracking.hpp).
   std::vector<TrackingRun> tracking;
   double tracking_s = 0.0;
@@ -110,7 +113,7 @@ using PlanLog = std::function<void(const std::string&)>;
 QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const PlanLog& log = {});
 
 /// Simulates the crane driven by the plan's control splines (8.4.3) and fills
-/// plan.verification; writes the run as a crane-sim results file when `results_path` is given.
+/// plan.verification and, with obstacles, plan.clearance; writes the run as a crane-sim results file when `results_path` is given.
 void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::string& results_path, const PlanLog& log = {});
 
 /// The verification scene: the target's scene with its ropes driven by the control splines,

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cranesim/model/scene.hpp"
+#include "cranesim/planning/obstacle.hpp"
 #include "cranesim/planning/plan_tracking.hpp"
 #include "cranesim/planning/qr_trajectory.hpp"
 #include "cranesim/planning/static_map.hpp"
@@ -78,6 +79,11 @@ struct TargetSpec {
   std::optional<AbsoluteTolerance> verification_atol;
   /// The plan tracked by anti-sway feedback on cranes that differ from the planned one.
   std::optional<TrackingSpec> feedback;
+  /// Obstacles the verified motion must clear by `clearance_margin` (docs/planning.md); the load
+  /// counts as a sphere of `load_radius` about the end point.
+  std::vector<Obstacle> obstacles;
+  double clearance_margin = 0.5;  // m
+  double load_radius = 1.0;       // m
 };
 
 /// Reads and validates a target file (the scene path in it is relative to the file). Throws

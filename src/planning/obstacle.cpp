@@ -1,0 +1,99 @@
+#include "cranesim/planning/obstacle.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace cranesim {
+namespace {
+
+double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+/// The signed distance of a set extruded vertically, from the signed distance `across` of the
+/// point's x–y to the set's cross-section and its height above or below the slab, `along`
+/// (negative inside the slab): exact when `across` is.
+double extruded(double across, double along) {
+  const Eigen::Vector2d w(across, along);
+  return std::min(w.maxCoeff(), 0.0) + w.cwiseMax(0.0).norm();
+}
+
+/// Height outside the slab bottom ≤ z ≤ top (negative inside: minus the distance to its nearer face).
+double outsideSlab(double z, double bottom, double top) { return std::max(bottom - z, z - top); }
+
+/// Signed distance in the plane from p to a convex counter-clockwise polygon.
+double polygonDistance(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
+  double nearest = std::numeric_limits<double>::infinity();
+  bool inside = true;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d edge = polygon[(i + 1) % polygon.size()] - a;
+    const double s = std::clamp((p - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+    nearest = std::min(nearest, (p - a - s * edge).norm());
+    if (cross(edge, p - a) < 0.0) inside = false;
+  }
+  return inside ? -nearest : nearest;
+}
+
+struct PointDistance {
+  const Vec3& p;
+  double operator()(const BoxShape& box) const {
+    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
+    const Vec3 d = p - box.centre;
+    const Vec3 local(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z());  // Rz(−yaw) d
+    const Vec3 q = local.cwiseAbs() - 0.5 * box.size;
+    return std::min(q.maxCoeff(), 0.0) + q.cwiseMax(0.0).norm();
+  }
+  double operator()(const CylinderShape& cylinder) const {
+    return extruded((p - cylinder.base).head<2>().norm() - cylinder.radius,
+                    outsideSlab(p.z(), cylinder.base.z(), cylinder.base.z() + cylinder.height));
+  }
+  double operator()(const PrismShape& prism) const {
+    return extruded(polygonDistance(prism.footprint, p.head<2>()), outsideSlab(p.z(), prism.bottom, prism.top));
+  }
+};
+
+}  // namespace
+
+double signedDistance(const ObstacleShape& shape, const Vec3& p) { return std::visit(PointDistance{p}, shape); }
+
+double signedDistance(const ObstacleShape& shape, const Capsule& part) {
+  const auto along = [&](double s) { return signedDistance(shape, Vec3(part.a + s * (part.b - part.a))); };
+  constexpr double golden = 0.6180339887498949;  // (√5 − 1) / 2
+  double low = 0.0, high = 1.0;
+  double x1 = high - golden * (high - low), x2 = low + golden * (high - low);
+  double f1 = along(x1), f2 = along(x2);
+  while (high - low > kSegmentParameterTolerance) {
+    if (f1 <= f2) {
+      high = x2, x2 = x1, f2 = f1;
+      x1 = high - golden * (high - low), f1 = along(x1);
+    } else {
+      low = x1, x1 = x2, f1 = f2;
+      x2 = low + golden * (high - low), f2 = along(x2);
+    }
+  }
+  // The ends too: a minimum at an end is approached but never sampled by the search.
+  return std::min({f1, f2, along(0.0), along(1.0)}) - part.radius;
+}
+
+bool makeConvexCounterClockwise(std::vector<Eigen::Vector2d>& polygon) {
+  const std::size_t n = polygon.size();
+  if (n < 3) return false;
+  int positive = 0, negative = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double turn = cross(polygon[(i + 1) % n] - polygon[i], polygon[(i + 2) % n] - polygon[(i + 1) % n]);
+    (turn > 0.0 ? positive : negative) += 1;
+  }
+  if (positive != static_cast<int>(n) && negative != static_cast<int>(n)) return false;
+  // Equal turns can still wind twice round (a pentagram): the turning angles must add up to 2π.
+  double winding = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d u = polygon[(i + 1) % n] - polygon[i], v = polygon[(i + 2) % n] - polygon[(i + 1) % n];
+    winding += std::atan2(cross(u, v), u.dot(v));
+  }
+  if (std::abs(std::abs(winding) - 2.0 * std::numbers::pi) > 1e-6) return false;
+  if (negative == static_cast<int>(n)) std::reverse(polygon.begin(), polygon.end());
+  return true;
+}
+
+}  // namespace cranesim
