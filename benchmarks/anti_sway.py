@@ -8,11 +8,8 @@ loop and once with cranesim.control.AntiSway:
   than the scene's 390 t (the controller's design does not know the load).
 - gust across / along: 50 kN on the load across or along the boom, rising and falling over 3 s
   (2-5 s); the feedback holds the head from the start.
-- stop-and-go: the lever slews at +3 °/s (0-8 s), stops, slews back at -3 °/s (16-22 s), stops;
-  the feedback follows the lever from the start (operator assistance).
-- stop-and-go, shaped: the same with the lever's speeds shaped for the crane's sway periods
-  (17.1 s across, 15.6 s along: AntiSway(shaping=...)); the crane stops half a period (8.56 s)
-  after the lever, and the swing is measured from there.
+
+Operator assistance (an operator's lever with stops and a reversal) is benchmarks/operator_assistance.py.
 
 For each case: the largest swing of the hook about the boom head (m) from 5 to 10 s after the
 last stop (or the gust's end) and over the last 10 s of the run, open loop and closed loop, and
@@ -45,26 +42,17 @@ def release_lever(t):
     return 3.0 if t < 15.0 else 0.0, -0.3 if t < 20.0 else 0.0
 
 
-def stop_and_go_lever(t):
-    return (3.0 if t < 8.0 else -3.0 if 16.0 <= t < 22.0 else 0.0), 0.0
-
-
-SHAPING = (17.1, 15.6)  # s: the crane's sway periods across and along the boom at the scene's controls
-
-# name: (scene changes, lever(t) -> (slewing °/s, hoist m/s), the feedback from (s), the last stop (s), t_end (s),
-#        shaping periods or None)
+# name: (scene changes, lever(t) -> (slewing °/s, hoist m/s), the feedback from (s), the last stop (s), t_end (s))
 CASES = {
-    "release": ({}, release_lever, 20.0, 20.0, 60.0, None),
-    "release, load +20 %": ({"modify": {"bodies.load.mass": 1.2 * 390000.6}}, release_lever, 20.0, 20.0, 60.0, None),
-    "release, load -20 %": ({"modify": {"bodies.load.mass": 0.8 * 390000.6}}, release_lever, 20.0, 20.0, 60.0, None),
-    "gust across": ({"loads": gust((0, 1))}, lambda t: (0.0, 0.0), 0.0, 5.0, 40.0, None),
-    "gust along": ({"loads": gust((1, 0))}, lambda t: (0.0, 0.0), 0.0, 5.0, 40.0, None),
-    "stop-and-go": ({}, stop_and_go_lever, 0.0, 22.0, 50.0, None),
-    "stop-and-go, shaped": ({}, stop_and_go_lever, 0.0, 22.0 + SHAPING[0] / 2, 50.0, SHAPING),
+    "release": ({}, release_lever, 20.0, 20.0, 60.0),
+    "release, load +20 %": ({"modify": {"bodies.load.mass": 1.2 * 390000.6}}, release_lever, 20.0, 20.0, 60.0),
+    "release, load -20 %": ({"modify": {"bodies.load.mass": 0.8 * 390000.6}}, release_lever, 20.0, 20.0, 60.0),
+    "gust across": ({"loads": gust((0, 1))}, lambda t: (0.0, 0.0), 0.0, 5.0, 40.0),
+    "gust along": ({"loads": gust((1, 0))}, lambda t: (0.0, 0.0), 0.0, 5.0, 40.0),
 }
 
 
-def run(changes, lever, feedback_from, t_end, feedback, shaping=None):
+def run(changes, lever, feedback_from, t_end, feedback):
     """The swing of the hook about the head (m) at every sample, and the solver statistics."""
     sim = cranesim.Simulation({"base": str(SCENE), "name": "anti-sway case", **changes})
     hook, head = sim.joint("load.origin"), sim.joint("head.sheave")
@@ -74,7 +62,7 @@ def run(changes, lever, feedback_from, t_end, feedback, shaping=None):
         t = k * DT
         slewing, hoist = lever(t)
         if feedback and t >= feedback_from and controller is None:
-            controller = AntiSway(sim, shaping=shaping)
+            controller = AntiSway(sim)
         if controller is None:
             sim.set_inputs({"slewing": slewing, "hoist_rope": hoist})
         else:
@@ -91,13 +79,13 @@ def main():
     parser.add_argument("-o", "--out", default=str(ROOT / "benchmarks" / "results" / "anti_sway.csv"))
     args = parser.parse_args()
     rows, curves = [], {}
-    for name, (changes, lever, feedback_from, last_stop, t_end, shaping) in CASES.items():
+    for name, (changes, lever, feedback_from, last_stop, t_end) in CASES.items():
         t = np.arange(1, int(round(t_end / DT)) + 1) * DT
         after = (t > last_stop + 5.0) & (t <= last_stop + 10.0)
         last = t > t_end - 10.0
         row = {"case": name}
         for label, feedback in (("open", False), ("closed", True)):
-            swing, stats = run(changes, lever, feedback_from, t_end, feedback, shaping)
+            swing, stats = run(changes, lever, feedback_from, t_end, feedback)
             curves[(name, label)] = (t, swing)
             row[f"{label}_5_10_s_m"] = f"{swing[after].max():.4f}"
             row[f"{label}_last_10_s_m"] = f"{swing[last].max():.4f}"

@@ -491,6 +491,28 @@ release against open loop; the controller knows the rope it measures, not the lo
 """
 
 
+def operator_assistance(r: Results) -> str:
+    rows = r.csv("operator_assistance.csv")
+    body = table(["lever driven by", "crane stops at", "largest swing from 5 s after each stop", "largest swing",
+                  "real-time factor", "controller per sample"],
+                 [[x["case"], f"{num(x['stop1_s']):.1f} s, {num(x['stop2_s']):.1f} s",
+                   f"{metres(x['stop1_from_5_s_m'])}, {metres(x['stop2_from_5_s_m'])}", metres(x["largest_m"]),
+                   f"{x['real_time_factor']}×",
+                   "–" if x["case"] == "lever" else f"{num(x['controller_us_per_sample']):.0f} µs"] for x in rows])
+    return f"""## Operator assistance
+
+The condensed thesis crane at 50 Hz from Python under an operator's lever: a slew with a hoist, a
+stop, a reversal with a lowering, a stop ([operator assistance](control.md#operator-assistance)).
+The lever's speeds drive the crane directly, through `AntiSway` following them, or through
+`AntiSway(shaping=17.1, boom_period=1.4)`; the largest swing of the hook about the boom head from
+5 s after each stop of the crane until it moves again.
+
+{body}
+
+{r.source("python3 benchmarks/operator_assistance.py", "operator_assistance.csv", rows, "operator_assistance.png")}
+"""
+
+
 def plan_tracking(r: Results) -> str:
     rows = r.csv("plan_tracking.csv")
     cases = list(dict.fromkeys(x["case"] for x in rows))
@@ -551,7 +573,7 @@ compile.
 
 SECTIONS = [combined_motion, fidelities, equilibrium_grid, map_parallel, jacobian_ratio, truss_reduction,
             element_bending, slender_statics, element_vibration, pendulum_chain, session_stepping, anti_sway,
-            plan_tracking, setup_times]
+            operator_assistance, plan_tracking, setup_times]
 
 
 def render(results: Results) -> str:

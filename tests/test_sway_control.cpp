@@ -7,12 +7,13 @@
 #include <cmath>
 #include <complex>
 #include <memory>
+#include <limits>
 #include <numbers>
 
 #include "cranesim/control/crane_sway.hpp"
 #include "cranesim/control/low_pass.hpp"
 #include "cranesim/control/lqr.hpp"
-#include "cranesim/control/shaped_reference.hpp"
+#include "cranesim/control/shaped_head_path.hpp"
 #include "cranesim/control/sway_axis.hpp"
 #include "scene_fixtures.hpp"
 
@@ -45,29 +46,52 @@ TEST_CASE("The held model is the continuous model integrated over a sample", "[c
   CHECK((d.A * x0 + d.B * u - exact).norm() < 1e-13);
 }
 
-TEST_CASE("A lever's stop-and-go shaped for the pendulum ends rest to rest with the reference pendulum still",
+TEST_CASE("A slewing lever's first step swings the shaped path's pendulum as a velocity step swings a pendulum",
           "[control]") {
-  // The ZV shaper's two half commands, T/2 apart, excite swings of equal amplitude and opposite
-  // phase; with the same acceleration ramps (5 units/s², none overlapping the next) they cancel
-  // to the rounding of T/2 to the 20 ms samples. 3 units/s for 6 s, then −3 for 4 s, on a head
-  // moving 0.1 m per unit.
-  const double period = 17.1, dt = 0.02, metres_per_unit = 0.1;
-  const double omega = 2.0 * std::numbers::pi / period;
-  const auto lever = [](double t) { return t < 6.0 ? 3.0 : 14.0 <= t && t < 18.0 ? -3.0 : 0.0; };
-  ShapedReference reference(period, 5.0, dt, 5.0);
-  CHECK(reference.delay() == Approx(8.56).margin(1e-12));
-  double largest = 0.0;
-  ShapedReference::Sample r;
-  for (int k = 0; k <= 3000; ++k) {
-    r = reference.advance(lever(k * dt), metres_per_unit);
-    if (k * dt < 18.0 + reference.delay() + 2.0) largest = std::max(largest, std::hypot(r.angle, r.angle_rate / omega));
+  // The head 50 m from the slewing axis; the lever steps to 0.006 rad/s with no acceleration
+  // limit, so the shaped head's speed steps by half of 0.3 m/s within one sample. A pendulum of
+  // period T under a velocity step Δv swings across as θ = −(Δv ω/g) sin ωt until the second half
+  // comes.
+  const double period = 17.12, dt = 0.02, g = 9.81, omega = 2.0 * std::numbers::pi / period;
+  const double infinite = std::numeric_limits<double>::infinity();
+  ShapedHeadPath path(Eigen::Vector2d(-50.0, 0.0), period, {infinite, infinite}, dt, g);
+  CHECK(path.delay() == Approx(8.56).margin(1e-12));
+  double worst = 0.0;
+  for (int k = 0; k < 400; ++k) {  // up to 8 s, before the second half at 8.56 s
+    const ShapedHeadPath::Sample r = path.advance(0.006, 0.0, period);
+    const double t = (k - 0.5) * dt;  // the velocity steps in the middle of the first sample
+    if (k > 0) worst = std::max(worst, std::abs(r.across + 0.15 * omega / g * std::sin(omega * t)));
   }
-  CHECK(r.position == Approx(5.0 + 3.0 * 6.0 - 3.0 * 4.0).epsilon(1e-12));  // rest to rest, where the lever left it
-  CHECK(r.speed == 0.0);
-  // The swing while it moves (measured 0.010 rad), and below a hundredth of it once the shaped
-  // motion has stopped (measured 4.5e-5 rad).
+  // The differences: the step spread over a sample, the head's centripetal acceleration (0.8 % of
+  // the step's swing) and its turn off the first direction (0.024 rad by 8 s).
+  CHECK(worst < 0.02 * 0.15 * omega / g);
+}
+
+TEST_CASE("A stop-and-go slew with a reversal, shaped in the plane, ends rest to rest with the pendulum still",
+          "[control]") {
+  // 3 °/s for 6 s, then −3 °/s from 14 to 18 s, within 2 °/s², on a head 5.35 m from the axis:
+  // half a period later the crane has turned by 13°. The halves of each change cancel on the
+  // pendulum in the plane exactly (T/2 is a whole number of samples), wherever the crane has
+  // turned meanwhile.
+  const double period = 17.12, dt = 0.02, degree = std::numbers::pi / 180.0;
+  const double omega = 2.0 * std::numbers::pi / period;
+  const auto lever = [&](double t) { return (t < 6.0 ? 3.0 : 14.0 <= t && t < 18.0 ? -3.0 : 0.0) * degree; };
+  ShapedHeadPath path(Eigen::Vector2d(-5.35, 0.0), period, {2.0 * degree, 0.3}, dt);
+  double largest = 0.0;
+  ShapedHeadPath::Sample r;
+  for (int k = 0; k <= 2000; ++k) {
+    r = path.advance(lever(k * dt), 0.0, period);
+    if (k * dt < 18.0 + path.delay() + 2.0)
+      largest = std::max(largest, std::hypot(std::hypot(r.radial, r.across), std::hypot(r.radial_rate, r.across_rate) / omega));
+  }
+  CHECK(r.slewing == Approx((3.0 * 6.0 - 3.0 * 4.0) * degree).epsilon(1e-12));  // where the lever left it
+  CHECK(r.radius == Approx(5.35).epsilon(1e-12));
+  CHECK(std::abs(r.slewing_speed) < 1e-15);
+  CHECK(std::abs(r.radius_speed) < 1e-12);
+  // The swing while it moves (measured 0.0094 rad), and none left once it has stopped (measured
+  // 1e-16 rad; shaping the slewing angle instead leaves 3 % of it here).
   CHECK(largest > 0.005);
-  CHECK(std::hypot(r.angle, r.angle_rate / omega) < 0.01 * largest);
+  CHECK(std::hypot(std::hypot(r.radial, r.across), std::hypot(r.radial_rate, r.across_rate) / omega) < 1e-9 * largest);
 }
 
 TEST_CASE("The LQR gain of a scalar system is the closed form's", "[control]") {
@@ -221,4 +245,38 @@ TEST_CASE("The anti-sway feedback takes out most of the swing a gust leaves on t
   INFO("swing from 20 to 40 s: open loop " << open << " m, with feedback " << closed << " m");
   CHECK(open > 0.3);
   CHECK(closed < 0.15 * open);  // 0.043 m against 0.394 m: 89 % less (0.073 m without the filter)
+}
+
+TEST_CASE("Shaped operator assistance stops an operator's stop-and-go slew with a reversal and a hoist within "
+          "5 cm of plumb", "[control][session]") {
+  // The lever slews at +3 °/s for 8 s, stops, slews back at −3 °/s from 16 to 22 s, while the hoist
+  // lifts the load 2.4 m (0.3 m/s, 2–10 s). The head follows the lever's path shaped for the
+  // crane's 17.1 s sway period, the hoist's speed is spread over the boom's 1.4 s period, and the
+  // feedback acts on what the crane does differently; the crane stops half a period and the
+  // lever's 1.5 s ramp after the lever, at 32.1 s.
+  const std::string scene = std::string(CRANESIM_SOURCE_DIR) + "/configs/crane_inputs.yaml";
+  const auto swing = [&](double boom_period) {
+    Session session(scene);
+    const int hook = session.joint("load.origin"), head = session.joint("head.sheave");
+    CraneSwaySpec spec;
+    spec.shaping_period = 17.1;
+    spec.boom_period = boom_period;
+    CraneSwayController controller(session, spec);
+    double largest = 0.0;
+    for (int k = 1; k <= 2100; ++k) {
+      const double t = session.time();
+      controller.apply(t < 8.0 ? 3.0 : 16.0 <= t && t < 22.0 ? -3.0 : 0.0, 0.0, 2.0 <= t && t < 10.0 ? -0.3 : 0.0);
+      REQUIRE(session.advanceTo(0.02 * k));
+      if (session.time() > 32.1 + 5.0)
+        largest = std::max(largest, (session.jointPosition(hook) - session.jointPosition(head)).head<2>().norm());
+    }
+    return largest;
+  };
+  const double smoothed = swing(1.4), abrupt = swing(0.0);
+  INFO("largest swing from 5 s after the crane's stop to 42 s: " << smoothed << " m, " << abrupt
+                                                                   << " m with the hoist's speed as the lever gives it");
+  CHECK(smoothed < 0.05);  // measured 0.019 m
+  // 0.047 m: the hoist's 0.5 m/s² ramps set the boom bouncing at 0.7 Hz in its luffing plane: the head
+  // moves against the load.
+  CHECK(abrupt > smoothed + 0.01);
 }

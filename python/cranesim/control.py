@@ -73,24 +73,28 @@ class AntiSway:
     Each sample, call :meth:`apply` with the reference speeds instead of
     :meth:`Simulation.set_inputs`, then step the simulation by ``sample_time``.
 
-    ``shaping`` (s, s): for operator assistance, the crane's sway periods across and along the
-    boom. The lever's slewing and luffing speeds are then shaped (half of each change at once,
-    half a sway half-period later, within the drive's acceleration limit) so that they leave the
-    pendulum of that period still, and the swing that shaped motion gives the load is the
-    feedback's reference: the head reaches the lever's position half a period late, and the
-    feedback corrects only what the crane does differently from the pendulum.
+    ``shaping`` (s): for operator assistance, the crane's sway period with the hoist rope as it is
+    now. The boom head then follows the lever's path shaped in the horizontal plane (half of each
+    change of its velocity at once, half a sway half-period later, within the drives'
+    acceleration limits) so that it leaves a pendulum of that period still, and the swing that
+    path gives the pendulum is the feedback's reference: the head reaches the lever's position
+    half a period late, and the feedback corrects only what the crane does differently from the
+    pendulum. The period follows the hoist (a pendulum longer than the rope by a constant).
+
+    ``boom_period`` (s): the period of the boom's mode that the hoist's load changes excite (its
+    bending in the luffing plane). The hoist speed is then averaged over it, so that each change
+    is a ramp of that duration and leaves the boom still.
     """
 
     def __init__(self, sim, across: SwayAxis | None = None, along: SwayAxis | None = None,
                  slewing: str = "slewing", luffing_rope: str = "luffing_rope",
                  hoist_rope: str = "hoist_rope", hook: str = "load.origin",
-                 sheave: str = "head.sheave", shaping: tuple[float, float] | None = None):
+                 sheave: str = "head.sheave", shaping: float | None = None, boom_period: float | None = None):
         across = across or SwayAxis(measurement_cutoff=0.3)
         along = along or SwayAxis(angle=0.02, angle_rate=0.02, measurement_cutoff=0.3)
         self._sim = sim
-        shaping_across, shaping_along = shaping or (0.0, 0.0)
         self._core = _core.CraneSway(sim._core, slewing, luffing_rope, hoist_rope, hook, sheave,
-                                     across._core, along._core, shaping_across, shaping_along)
+                                     across._core, along._core, shaping or 0.0, boom_period or 0.0)
 
     def apply(self, slewing: float = 0.0, luffing: float = 0.0, hoist: float = 0.0) -> np.ndarray:
         """Sets the simulation's inputs for the next sample from the reference speeds: the

@@ -286,16 +286,16 @@ NB_MODULE(_core, m) {
           "__init__",
           [](CraneSwayController* self, Session& session, const std::string& slewing, const std::string& luffing_rope,
              const std::string& hoist_rope, const std::string& hook, const std::string& sheave, const SwayAxisController& across,
-             const SwayAxisController& along, double shaping_across, double shaping_along) {
+             const SwayAxisController& along, double shaping_period, double boom_period) {
             nb::gil_scoped_release released;
             CraneSwaySpec spec{slewing, luffing_rope, hoist_rope, hook, sheave, across.spec(), along.spec()};
-            spec.shaping_across = shaping_across;
-            spec.shaping_along = shaping_along;
+            spec.shaping_period = shaping_period;
+            spec.boom_period = boom_period;
             new (self) CraneSwayController(session, spec);
           },
           nb::arg("session"), nb::arg("slewing"), nb::arg("luffing_rope"), nb::arg("hoist_rope"), nb::arg("hook"),
-          nb::arg("sheave"), nb::arg("across"), nb::arg("along"), nb::arg("shaping_across") = 0.0,
-          nb::arg("shaping_along") = 0.0, nb::keep_alive<1, 2>())
+          nb::arg("sheave"), nb::arg("across"), nb::arg("along"), nb::arg("shaping_period") = 0.0,
+          nb::arg("boom_period") = 0.0, nb::keep_alive<1, 2>())
       .def(
           "apply",
           [](CraneSwayController& c, double slewing, double luffing, double hoist) {

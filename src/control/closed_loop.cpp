@@ -26,8 +26,8 @@ SimulationOutcome runClosedLoop(Session& session, const FeedbackSpec& feedback, 
   spec.hook = feedback.hook;
   spec.sheave = feedback.sheave;
   spec.across.sample_time = spec.along.sample_time = feedback.sample_time;
-  spec.shaping_across = feedback.shaping_across;
-  spec.shaping_along = feedback.shaping_along;
+  spec.shaping_period = feedback.shaping_period;
+  spec.boom_period = feedback.boom_period;
   std::unique_ptr<CraneSwayController> controller;
 
   const double t0 = session.time(), t_end = session.model().solver.t_end;

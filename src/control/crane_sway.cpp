@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <stdexcept>
 
 #include "cranesim/model/compile.hpp"
@@ -45,12 +46,6 @@ CraneSwayController::CraneSwayController(Session& session, const CraneSwaySpec& 
       slewing_unit_(inputUnit(session.model(), slewing_)), across_(spec.across), along_(spec.along),
       slewing_reference_(session.inputValue(slewing_)), luffing_reference_(session.inputValue(luffing_)),
       hoist_reference_(session.inputValue(hoist_)), hoist_gain_(spec.hoist_gain) {
-  const auto shaper = [&](double period, int input) {
-    return ShapedReference(period, session.model().inputs[static_cast<std::size_t>(input)].signal->spec().max_acceleration,
-                           across_.spec().sample_time, session.inputValue(input));
-  };
-  if (spec.shaping_across > 0.0) shaped_across_.emplace(shaper(spec.shaping_across, slewing_));
-  if (spec.shaping_along > 0.0) shaped_along_.emplace(shaper(spec.shaping_along, luffing_));
   // dR/dl by central differences of the equilibria at the table's lengths ± 1 cm.
   const InputSpec& luffing = session.model().inputs[static_cast<std::size_t>(luffing_)].signal->spec();
   const double now = session.inputValue(luffing_);
@@ -70,6 +65,28 @@ CraneSwayController::CraneSwayController(Session& session, const CraneSwaySpec& 
     table_length_.push_back(length);
     table_ratio_.push_back((headRadius(length + kStep) - headRadius(length - kStep)) / (2.0 * kStep));
   }
+  if (spec.shaping_period > 0.0) {
+    const Vec3 head = session.jointPosition(sheave_);
+    const double rope = (session.jointPosition(hook_) - head).norm();
+    pendulum_offset_ = across_.spec().gravity * std::pow(spec.shaping_period / (2.0 * std::numbers::pi), 2) - rope;
+    const auto acceleration = [&](int input) {
+      return session.model().inputs[static_cast<std::size_t>(input)].signal->spec().max_acceleration;
+    };
+    const ShapedHeadPath::Limits limits{acceleration(slewing_) * slewing_unit_,
+                                        acceleration(luffing_) * headPerLuff(luffing_reference_)};
+    shaped_.emplace(Eigen::Vector2d(head.x(), head.y()), spec.shaping_period, limits, across_.spec().sample_time,
+                    across_.spec().gravity);
+    shaped_luffing_ = luffing_reference_;
+    slewing_start_ = slewing_reference_;
+  }
+  if (spec.boom_period > 0.0)
+    smoothed_hoist_.emplace(static_cast<std::size_t>(std::max(1L, std::lround(spec.boom_period / across_.spec().sample_time))), 0.0);
+}
+
+double CraneSwayController::shapingPeriod(double rope_length) const {
+  // A pendulum of the rope's length plus the offset found at the start: T = 2π √((l + offset)/g).
+  const double length = std::max(rope_length + pendulum_offset_, 0.01 * rope_length);
+  return 2.0 * std::numbers::pi * std::sqrt(length / across_.spec().gravity);
 }
 
 double CraneSwayController::headPerLuff(double length) const {
@@ -89,21 +106,19 @@ std::vector<double> CraneSwayController::apply(double slewing_speed, double luff
   reference.luffing = luffing_reference_;
   reference.luffing_speed = luffing_speed;
   reference.hoist = hoist_reference_;
+  if (smoothed_hoist_) hoist_speed = (*smoothed_hoist_)(hoist_speed);
   reference.hoist_speed = hoist_speed;
-  if (shaped_across_) {
-    const ShapedReference::Sample r =
-        shaped_across_->advance(slewing_speed, horizontal(session_.jointPosition(sheave_)) * slewing_unit_);
-    reference.slewing = r.position;
-    reference.slewing_speed = r.speed;
-    reference.sway.across = r.angle;
-    reference.sway.across_rate = r.angle_rate;
-  }
-  if (shaped_along_) {
-    const ShapedReference::Sample r = shaped_along_->advance(luffing_speed, headPerLuff(session_.inputValue(luffing_)));
-    reference.luffing = r.position;
-    reference.luffing_speed = r.speed;
-    reference.sway.radial = r.angle;
-    reference.sway.radial_rate = r.angle_rate;
+  if (shaped_) {
+    const double rope = (session_.jointPosition(hook_) - session_.jointPosition(sheave_)).norm();
+    const ShapedHeadPath::Sample r = shaped_->advance(slewing_speed * slewing_unit_,
+                                                      luffing_speed * headPerLuff(luffing_reference_), shapingPeriod(rope));
+    const double ratio = headPerLuff(shaped_luffing_);
+    reference.slewing = slewing_start_ + r.slewing / slewing_unit_;
+    reference.slewing_speed = r.slewing_speed / slewing_unit_;
+    reference.luffing = shaped_luffing_;
+    reference.luffing_speed = r.radius_speed / ratio;
+    reference.sway = {r.radial, r.across, r.radial_rate, r.across_rate};
+    shaped_luffing_ += reference.luffing_speed * dt;
   }
   slewing_reference_ += slewing_speed * dt;
   luffing_reference_ += luffing_speed * dt;

@@ -624,9 +624,9 @@ FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
   if (const auto x = f.find("hook")) spec.hook = x->text();
   if (const auto x = f.find("sheave")) spec.sheave = x->text();
   if (const auto shaping = f.find("shaping")) {
-    shaping->allowKeys({"across", "along"});
-    if (const auto a = shaping->find("across")) spec.shaping_across = a->within(0.1, 1000.0, "s");
-    if (const auto a = shaping->find("along")) spec.shaping_along = a->within(0.1, 1000.0, "s");
+    shaping->allowKeys({"period", "boom_period"});
+    spec.shaping_period = shaping->at("period").within(0.1, 1000.0, "s");
+    if (const auto b = shaping->find("boom_period")) spec.boom_period = b->within(0.01, 100.0, "s");
   }
   if (const auto refs = f.find("references"))
     for (const std::string& name : refs->keys()) {

@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "cranesim/control/shaped_reference.hpp"
+#include "cranesim/control/moving_average.hpp"
+#include "cranesim/control/shaped_head_path.hpp"
 #include "cranesim/control/sway_axis.hpp"
 #include "cranesim/session/session.hpp"
 
@@ -26,11 +27,16 @@ struct CraneSwaySpec {
   /// 1/s: the hoist winch's speed command corrects its length towards the reference's at this
   /// rate (0: the hoist speed passes through, an operator's lever).
   double hoist_gain = 0.0;
-  /// s: the operator's slewing and luffing speeds are shaped for a pendulum of these periods
-  /// (control/shaped_reference.hpp; the crane's sway periods across and along the boom), and the
-  /// swing the shaped reference gives the load is the feedback's reference; 0: not shaped, the
-  /// reference swing is zero.
-  double shaping_across = 0.0, shaping_along = 0.0;
+  /// s: the crane's sway period with the hoist rope as it is at the start. The operator's slewing
+  /// and luffing speeds then move the boom head along a path shaped for a pendulum of that period
+  /// (control/shaped_head_path.hpp), and the swing that path gives the pendulum is the feedback's
+  /// reference; the period follows the hoist (a pendulum longer than the rope by a constant).
+  /// 0: not shaped, the reference swing is zero.
+  double shaping_period = 0.0;
+  /// s: the period of the boom's mode that the hoist's load changes excite (its luffing-plane
+  /// bending). The operator's hoist speed is then averaged over it, so that each of its changes
+  /// is a ramp of that duration and leaves the mode still; 0: the hoist speed passes through.
+  double boom_period = 0.0;
 };
 
 /// Where the crane should be at one sample: the drives' values (in the inputs' units) and
@@ -74,7 +80,12 @@ class CraneSwayController {
   std::vector<double> table_length_, table_ratio_;  // dR/dl at luffing rope lengths
   double slewing_reference_, luffing_reference_, hoist_reference_;  // where the speeds lead, in the inputs' values
   double hoist_gain_;
-  std::optional<ShapedReference> shaped_across_, shaped_along_;
+  std::optional<ShapedHeadPath> shaped_;
+  std::optional<MovingAverage> smoothed_hoist_;
+  double slewing_start_ = 0.0;       // the slewing input's value where the shaped path begins
+  double shaped_luffing_ = 0.0;      // the luffing rope's length along the shaped path
+  double pendulum_offset_ = 0.0;     // m: the sway pendulum's length less the rope's
+  double shapingPeriod(double rope_length) const;
 };
 
 }  // namespace cranesim

@@ -17,9 +17,11 @@ struct FeedbackSpec {
   // The inputs and joints of the anti-sway controller (control/crane_sway.hpp).
   std::string slewing = "slewing", luffing_rope = "luffing_rope", hoist_rope = "hoist_rope";
   std::string hook = "load.origin", sheave = "head.sheave";
-  /// s: the references' slewing and luffing speeds shaped for the crane's sway periods across and
-  /// along the boom (CraneSwaySpec::shaping_across, shaping_along); 0: not shaped.
-  double shaping_across = 0.0, shaping_along = 0.0;
+  /// s: the references' slewing and luffing speeds shaped for the crane's sway period
+  /// (CraneSwaySpec::shaping_period); 0: not shaped.
+  double shaping_period = 0.0;
+  /// s: the hoist's speed references averaged over the boom's period (CraneSwaySpec::boom_period).
+  double boom_period = 0.0;
   /// Speed references by input name, in the input's unit per second (absent: 0).
   std::map<std::string, Profile> references;
   SourceLocation where;
