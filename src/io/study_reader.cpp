@@ -193,11 +193,16 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
     fig.joint = readJointOf(f, model);
     fig.relative_to = readReferenceJoint(f.at("relative_to"), model);
   } else if (quantity == "horizontal_sway") {
-    f.allowKeys({"name", "quantity", "body", "joint", "relative_to", "after"});
+    f.allowKeys({"name", "quantity", "body", "joint", "relative_to", "about_mean", "after"});
     fig.quantity = FigureQuantity::HorizontalSway;
     fig.statistic = FigureStatistic::Max;
     fig.joint = readJointOf(f, model);
     if (const auto r = f.find("relative_to")) fig.relative_to = readReferenceJoint(*r, model);
+    if (const auto m = f.find("about_mean")) {
+      fig.about_mean = m->boolean();
+      if (fig.about_mean && fig.relative_to.empty())
+        m->fail("about_mean needs relative_to (without it the sway is taken about the mean position already)");
+    }
   } else {
     f.allowKeys({"name", "quantity", "mode"});
     fig.quantity = FigureQuantity::Frequency;

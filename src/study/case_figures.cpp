@@ -37,14 +37,16 @@ std::vector<double> coordinate(const Model& model, const ResultsRecorder& record
 }
 
 /// The horizontal distance of a joint, at every sample, from the reference joint at the same
-/// time, or (no reference) from its own mean position over the samples in the window.
+/// time (less the mean of that offset over the samples in the window with `about_mean`), or (no
+/// reference) from its own mean position over the samples in the window.
 std::vector<double> horizontalDistances(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder,
                                         const std::vector<std::size_t>& window) {
   std::vector<double> x = coordinate(model, recorder, fig.joint, 0), y = coordinate(model, recorder, fig.joint, 1);
   if (!fig.relative_to.empty()) {
     const std::vector<double> rx = coordinate(model, recorder, fig.relative_to, 0), ry = coordinate(model, recorder, fig.relative_to, 1);
     for (std::size_t s = 0; s < x.size(); ++s) x[s] -= rx[s], y[s] -= ry[s];
-  } else {
+  }
+  if (fig.relative_to.empty() || fig.about_mean) {
     double mx = 0.0, my = 0.0;
     for (const std::size_t s : window) mx += x[s], my += y[s];
     mx /= static_cast<double>(window.size());

@@ -216,6 +216,29 @@ figures:
         assert math.isnan(f["figures/sway_too_late"][0])  # no sample after 100 s
 
 
+def test_sway_about_the_mean_offset(tmp_path: Path):
+    """With about_mean the sway is the ball's horizontal offset from the suspension less that
+    offset's mean over the window (a steady wind's offset taken out): the same figure computed
+    from the run's results by hand."""
+    table = computed_study(tmp_path, "sway_mean", f"""\
+scene: {ROPE_PENDULUM}
+analysis: run
+parameters:
+  - {{path: solver.t_end, values: [1.5]}}
+figures:
+  - {{name: sway, quantity: horizontal_sway, body: ball, relative_to: ground.suspension, about_mean: true, after: 0.5}}
+""")
+    scene = tmp_path / "short.yaml"
+    scene.write_text(f"base: {ROPE_PENDULUM}\nmodify: {{solver.t_end: 1.5}}\n")
+    crane_sim("run", scene, "-o", tmp_path / "run.h5", "--quiet", cwd=tmp_path)
+    with h5py.File(tmp_path / "run.h5", "r") as f, h5py.File(table, "r") as study:
+        late = f["time"][()] >= 0.5
+        offset = (f["bodies/ball/position"][()] - f["joints/ground.suspension/position"][()])[late, :2]
+        expected = np.linalg.norm(offset - offset.mean(axis=0), axis=1).max()
+        assert study["figures/sway"][0] == pytest.approx(expected, rel=1e-12)
+        assert expected < 0.9 * np.linalg.norm(offset, axis=1).max()  # the mean is not nothing
+
+
 def test_tipping_moment_and_dynamic_factor(tmp_path: Path):
     """The ground's reaction on the hanging pendulum at rest is its whole weight W, up, at the
     suspension (0, 0, 0): about the line through (2, ·, −3) along +y its moment is 2 W, and the

@@ -59,6 +59,7 @@ struct FigureSpec {
   std::string constraint;   // ConstraintForce
   std::string joint;        // Position, HorizontalSway
   std::string relative_to;  // HorizontalDistance, HorizontalSway: the reference joint; empty (sway): the mean position
+  bool about_mean = false;  // HorizontalSway with relative_to: the offset from the reference less its mean (a steady wind's)
   int component = 0;        // Position: 0, 1, 2 for x, y, z
   double after = -std::numeric_limits<double>::infinity();  // s
   int mode = 0;             // Frequency: 1-based, as `crane-sim modes` numbers them
