@@ -164,6 +164,26 @@ TEST_CASE("The sway controller redesigns its gain as the rope's length changes",
   CHECK_THROWS_WITH(SwayAxisController(SwayAxisSpec{.sample_time = 0.0}), Catch::Contains("sample time"));
 }
 
+TEST_CASE("The steady angle leaves the feedback: a constant offset is tracked out at its time constant",
+          "[control]") {
+  // A load held off plumb at 0.01 rad (a steady wind) under a head at its reference: fed back as
+  // it is, the angle asks for a constant speed −K_θ θ₀; with a steady-angle time τ the feedback
+  // sees θ₀ e^(−t/τ), the first-order low-pass's part not yet taken out.
+  const double tau = 20.0, dt = 0.02, offset = 0.01;
+  SwayAxisController plain{SwayAxisSpec{}}, steady{SwayAxisSpec{.steady_angle_time = tau}};
+  const double held = plain.command(48.0, 0.0, 0.0, 0.0, offset, 0.0);
+  CHECK(held == Approx(-plain.gain()(2) * offset).epsilon(1e-14));
+  CHECK(std::abs(held) > 0.3);  // m/s: the head would run downwind
+  double u = 0.0;
+  for (int k = 1; k <= 10000; ++k) {
+    u = steady.command(48.0, 0.0, 0.0, 0.0, offset, 0.0);
+    if (k == 1) CHECK(u == Approx(held * std::exp(-dt / tau)).epsilon(1e-12));
+    if (k == 1000) CHECK(u == Approx(held * std::exp(-1000 * dt / tau)).epsilon(1e-9));  // after 20 s, e⁻¹ of it
+  }
+  CHECK(std::abs(u) < 1e-4 * std::abs(held));  // after 200 s
+  CHECK_THROWS_WITH(SwayAxisController(SwayAxisSpec{.steady_angle_time = -1.0}), Catch::Contains("steady angle"));
+}
+
 TEST_CASE("The measurement filter is the sampled Butterworth filter: all of a constant, 1/√2 at its cutoff",
           "[control]") {
   // The bilinear map of a second-order Butterworth filter with its cutoff prewarped: |H(e^{iωh})|² =

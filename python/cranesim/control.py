@@ -19,7 +19,10 @@ class SwayAxis:
     the position (m), the speed (m/s), the rope's angle (rad) and its rate (rad/s), and of the
     command (m/s). ``measurement_cutoff`` (Hz; 0: none) passes the measured angle and its rate
     through a second-order low-pass filter first, to keep a flexible boom's own modes out of the
-    feedback (:class:`AntiSway` uses 0.3 Hz on both axes).
+    feedback (:class:`AntiSway` uses 0.3 Hz on both axes). ``steady_angle_time`` (s; 0: none)
+    takes the angle's steady part — where a steady wind holds the load — out of the feedback: a
+    first-order low-pass of the angle with that time constant is subtracted from it, so that the
+    feedback damps the swing about that offset instead of moving the head downwind.
 
     Each sample, :meth:`command` takes what the crane measures along the axis and returns the
     suspension point's speed command (m/s); mapping it to a drive (°/s of slewing, m/s of
@@ -29,9 +32,9 @@ class SwayAxis:
     def __init__(self, sample_time: float = 0.02, drive_lag: float = 0.1, gravity: float = 9.81,
                  position: float = 1.0, speed: float = 1.0, angle: float = 0.01,
                  angle_rate: float = 0.01, command: float = 0.5, reschedule: float = 0.005,
-                 measurement_cutoff: float = 0.0):
+                 measurement_cutoff: float = 0.0, steady_angle_time: float = 0.0):
         self._core = _core.SwayAxis(sample_time, drive_lag, gravity, position, speed, angle,
-                                    angle_rate, command, reschedule, measurement_cutoff)
+                                    angle_rate, command, reschedule, measurement_cutoff, steady_angle_time)
 
     def command(self, rope_length: float, position_error: float, speed: float, angle: float,
                 angle_rate: float, reference_speed: float = 0.0) -> float:

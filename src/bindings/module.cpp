@@ -267,12 +267,14 @@ NB_MODULE(_core, m) {
       .def(
           "__init__",
           [](SwayAxisController* self, double sample_time, double drive_lag, double gravity, double position, double speed,
-             double angle, double angle_rate, double command, double reschedule, double measurement_cutoff) {
+             double angle, double angle_rate, double command, double reschedule, double measurement_cutoff,
+             double steady_angle_time) {
             new (self) SwayAxisController(SwayAxisSpec{sample_time, drive_lag, gravity, position, speed, angle, angle_rate,
-                                                       command, reschedule, measurement_cutoff});
+                                                       command, reschedule, measurement_cutoff, steady_angle_time});
           },
           nb::arg("sample_time"), nb::arg("drive_lag"), nb::arg("gravity"), nb::arg("position"), nb::arg("speed"),
-          nb::arg("angle"), nb::arg("angle_rate"), nb::arg("command"), nb::arg("reschedule"), nb::arg("measurement_cutoff"))
+          nb::arg("angle"), nb::arg("angle_rate"), nb::arg("command"), nb::arg("reschedule"), nb::arg("measurement_cutoff"),
+          nb::arg("steady_angle_time"))
       .def("command", &SwayAxisController::command, nb::arg("rope_length"), nb::arg("position_error"), nb::arg("speed"),
            nb::arg("reference_speed"), nb::arg("angle"), nb::arg("angle_rate"))
       .def_prop_ro(

@@ -31,6 +31,9 @@ SwayAxisController::SwayAxisController(const SwayAxisSpec& spec) : spec_(spec) {
   positive(spec.angle, "angle deviation");
   positive(spec.angle_rate, "angular rate deviation");
   positive(spec.command, "command deviation");
+  if (!(spec.steady_angle_time >= 0.0 && std::isfinite(spec.steady_angle_time)))
+    throw std::invalid_argument(fmt::format("the steady angle's time constant must be 0 or positive, not {}",
+                                            spec.steady_angle_time));
   if (spec.measurement_cutoff != 0.0) {
     angle_filter_.emplace(spec.measurement_cutoff, spec.sample_time);
     rate_filter_.emplace(spec.measurement_cutoff, spec.sample_time);
@@ -56,6 +59,10 @@ double SwayAxisController::command(double rope_length, double position_error, do
   if (angle_filter_) {
     angle = (*angle_filter_)(angle);
     angle_rate = (*rate_filter_)(angle_rate);
+  }
+  if (spec_.steady_angle_time > 0.0) {
+    steady_angle_ += -std::expm1(-spec_.sample_time / spec_.steady_angle_time) * (angle - steady_angle_);
+    angle -= steady_angle_;
   }
   const Eigen::Vector4d error(position_error, speed - reference_speed, angle, angle_rate);
   return reference_speed - gain_.dot(error);

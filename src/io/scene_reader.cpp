@@ -596,10 +596,10 @@ std::map<std::string, bool> sceneInputs(const Scene& s) {
 }
 
 /// `feedback: {type: anti_sway, sample_time, start, slewing, luffing_rope, hoist_rope, hook,
-/// sheave, references: {input: profile}}`, its inputs checked against the scene's.
+/// sheave, shaping, steady_angle_time, references: {input: profile}}`, its inputs checked against the scene's.
 FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
   f.allowKeys({"type", "sample_time", "start", "slewing", "luffing_rope", "hoist_rope", "hook", "sheave", "shaping",
-               "references"});
+               "steady_angle_time", "references"});
   f.at("type").choice({"anti_sway"});
   FeedbackSpec spec;
   spec.where = f.where();
@@ -628,6 +628,7 @@ FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
     spec.shaping_period = shaping->at("period").within(0.1, 1000.0, "s");
     if (const auto b = shaping->find("boom_period")) spec.boom_period = b->within(0.01, 100.0, "s");
   }
+  if (const auto x = f.find("steady_angle_time")) spec.steady_angle_time = x->within(0.1, 1e4, "s");
   if (const auto refs = f.find("references"))
     for (const std::string& name : refs->keys()) {
       const YamlField reference = refs->at(name);

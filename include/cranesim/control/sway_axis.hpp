@@ -30,6 +30,12 @@ struct SwayAxisSpec {
   /// boom's sideways and luffing modes (near 1 Hz on the thesis crane) out of the feedback; 0:
   /// none, the loop is the design's.
   double measurement_cutoff = 0.0;
+  /// s: the angle's steady part — the offset at which a steady wind holds the load — is the
+  /// angle through a first-order low-pass of this time constant, and the feedback acts on the
+  /// angle less it: on the swing about where the load hangs, not on where it hangs (fed back,
+  /// a steady offset θ₀ would hold the head off its reference by K_θ θ₀ / K_x, 0.8 m in 10 m/s
+  /// of wind on the thesis crane). 0: none, the feedback acts on the angle from the vertical.
+  double steady_angle_time = 0.0;
 };
 
 /// The model above, continuous: state [x, v, θ, θ̇], input u.
@@ -65,6 +71,7 @@ class SwayAxisController {
   Eigen::RowVector4d gain_ = Eigen::RowVector4d::Zero();
   double design_length_ = 0.0;
   std::optional<LowPassFilter> angle_filter_, rate_filter_;
+  double steady_angle_ = 0.0;  // rad: the angle's steady part (spec.steady_angle_time)
 };
 
 }  // namespace cranesim

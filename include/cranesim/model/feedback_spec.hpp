@@ -22,6 +22,8 @@ struct FeedbackSpec {
   double shaping_period = 0.0;
   /// s: the hoist's speed references averaged over the boom's period (CraneSwaySpec::boom_period).
   double boom_period = 0.0;
+  /// s: both axes feed back the swing about the angle's steady part (SwayAxisSpec::steady_angle_time); 0: none.
+  double steady_angle_time = 0.0;
   /// Speed references by input name, in the input's unit per second (absent: 0).
   std::map<std::string, Profile> references;
   SourceLocation where;
