@@ -103,7 +103,7 @@ TEST_CASE("minimum-time NLP: cart pendulum reaches the bang-coast-bang optimum",
     const double static_angle = std::atan(kAccel / kG);  // the sway the acceleration excites
     const auto [theta, omega] = swingAtArrival(plan);
     const double amplitude = std::hypot(theta, omega / std::sqrt(kG / kL));
-    CHECK(amplitude <= 0.02 * static_angle);
+    CHECK(amplitude <= 0.005 * static_angle);  // measured 0.11 %
   }
 }
 
