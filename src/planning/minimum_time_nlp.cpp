@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cranesim/planning/ipopt_application.hpp"
 #include "cranesim/planning/qr_trajectory.hpp"
 
 namespace cranesim {
@@ -256,20 +257,14 @@ MinimumTimeTrajectory solveMinimumTime(const MinimumTimeProblem& problem) {
   if (!std::isfinite(problem.acceleration_limit)) throw std::invalid_argument("acceleration_limit must be finite");
 
   const auto started = std::chrono::steady_clock::now();
-  Ipopt::SmartPtr<Ipopt::IpoptApplication> ipopt = IpoptApplicationFactory();
-  auto& options = *ipopt->Options();
-  options.SetStringValue("sb", "yes");
-  options.SetIntegerValue("print_level", problem.print_level);
-  options.SetNumericValue("tol", problem.tolerance);
-  options.SetIntegerValue("max_iter", problem.max_iterations);
-  options.SetStringValue("mu_strategy", "adaptive");
-  if (!problem.exact_hessian) options.SetStringValue("hessian_approximation", "limited-memory");
-  if (ipopt->Initialize("") != Ipopt::Solve_Succeeded) throw std::runtime_error("Ipopt: initialization failed");
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> ipopt =
+      ipoptApplication({problem.print_level, problem.tolerance, problem.max_iterations});
+  if (!problem.exact_hessian) ipopt->Options()->SetStringValue("hessian_approximation", "limited-memory");
 
   const Ipopt::SmartPtr<MinimumTimeNlp> nlp = new MinimumTimeNlp(problem, initialGuess(problem));
   const Ipopt::ApplicationReturnStatus status = ipopt->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(nlp)));
   if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level)
-    throw std::runtime_error("Ipopt: minimum-time solve ended with status " + std::to_string(static_cast<int>(status)));
+    throw std::runtime_error("Ipopt: minimum-time solve ended with " + ipoptStatusInWords(status));
 
   MinimumTimeTrajectory trajectory;
   const std::vector<double>& z = nlp->solution;

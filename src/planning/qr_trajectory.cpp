@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "cranesim/planning/ipopt_application.hpp"
+
 namespace cranesim {
 
 namespace {
@@ -296,44 +298,13 @@ class QrWindowNlp final : public Ipopt::TNLP {
   const PrimalDual* initial_guess_;
 };
 
-std::string statusInWords(Ipopt::ApplicationReturnStatus status) {
-  switch (status) {
-    case Ipopt::Solve_Succeeded: return "solve succeeded";
-    case Ipopt::Solved_To_Acceptable_Level: return "solved to acceptable level";
-    case Ipopt::Infeasible_Problem_Detected: return "infeasible problem detected";
-    case Ipopt::Search_Direction_Becomes_Too_Small: return "search direction becomes too small";
-    case Ipopt::Diverging_Iterates: return "diverging iterates";
-    case Ipopt::User_Requested_Stop: return "user requested stop";
-    case Ipopt::Feasible_Point_Found: return "feasible point found";
-    case Ipopt::Maximum_Iterations_Exceeded: return "maximum iterations exceeded";
-    case Ipopt::Restoration_Failed: return "restoration failed";
-    case Ipopt::Error_In_Step_Computation: return "error in step computation";
-    case Ipopt::Maximum_CpuTime_Exceeded: return "maximum CPU time exceeded";
-    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "not enough degrees of freedom";
-    case Ipopt::Invalid_Problem_Definition: return "invalid problem definition";
-    case Ipopt::Invalid_Option: return "invalid option";
-    case Ipopt::Invalid_Number_Detected: return "invalid number detected";
-    case Ipopt::Unrecoverable_Exception: return "unrecoverable exception";
-    case Ipopt::NonIpopt_Exception_Thrown: return "non-Ipopt exception thrown";
-    case Ipopt::Insufficient_Memory: return "insufficient memory";
-    case Ipopt::Internal_Error: return "internal error";
-  }
-  return "unknown status " + std::to_string(static_cast<int>(status));
-}
-
 Ipopt::SmartPtr<Ipopt::IpoptApplication> makeIpopt(const QrProblem& problem) {
-  Ipopt::SmartPtr<Ipopt::IpoptApplication> ipopt = IpoptApplicationFactory();
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> ipopt =
+      ipoptApplication({problem.print_level, problem.tolerance, problem.max_iterations});
   auto& options = *ipopt->Options();
-  options.SetStringValue("sb", "yes");
-  options.SetIntegerValue("print_level", problem.print_level);
-  options.SetNumericValue("tol", problem.tolerance);
-  options.SetIntegerValue("max_iter", problem.max_iterations);
-  options.SetStringValue("mu_strategy", "adaptive");
   options.SetStringValue("hessian_constant", "yes");
   options.SetStringValue("jac_c_constant", "yes");
   options.SetStringValue("jac_d_constant", "yes");
-  const Ipopt::ApplicationReturnStatus status = ipopt->Initialize("");  // "": no ipopt.opt from the working directory
-  if (status != Ipopt::Solve_Succeeded) throw std::runtime_error("Ipopt: " + statusInWords(status));
   return ipopt;
 }
 
@@ -350,7 +321,7 @@ void enableWarmStart(Ipopt::IpoptApplication& ipopt) {
 int solve(Ipopt::IpoptApplication& ipopt, const Ipopt::SmartPtr<QrWindowNlp>& nlp, const std::string& context = "") {
   const Ipopt::ApplicationReturnStatus status = ipopt.OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(nlp)));
   if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level)
-    throw std::runtime_error("Ipopt: " + statusInWords(status) + context);
+    throw std::runtime_error("Ipopt: " + ipoptStatusInWords(status) + context);
   return ipopt.Statistics()->IterationCount();
 }
 
