@@ -10,10 +10,10 @@
 namespace cranesim {
 namespace {
 
-std::size_t halfPeriodSamples(double period, double sample_time) {
+double halfPeriodSamples(double period, double sample_time) {
   if (!(period > 0.0 && std::isfinite(period)))
     throw std::invalid_argument(fmt::format("the shaping period must be positive, not {}", period));
-  return static_cast<std::size_t>(std::max(1L, std::lround(0.5 * period / sample_time)));
+  return std::max(1.0, 0.5 * period / sample_time);
 }
 
 /// The drive's ramp: `speed` moves towards `command` by at most `acceleration` × dt.
@@ -44,9 +44,12 @@ Eigen::Vector2d ShapedHeadPath::leverPosition() const {
 }
 
 Eigen::Vector2d ShapedHeadPath::delayedLeverPosition() const {
-  // Before the lever has moved for T/2 the delayed half is where the head started.
-  return lever_history_.size() > delay_samples_ ? lever_history_[lever_history_.size() - 1 - delay_samples_]
-                                                : lever_history_.front();
+  // p_L(t − T/2), linear between the samples about it; before the lever has moved for T/2 the
+  // delayed half is where the head started.
+  const double back = std::floor(delay_samples_), between = delay_samples_ - back;
+  const std::size_t newest = lever_history_.size() - 1, k = static_cast<std::size_t>(back);
+  if (k + 1 > newest) return lever_history_.front();
+  return (1.0 - between) * lever_history_[newest - k] + between * lever_history_[newest - k - 1];
 }
 
 ShapedHeadPath::Sample ShapedHeadPath::advance(double slewing_speed, double radius_speed, double period) {
@@ -58,7 +61,7 @@ ShapedHeadPath::Sample ShapedHeadPath::advance(double slewing_speed, double radi
   lever_radius_ += lever_radius_speed_ * dt;
   lever_history_.push_back(leverPosition());
   // Room for the delay to double as the hoist pays out; the oldest position stands in beyond.
-  while (lever_history_.size() > 2 * delay_samples_ + 1) lever_history_.pop_front();
+  while (static_cast<double>(lever_history_.size()) > 2.0 * delay_samples_ + 2.0) lever_history_.pop_front();
 
   const Eigen::Vector2d next = 0.5 * (lever_history_.back() + delayedLeverPosition());
   const Eigen::Vector2d velocity = (next - shaped_) / dt;

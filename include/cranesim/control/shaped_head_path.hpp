@@ -45,8 +45,8 @@ class ShapedHeadPath {
   /// which sets the shaper's delay and the reference pendulum's stiffness.
   Sample advance(double slewing_speed, double radius_speed, double period);
 
-  /// The shaper's delay now: T/2 rounded to samples (s).
-  double delay() const { return static_cast<double>(delay_samples_) * sample_time_; }
+  /// The shaper's delay now: T/2 (s).
+  double delay() const { return delay_samples_ * sample_time_; }
 
  private:
   Eigen::Vector2d leverPosition() const;
@@ -55,7 +55,7 @@ class ShapedHeadPath {
   Limits limits_;
   double sample_time_, gravity_, azimuth_;
   double lever_slewing_ = 0.0, lever_slewing_speed_ = 0.0, lever_radius_, lever_radius_speed_ = 0.0;
-  std::size_t delay_samples_;
+  double delay_samples_;  // T/2 in samples, not rounded: the delayed half moves smoothly as T follows the hoist
   std::deque<Eigen::Vector2d> lever_history_;  // p_L at the last samples, the newest last
   Eigen::Vector2d shaped_, shaped_velocity_ = Eigen::Vector2d::Zero();
   double slewing_ = 0.0;  // the shaped head's azimuth from the start, unwrapped
