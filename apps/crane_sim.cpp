@@ -175,7 +175,7 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   const double drift = recorder.relativeBalanceDrift();
   const auto& rp = recorder.positionResidual();
   const std::vector<EnvelopeEvent> envelope = recorder.envelope().events();
-  const bool left_envelope = recorder.envelope().leftEnvelope();
+  const bool left_envelope = leavesEnvelope(envelope);
   if (!quiet || !outcome.complete) {
     fmt::print(stderr, "{}{} t = {:g} … {:g} s in {:.3g} s wall (real-time factor {:.3g})\n",
                outcome.complete ? "completed" : "stopped", left_envelope ? ", leaving the crane's envelope," : "",

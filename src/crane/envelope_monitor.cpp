@@ -166,9 +166,8 @@ std::vector<EnvelopeEvent> EnvelopeMonitor::events() const {
   return out;
 }
 
-bool EnvelopeMonitor::leftEnvelope() const {
-  const std::vector<EnvelopeEvent> all = events();
-  return std::any_of(all.begin(), all.end(), [](const EnvelopeEvent& e) { return e.leaves_envelope; });
+bool leavesEnvelope(const std::vector<EnvelopeEvent>& events) {
+  return std::any_of(events.begin(), events.end(), [](const EnvelopeEvent& e) { return e.leaves_envelope; });
 }
 
 std::string describeEnvelopeEvents(const std::vector<EnvelopeEvent>& events) {

@@ -77,7 +77,8 @@ void writeCraneFigures(Hdf5File& file, const CraneFigures& crane) {
 void writeEnvelope(Hdf5File& file, const Model& model, const EnvelopeMonitor& envelope) {
   const hsize_t N = envelope.time().size();
   file.ensureGroup("/envelope");
-  file.attribute("/envelope", "left_envelope", static_cast<long>(envelope.leftEnvelope()));
+  const std::vector<EnvelopeEvent> events = envelope.events();
+  file.attribute("/envelope", "left_envelope", static_cast<long>(leavesEnvelope(events)));
   if (const auto& boom = model.envelope.boom) {
     file.writeDoubles("/envelope/boom_angle", {N}, envelope.boomAngle().data());
     file.attribute("/envelope/boom_angle", "limit_deg", boom->limit_deg);
@@ -96,7 +97,6 @@ void writeEnvelope(Hdf5File& file, const Model& model, const EnvelopeMonitor& en
   if (model.envelope.ground_height) file.attribute("/envelope", "ground_height", *model.envelope.ground_height);
   for (const EnvelopeSeries& s : envelope.contactForces()) file.writeDoubles("/envelope/ground_force/" + s.name, {N}, s.values.data());
   for (const EnvelopeSeries& s : envelope.contactDepths()) file.writeDoubles("/envelope/ground_penetration/" + s.name, {N}, s.values.data());
-  const std::vector<EnvelopeEvent> events = envelope.events();
   for (std::size_t k = 0; k < events.size(); ++k) {
     const EnvelopeEvent& e = events[k];
     const std::string path = fmt::format("/envelope/events/{}", k);

@@ -50,8 +50,6 @@ class EnvelopeMonitor {
 
   /// The events of the samples so far, in the order they began.
   std::vector<EnvelopeEvent> events() const;
-  /// Whether any event leaves the envelope.
-  bool leftEnvelope() const;
   /// Whether the last sample lies outside the envelope (cheap: for stopping a run there).
   bool lastSampleOutside() const { return last_outside_; }
 
@@ -72,6 +70,9 @@ class EnvelopeMonitor {
   std::vector<std::vector<int>> part_nodes_;  // per entry of lowest_: its nodes without a contact
   bool last_outside_ = false;
 };
+
+/// Whether any of the events leaves the envelope.
+bool leavesEnvelope(const std::vector<EnvelopeEvent>& events);
 
 /// One line per event, e.g. "rope overload: hoist_rope 15.1 MN at t = 2.02 s, above its breaking
 /// force 13.1 MN (from t = 2.01 s)".
