@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from . import _core
@@ -62,6 +64,20 @@ class SwayAxis:
         return self._core.closed_loop_spectral_radius
 
 
+@dataclass(frozen=True)
+class SwaySensor:
+    """How the hoist rope's angles reach :class:`AntiSway`: ``delay`` s late (interpolated
+    between samples) and with white Gaussian noise of standard deviation ``angle_noise`` (rad)
+    on each angle and ``rate_noise`` (rad/s) on each angular rate, drawn from a generator seeded
+    with ``seed``. The drives' encoders and the rope's length stay exact. The default is the
+    exact sensor."""
+
+    angle_noise: float = 0.0
+    rate_noise: float = 0.0
+    delay: float = 0.0
+    seed: int = 0
+
+
 class AntiSway:
     """Anti-sway feedback on a crane driven step by step: a :class:`SwayAxis` across the boom
     (by the slewing drive) and one along it (by the luffing winch), in the loop of a
@@ -87,17 +103,22 @@ class AntiSway:
     ``boom_period`` (s): the period of the boom's mode that the hoist's load changes excite (its
     bending in the luffing plane). The hoist speed is then averaged over it, so that each change
     is a ramp of that duration and leaves the boom still.
+
+    ``sensor``: how the rope's angles reach the feedback (:class:`SwaySensor`); exact by default.
     """
 
     def __init__(self, sim, across: SwayAxis | None = None, along: SwayAxis | None = None,
                  slewing: str = "slewing", luffing_rope: str = "luffing_rope",
                  hoist_rope: str = "hoist_rope", hook: str = "load.origin",
-                 sheave: str = "head.sheave", shaping: float | None = None, boom_period: float | None = None):
+                 sheave: str = "head.sheave", shaping: float | None = None, boom_period: float | None = None,
+                 sensor: SwaySensor | None = None):
         across = across or SwayAxis(measurement_cutoff=0.3)
         along = along or SwayAxis(angle=0.02, angle_rate=0.02, measurement_cutoff=0.3)
+        sensor = sensor or SwaySensor()
         self._sim = sim
         self._core = _core.CraneSway(sim._core, slewing, luffing_rope, hoist_rope, hook, sheave,
-                                     across._core, along._core, shaping or 0.0, boom_period or 0.0)
+                                     across._core, along._core, shaping or 0.0, boom_period or 0.0,
+                                     sensor.angle_noise, sensor.rate_noise, sensor.delay, sensor.seed)
 
     def apply(self, slewing: float = 0.0, luffing: float = 0.0, hoist: float = 0.0) -> np.ndarray:
         """Sets the simulation's inputs for the next sample from the reference speeds: the

@@ -288,16 +288,19 @@ NB_MODULE(_core, m) {
           "__init__",
           [](CraneSwayController* self, Session& session, const std::string& slewing, const std::string& luffing_rope,
              const std::string& hoist_rope, const std::string& hook, const std::string& sheave, const SwayAxisController& across,
-             const SwayAxisController& along, double shaping_period, double boom_period) {
+             const SwayAxisController& along, double shaping_period, double boom_period, double angle_noise,
+             double rate_noise, double delay, std::uint64_t seed) {
             nb::gil_scoped_release released;
             CraneSwaySpec spec{slewing, luffing_rope, hoist_rope, hook, sheave, across.spec(), along.spec()};
             spec.shaping_period = shaping_period;
             spec.boom_period = boom_period;
+            spec.sensor = {angle_noise, rate_noise, delay, seed};
             new (self) CraneSwayController(session, spec);
           },
           nb::arg("session"), nb::arg("slewing"), nb::arg("luffing_rope"), nb::arg("hoist_rope"), nb::arg("hook"),
           nb::arg("sheave"), nb::arg("across"), nb::arg("along"), nb::arg("shaping_period") = 0.0,
-          nb::arg("boom_period") = 0.0, nb::keep_alive<1, 2>())
+          nb::arg("boom_period") = 0.0, nb::arg("angle_noise") = 0.0, nb::arg("rate_noise") = 0.0,
+          nb::arg("delay") = 0.0, nb::arg("seed") = 0, nb::keep_alive<1, 2>())
       .def(
           "apply",
           [](CraneSwayController& c, double slewing, double luffing, double hoist) {

@@ -29,6 +29,7 @@ SimulationOutcome runClosedLoop(Session& session, const FeedbackSpec& feedback, 
   spec.shaping_period = feedback.shaping_period;
   spec.boom_period = feedback.boom_period;
   spec.across.steady_angle_time = spec.along.steady_angle_time = feedback.steady_angle_time;
+  spec.sensor = feedback.sensor;
   std::unique_ptr<CraneSwayController> controller;
 
   const double t0 = session.time(), t_end = session.model().solver.t_end;

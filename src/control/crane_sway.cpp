@@ -44,6 +44,7 @@ CraneSwayController::CraneSwayController(Session& session, const CraneSwaySpec& 
     : session_(session), slewing_(session.input(spec.slewing)), luffing_(session.input(spec.luffing_rope)),
       hoist_(session.input(spec.hoist_rope)), hook_(session.joint(spec.hook)), sheave_(session.joint(spec.sheave)),
       slewing_unit_(inputUnit(session.model(), slewing_)), across_(spec.across), along_(spec.along),
+      sensor_(spec.sensor, spec.across.sample_time),
       slewing_reference_(session.inputValue(slewing_)), luffing_reference_(session.inputValue(luffing_)),
       hoist_reference_(session.inputValue(hoist_)), hoist_gain_(spec.hoist_gain) {
   // dR/dl by central differences of the equilibria at the table's lengths ± 1 cm.
@@ -78,6 +79,10 @@ CraneSwayController::CraneSwayController(Session& session, const CraneSwaySpec& 
                     across_.spec().gravity);
     shaped_luffing_ = luffing_reference_;
     slewing_start_ = slewing_reference_;
+  }
+  if (spec.sensor.delay > 0.0) {
+    late_head_speeds_.emplace(spec.sensor.delay, spec.across.sample_time);
+    sensor_delay_ = spec.sensor.delay;
   }
   if (spec.boom_period > 0.0)
     smoothed_hoist_.emplace(static_cast<std::size_t>(std::max(1L, std::lround(spec.boom_period / across_.spec().sample_time))), 0.0);
@@ -130,15 +135,19 @@ std::vector<double> CraneSwayController::apply(const CraneSwayReference& referen
   const Vec3 head = session_.jointPosition(sheave_);
   const double radius = horizontal(head);
   const double length = (session_.jointPosition(hook_) - head).norm();
-  const Session::Sway sway = session_.sway(hook_, sheave_);
 
   const double slewing = session_.inputValue(slewing_), slewing_rate = session_.inputRate(slewing_);
   const double to_head = radius * slewing_unit_;
+  const double luffing = session_.inputValue(luffing_), luffing_rate = session_.inputRate(luffing_);
+  const double ratio = headPerLuff(luffing);
+  Session::Sway sway = sensor_.read(session_.sway(hook_, sheave_));
+  if (late_head_speeds_) {
+    const Eigen::Vector2d head_speeds(ratio * luffing_rate, to_head * slewing_rate);
+    sway = predictOverDelay(sway, sensor_delay_, across_.spec().gravity, length, head_speeds - (*late_head_speeds_)(head_speeds));
+  }
   const double across = across_.command(length, to_head * (slewing - reference.slewing), to_head * slewing_rate,
                                         to_head * reference.slewing_speed, sway.across - reference.sway.across,
                                         sway.across_rate - reference.sway.across_rate);
-  const double luffing = session_.inputValue(luffing_), luffing_rate = session_.inputRate(luffing_);
-  const double ratio = headPerLuff(luffing);
   const double along = along_.command(length, ratio * (luffing - reference.luffing), ratio * luffing_rate,
                                       ratio * reference.luffing_speed, sway.radial - reference.sway.radial,
                                       sway.radial_rate - reference.sway.radial_rate);

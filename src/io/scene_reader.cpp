@@ -17,6 +17,7 @@
 #include "profile_reader.hpp"
 #include "reeving_reader.hpp"
 #include "scene_composition.hpp"
+#include "sensor_reader.hpp"
 #include "solver_reader.hpp"
 #include "ground_reader.hpp"
 #include "wind_reader.hpp"
@@ -596,10 +597,10 @@ std::map<std::string, bool> sceneInputs(const Scene& s) {
 }
 
 /// `feedback: {type: anti_sway, sample_time, start, slewing, luffing_rope, hoist_rope, hook,
-/// sheave, shaping, steady_angle_time, references: {input: profile}}`, its inputs checked against the scene's.
+/// sheave, shaping, steady_angle_time, sensor, references: {input: profile}}`, its inputs checked against the scene's.
 FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
   f.allowKeys({"type", "sample_time", "start", "slewing", "luffing_rope", "hoist_rope", "hook", "sheave", "shaping",
-               "steady_angle_time", "references"});
+               "steady_angle_time", "sensor", "references"});
   f.at("type").choice({"anti_sway"});
   FeedbackSpec spec;
   spec.where = f.where();
@@ -629,6 +630,7 @@ FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
     if (const auto b = shaping->find("boom_period")) spec.boom_period = b->within(0.01, 100.0, "s");
   }
   if (const auto x = f.find("steady_angle_time")) spec.steady_angle_time = x->within(0.1, 1e4, "s");
+  if (const auto x = f.find("sensor")) spec.sensor = readSwaySensor(*x);
   if (const auto refs = f.find("references"))
     for (const std::string& name : refs->keys()) {
       const YamlField reference = refs->at(name);

@@ -13,7 +13,9 @@
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
+#include "sensor_reader.hpp"
 #include "solver_reader.hpp"
+#include "wind_reader.hpp"
 #include "yaml_field.hpp"
 
 namespace cranesim {
@@ -181,8 +183,8 @@ double between(const YamlField& f, double low, double high, const char* what) {
   return x;
 }
 
-TrackingCase readTrackingCase(const YamlField& f) {
-  f.allowKeys({"name", "load_mass", "hoist_rope", "initial_sway", "gust"});
+TrackingCase readTrackingCase(const YamlField& f, const Scene& scene) {
+  f.allowKeys({"name", "load_mass", "hoist_rope", "initial_sway", "gust", "wind", "sensor"});
   TrackingCase c;
   c.where = f.where();
   c.name = f.at("name").text();
@@ -199,6 +201,8 @@ TrackingCase readTrackingCase(const YamlField& f) {
     if (const auto d = g->find("direction")) gust.across = d->choice({"across", "radial"}) == "across";
     c.gust = gust;
   }
+  if (const auto w = f.find("wind")) c.wind = readWind(*w, scene);
+  if (const auto s = f.find("sensor")) c.sensor = readSwaySensor(*s);
   return c;
 }
 
@@ -231,14 +235,14 @@ TrackingSpec readTracking(const YamlField& f, const TargetSpec& target) {
   const YamlField cases = f.at("cases");
   if (!cases.isSequence() || cases.items().empty())
     cases.fail("a list of cases, each a crane that differs from the planned one: {name: …, load_mass: …, hoist_rope: …, "
-               "initial_sway: …, gust: {…}}");
+               "initial_sway: …, gust: {…}, wind: {…}, sensor: {…}}");
   const std::string load = target.controls.end_point.substr(0, target.controls.end_point.find('.'));
   if (std::none_of(target.scene.bodies.begin(), target.scene.bodies.end(),
                    [&](const RigidBodySpec& b) { return b.name == load; }))
     f.fail(fmt::format("the feedback's cases act on the load, a body: the end point '{}' is not a body's joint",
                        target.controls.end_point));
   for (const YamlField& item : cases.items()) {
-    TrackingCase c = readTrackingCase(item);
+    TrackingCase c = readTrackingCase(item, target.scene);
     for (const TrackingCase& other : spec.cases)
       if (other.name == c.name) item.at("name").fail(fmt::format("a second case named '{}'", c.name));
     spec.cases.push_back(std::move(c));

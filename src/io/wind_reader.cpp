@@ -97,10 +97,7 @@ TurbulenceSpec readTurbulence(const YamlField& f, double speed) {
   TurbulenceSpec t;
   t.intensity = f.at("intensity").within(1e-6, 1.0, "");
   t.length_scale = f.at("length_scale").within(1e-2, 1e5, "m");
-  const YamlField sf = f.at("seed");
-  const double seed = sf.number();
-  if (seed < 0.0 || seed != std::floor(seed) || seed > 9.0e15) sf.fail(fmt::format("expected a whole number ≥ 0, found {:g}", seed));
-  t.seed = static_cast<std::uint64_t>(seed);
+  t.seed = f.at("seed").seed();
   if (const auto ff = f.find("frequency_max")) t.frequency_max = ff->within(1e-2, 50.0, "Hz");
   if (const auto pf = f.find("period")) t.period = pf->within(1.0, 1e5, "s");
   if (t.period * t.frequency_max < 10.0 || t.period * t.frequency_max > 1e6)

@@ -109,6 +109,12 @@ double YamlField::nonNegative() const {
   return x;
 }
 
+std::uint64_t YamlField::seed() const {
+  const double x = number();
+  if (x < 0.0 || x != std::floor(x) || x > 9.0e15) fail(fmt::format("expected a whole number ≥ 0, found {:g}", x));
+  return static_cast<std::uint64_t>(x);
+}
+
 int YamlField::integer() const {
   const double x = number();
   if (x != std::floor(x)) fail(fmt::format("expected an integer, found {}", x));

@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <array>
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -44,6 +45,8 @@ class YamlField {
   /// model, which no solver reports at the scene's line.
   double within(double low, double high, const char* unit) const;
   int integer() const;
+  /// A random generator's seed: a whole number ≥ 0.
+  std::uint64_t seed() const;
   bool boolean() const;
   std::string text() const;
   /// A name usable in joint references and HDF5 paths: letters, digits, '_' and '-'.

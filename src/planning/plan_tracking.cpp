@@ -123,6 +123,10 @@ Scene caseScene(const TargetSpec& target, const QuasiStaticPlan& plan, const Tra
     gust.scale = Profile(CosineFullProfile{0.0, 1.0, t0, t1});
     scene.loads.push_back(gust);
   }
+  if (c.wind) {
+    scene.wind = *c.wind;
+    if (scene.wind->field.gust) scene.wind->field.gust->t_start += plan.lead_time;
+  }
   return scene;
 }
 
@@ -192,6 +196,7 @@ TrackingRun runCase(const TargetSpec& target, const QuasiStaticPlan& plan, const
     s.sheave = sheave;
     s.across.sample_time = s.along.sample_time = spec.sample_time;
     s.hoist_gain = kHoistGain;
+    s.sensor = c.sensor;
     controller.emplace(session, s);
     inputs[0] = session.input(s.luffing_rope);
     inputs[1] = session.input(s.hoist_rope);

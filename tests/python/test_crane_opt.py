@@ -395,22 +395,25 @@ def feedback_runs(plan: Path) -> dict:
 def test_feedback_brings_the_plan_to_rest_on_cranes_that_differ_from_it(base: Path, tmp_path: Path):
     """The shipped targets' feedback cases on the condensed crane: the load 20 % heavier or
     lighter than planned, the hoist rope 5 % longer or shorter than its encoder says, the load
-    let go 0.5 m out of plumb, a 50 kN gust across the boom. Tracked by the anti-sway feedback,
-    every case is within 5 cm of plumb from 5 s after the planned arrival (measured 1.5–3.2 cm);
-    open loop the initial sway and the gust leave 0.31–0.41 m, and the feedback takes away more
-    than 80 % of them (90–94 %). The drives stay within what the speed inputs allow, and the controller
-    costs far less than a millisecond per 20 ms sample."""
+    let go 0.5 m out of plumb (seen by an exact sensor, and by one 0.1 s late with noise), a
+    50 kN gust across the boom, a 3 s gust of wind to 9.8 m/s on the load, the ropes and the
+    lattice. Tracked by the anti-sway feedback, every case is within 5 cm of plumb from 5 s
+    after the planned arrival (measured 1.5–3.2 cm); open loop the initial sway and the gusts
+    leave 0.16–0.41 m, and the feedback takes away more than 80 % of them (90–95 %). The drives
+    stay within what the speed inputs allow, and the controller costs far less than a
+    millisecond per 20 ms sample."""
     runs = feedback_runs(plan_condensed_crane(tmp_path, (-35, 10), "flatness", base, feedback=True))
     cases = {name for name, _ in runs}
-    assert cases == {"load +20 %", "load -20 %", "rope +5 %", "rope -5 %", "initial sway 0.5 m", "gust 50 kN"}
+    disturbed = ("initial sway 0.5 m", "gust 50 kN", "gust to 9.8 m/s", "sensor 0.1 s late, noisy")
+    assert cases == {"load +20 %", "load -20 %", "rope +5 %", "rope -5 %", *disturbed}
     for name in cases:
         closed, open_loop = runs[(name, "closed")], runs[(name, "open")]
         assert closed["sway_after_5_s"] < 0.05, name
         assert closed["settling_time"] <= 5.0, name
         assert closed["controller_s"] < 1e-3, name
         assert 1.0 <= closed["dynamic_factor"] < 1.1, name
-    for name in ("initial sway 0.5 m", "gust 50 kN"):
-        assert runs[(name, "open")]["sway_after_5_s"] > 0.2, name
+    for name in disturbed:
+        assert runs[(name, "open")]["sway_after_5_s"] > 0.1, name
         assert runs[(name, "closed")]["sway_after_5_s"] < 0.2 * runs[(name, "open")]["sway_after_5_s"], name
 
 

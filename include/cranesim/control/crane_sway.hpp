@@ -12,6 +12,7 @@
 #include "cranesim/control/moving_average.hpp"
 #include "cranesim/control/shaped_head_path.hpp"
 #include "cranesim/control/sway_axis.hpp"
+#include "cranesim/control/sway_sensor.hpp"
 #include "cranesim/session/session.hpp"
 
 namespace cranesim {
@@ -37,6 +38,10 @@ struct CraneSwaySpec {
   /// bending). The operator's hoist speed is then averaged over it, so that each of its changes
   /// is a ramp of that duration and leaves the mode still; 0: the hoist speed passes through.
   double boom_period = 0.0;
+  /// How the rope's angles reach the feedback: late and noisy (control/sway_sensor.hpp); exact by
+  /// default. The controller knows the delay and predicts the angles over it from the boom
+  /// head's motion since (the encoders').
+  SwaySensorSpec sensor;
 };
 
 /// Where the crane should be at one sample: the drives' values (in the inputs' units) and
@@ -77,6 +82,9 @@ class CraneSwayController {
   int slewing_, luffing_, hoist_, hook_, sheave_;
   double slewing_unit_;  // rad per unit of the slewing input (π/180 for degrees)
   SwayAxisController across_, along_;
+  SwaySensor sensor_;
+  std::optional<DelayLine<Eigen::Vector2d>> late_head_speeds_;  // [along, across] as they were sensor.delay ago
+  double sensor_delay_ = 0.0;
   std::vector<double> table_length_, table_ratio_;  // dR/dl at luffing rope lengths
   double slewing_reference_, luffing_reference_, hoist_reference_;  // where the speeds lead, in the inputs' values
   double hoist_gain_;

@@ -8,6 +8,7 @@
 
 #include "cranesim/math/profile.hpp"
 #include "cranesim/model/source_location.hpp"
+#include "cranesim/model/sway_sensor_spec.hpp"
 
 namespace cranesim {
 
@@ -24,6 +25,8 @@ struct FeedbackSpec {
   double boom_period = 0.0;
   /// s: both axes feed back the swing about the angle's steady part (SwayAxisSpec::steady_angle_time); 0: none.
   double steady_angle_time = 0.0;
+  /// How the rope's angles reach the controller (late, noisy); exact by default.
+  SwaySensorSpec sensor;
   /// Speed references by input name, in the input's unit per second (absent: 0).
   std::map<std::string, Profile> references;
   SourceLocation where;

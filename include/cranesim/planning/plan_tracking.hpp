@@ -14,6 +14,7 @@
 
 #include "cranesim/model/scene.hpp"
 #include "cranesim/model/source_location.hpp"
+#include "cranesim/model/sway_sensor_spec.hpp"
 #include "cranesim/solvers/dynamics.hpp"
 
 namespace cranesim {
@@ -35,6 +36,9 @@ struct TrackingCase {
   double hoist_rope = 0.0;   // the hoist rope is this fraction longer than its encoder (and the plan) says
   double initial_sway = 0.0;  // m: the load starts displaced this far radially (outwards), at rest, and is let go
   std::optional<TrackingGust> gust;
+  /// Wind on the crane (a scene's `wind:`), its gust's start counted from the motion's start.
+  std::optional<WindSpec> wind;
+  SwaySensorSpec sensor;  // how the rope's angles reach the feedback
   SourceLocation where;
 };
 
