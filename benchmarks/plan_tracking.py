@@ -4,8 +4,8 @@ slewing), each with its eight feedback cases (the load ±20 %, the hoist rope ±
 encoder says, a 0.5 m initial swing seen by an exact and by a late noisy sensor, a 50 kN gust
 across the boom, a 3 s gust of wind to 9.8 m/s), on the super truss crane (as shipped) and the condensed crane. For each case, open loop and tracked: the load's sway in the
 5 s after the planned arrival and from 5 s after it, the settling time within 5 cm, the dynamic
-factor of the hoist rope, the drives' peaks, the controller's time per sample and the run's
-real-time factor. Writes benchmarks/results/plan_tracking.csv and plan_tracking.png.
+factor of the hoist rope, the drives' peaks and work, the controller's time per sample and the
+run's real-time factor. Writes benchmarks/results/plan_tracking.csv and plan_tracking.png.
 
     python3 benchmarks/plan_tracking.py            # ≈ 8 min on 2 cores
 """
@@ -49,6 +49,7 @@ def rows_of(plan_file: Path, target: str, crane: str) -> list[dict]:
                          "dynamic_factor": f"{g['dynamic_factor'][k]:.4f}",
                          "luffing_peak_speed": f"{peaks[0, 0]:.4g}", "hoist_peak_speed": f"{peaks[1, 0]:.4g}",
                          "slewing_peak_speed": f"{peaks[2, 0]:.4g}",
+                         "drive_energy_MJ": f"{1e-6 * g['drive_energy'][k].sum():.3f}",
                          "controller_us_per_sample": f"{1e6 * g['controller_s_per_sample'][k]:.1f}",
                          "real_time_factor": f"{g['t_reached'][k] / g['wall_time_s'][k]:.1f}",
                          "machine": machine()})

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -381,6 +382,36 @@ TEST_CASE("A session's loads and energies are those of statics and of the result
 
   CHECK_THROWS_WITH(session.constraint("hok"), Catch::Contains("did you mean 'hook'"));
   CHECK_THROWS_WITH(session.ropeTensions("hoist"), Catch::Contains("hoist_rope"));
+}
+
+TEST_CASE("The drives' and winches' powers, integrated along a lift, are the energy books' work", "[session]") {
+  // The books integrate λ·Φ_t and the elements' explicit time power as IDAS quadratures; the
+  // powers sampled every 20 ms by the trapezoidal rule must give the same work to its O(h²).
+  Session session(kCraneInputs, true);
+  Lift lift(session);
+  const int slewing = session.constraint("slewing");
+  const auto powers = [&] {
+    return std::array<double, 3>{session.drivePower(slewing), session.winchPower("hoist_rope"),
+                                 session.winchPower("luffing_rope")};
+  };
+  std::array<double, 3> before = powers(), work{};
+  CHECK(before == std::array<double, 3>{});  // at rest
+  for (int k = 1; k <= 400; ++k) {
+    lift.apply(lift.feedback(session.time()));
+    session.advanceTo(0.02 * k);
+    const std::array<double, 3> now = powers();
+    for (int d = 0; d < 3; ++d) work[d] += 0.5 * 0.02 * (before[d] + now[d]);
+    before = now;
+  }
+  const ResultsRecorder& recorder = *session.recorder();
+  REQUIRE(recorder.time().back() == Approx(session.time()).epsilon(1e-15));
+  INFO("slewing " << work[0] << " J, hoist " << work[1] << " J, luffing " << work[2] << " J; books: drives "
+                  << recorder.driveWork().back() << " J, winches " << recorder.winchWork().back() << " J");
+  CHECK(work[0] == Approx(recorder.driveWork().back()).epsilon(1e-3));
+  CHECK(work[1] + work[2] == Approx(recorder.winchWork().back()).epsilon(1e-3));
+  CHECK(work[1] > 5e6);  // the hoist lifts the 390 t load by 2.2 m: 8.3 MJ (books 2e-4 from the sampled work)
+  CHECK(std::abs(work[0]) > 1e3);
+  CHECK_THROWS_WITH(session.winchPower("hoist"), Catch::Contains("hoist_rope"));
 }
 
 TEST_CASE("Commands at times summed from a sample period pass a breakpoint within rounding of them",

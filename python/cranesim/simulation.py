@@ -43,8 +43,8 @@ class Simulation:
         sim.joint_position(hook)           # observe
 
     Observations besides joints: :meth:`constraint_load` (a joint's force and moment: the hook's
-    is the hoist rope's tension), :meth:`rope_tension`, :meth:`energy`, :meth:`input_values`,
-    :meth:`input_rates`. With ``record=True`` the run keeps its samples every
+    is the hoist rope's tension), :meth:`rope_tension`, :meth:`energy`, :meth:`drive_power`,
+    :meth:`winch_power`, :meth:`input_values`, :meth:`input_rates`. With ``record=True`` the run keeps its samples every
     ``output.interval`` and :meth:`write_results` writes them as ``crane-sim run`` does.
 
     Other methods: :meth:`advance_to`, :meth:`reset`, :meth:`save_state`, :meth:`restore_state`,
@@ -203,6 +203,17 @@ class Simulation:
         """A rope's axial force now (N, ≥ 0, 0 where slack), one row per element of the rope,
         at equally spaced points from the element's first node to its second."""
         return self._core.rope_tensions(rope).reshape(-1, _core.tension_points)
+
+    def drive_power(self, constraint: str) -> float:
+        """The power a driven constraint's drive (the slewing drive) delivers to the crane now,
+        W: as the energy books count drive work; negative while the crane drives it (braking)."""
+        return self._core.drive_power(self._core.constraint(constraint))
+
+    def winch_power(self, rope: str) -> float:
+        """The power a rope's winch delivers to the crane now, W: through the change of the
+        rope's unstretched length, as the energy books count winch work; positive while it reels
+        a rope under tension in, negative while it lowers."""
+        return self._core.winch_power(rope)
 
     def sway(self, hanging: Union[int, str], pivot: Union[int, str]) -> tuple[np.ndarray, np.ndarray]:
         """How the line from joint ``pivot`` down to joint ``hanging`` swings (the hook below

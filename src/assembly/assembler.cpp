@@ -530,11 +530,15 @@ void Assembler::workPowers(double t, const double* y, double* out) const {
 
 double Assembler::drivePower(double t, const double* q, const double* lambda) const {
   double p = 0.0;
-  for (const Constraint& c : model_.constraints) {
-    if (!c.drive || c.drive->isConstant()) continue;
-    const auto C = evaluateConstraint<double>(model_, c, q, t);
-    for (int i = 0; i < c.rows; ++i) p += C.G(i, kTimeDirection) * lambda[c.row + i];
-  }
+  for (const Constraint& c : model_.constraints) p += drivePower(c, t, q, lambda);
+  return p;
+}
+
+double Assembler::drivePower(const Constraint& c, double t, const double* q, const double* lambda) const {
+  if (!c.drive || c.drive->isConstant()) return 0.0;
+  const auto C = evaluateConstraint<double>(model_, c, q, t);
+  double p = 0.0;
+  for (int i = 0; i < c.rows; ++i) p += C.G(i, kTimeDirection) * lambda[c.row + i];
   return p;
 }
 

@@ -253,6 +253,8 @@ NB_MODULE(_core, m) {
              return vector(t.data(), t.size());
            },
            nb::arg("rope"), "A rope's axial force along its elements now, kTensionPoints per element.")
+      .def("drive_power", &Session::drivePower, nb::arg("constraint"), "The power a constraint's drive delivers now, W.")
+      .def("winch_power", &Session::winchPower, nb::arg("rope"), "The power a rope's winch delivers now, W.")
       .def("sway",
            [](const Session& s, int hanging, int pivot) {
              const Session::Sway w = s.sway(hanging, pivot);

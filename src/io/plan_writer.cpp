@@ -190,7 +190,7 @@ void writeTracking(Hdf5File& file, const QuasiStaticPlan& plan) {
   const std::vector<TrackingRun>& runs = plan.tracking;
   const hsize_t n = runs.size();
   std::vector<std::string> names, loops;
-  std::vector<double> arrival, after, settling, tension, factor, peaks, controller, wall, simulated;
+  std::vector<double> arrival, after, settling, tension, factor, peaks, energy, controller, wall, simulated;
   for (const TrackingRun& r : runs) {
     names.push_back(r.name);
     loops.push_back(r.closed_loop ? "closed" : "open");
@@ -200,6 +200,7 @@ void writeTracking(Hdf5File& file, const QuasiStaticPlan& plan) {
     tension.push_back(r.peak_tension);
     factor.push_back(r.dynamic_factor);
     for (const auto& drive : r.peaks) peaks.insert(peaks.end(), {drive[0], drive[1]});
+    energy.insert(energy.end(), r.energy, r.energy + 3);
     controller.push_back(r.samples > 0 ? r.controller_s / static_cast<double>(r.samples) : 0.0);
     wall.push_back(r.wall_s);
     simulated.push_back(r.outcome.t_reached);
@@ -212,6 +213,7 @@ void writeTracking(Hdf5File& file, const QuasiStaticPlan& plan) {
   writeVector(file, "/feedback/peak_tension", tension);
   writeVector(file, "/feedback/dynamic_factor", factor);
   file.writeDoubles("/feedback/drive_peaks", {n, 3, 2}, peaks.data());
+  file.writeDoubles("/feedback/drive_energy", {n, 3}, energy.data());
   writeVector(file, "/feedback/controller_s_per_sample", controller);
   writeVector(file, "/feedback/wall_time_s", wall);
   writeVector(file, "/feedback/t_reached", simulated);

@@ -130,12 +130,13 @@ Scene caseScene(const TargetSpec& target, const QuasiStaticPlan& plan, const Tra
   return scene;
 }
 
-/// What each run samples: the swing of the end point under its sheave, and the hoist rope's
-/// tension.
+/// What each run samples: the swing of the end point under its sheave, the hoist rope's
+/// tension, and the drives' powers.
 class Sampler {
  public:
-  Sampler(Session& session, int hook, int sheave, std::string hoist_rope, double arrival, double band)
-      : session(session), hook(hook), sheave(sheave), hoist_rope(std::move(hoist_rope)), arrival(arrival), band(band) {}
+  Sampler(Session& session, int hook, int sheave, const TargetSpec& target, int slewing, double arrival, double band)
+      : session(session), hook(hook), sheave(sheave), luffing_rope(target.controls.luffing_rope),
+        hoist_rope(target.controls.hoist_rope), slewing(slewing), arrival(arrival), band(band) {}
 
   void sample() {
     t.push_back(session.time());
@@ -144,6 +145,12 @@ class Sampler {
     const double top = tensions.empty() ? 0.0 : *std::max_element(tensions.begin(), tensions.end());
     if (t.size() == 1) static_tension = top;
     peak_tension = std::max(peak_tension, top);
+    const double power[3] = {std::max(session.winchPower(luffing_rope), 0.0), std::max(session.winchPower(hoist_rope), 0.0),
+                             std::max(session.drivePower(slewing), 0.0)};
+    for (int d = 0; d < 3; ++d) {
+      if (t.size() > 1) energy[d] += 0.5 * (t.back() - t[t.size() - 2]) * (last_power[d] + power[d]);
+      last_power[d] = power[d];
+    }
   }
 
   void finish(TrackingRun& run) const {
@@ -158,15 +165,18 @@ class Sampler {
     }
     run.peak_tension = peak_tension;
     run.dynamic_factor = static_tension > 0.0 ? peak_tension / static_tension : 0.0;
+    std::copy(energy, energy + 3, run.energy);
   }
 
  private:
   Session& session;
   int hook, sheave;
-  std::string hoist_rope;
+  std::string luffing_rope, hoist_rope;
+  int slewing;
   double arrival, band;
   std::vector<double> t, sway;
   double peak_tension = 0.0, static_tension = 0.0;
+  double last_power[3] = {}, energy[3] = {};  // W, J: luffing, hoist, slewing
 };
 
 /// The swing the plan gives the load at every sample, radially and across, on the nominal crane.
@@ -181,7 +191,7 @@ TrackingRun runCase(const TargetSpec& target, const QuasiStaticPlan& plan, const
   Session session(caseScene(target, plan, c, run.closed_loop));
   const std::string sheave = spec.sheave.empty() ? target.controls.hoist_rope + ".start" : spec.sheave;
   const int hook = session.joint(target.controls.end_point), pivot = session.joint(sheave);
-  Sampler sampler(session, hook, pivot, target.controls.hoist_rope, plan.lead_time + plan.path.t.back(),
+  Sampler sampler(session, hook, pivot, target, session.constraint(spec.slewing), plan.lead_time + plan.path.t.back(),
                   spec.settle_band);
 
   std::optional<CraneSwayController> controller;
@@ -259,10 +269,10 @@ void verifyTracking(const TargetSpec& target, QuasiStaticPlan& plan, const std::
       const TrackingRun& r = runs.back();
       if (log)
         log(fmt::format("feedback: {:<24} {:<11} sway 0–5 s after arrival ≤ {:.3f} m, from 5 s ≤ {:.3f} m, within "
-                        "{:g} m {}; dynamic factor {:.3f}; {:.1f} s{}",
+                        "{:g} m {}; dynamic factor {:.3f}; drives' work {:.2f} MJ; {:.1f} s{}",
                         c.name, closed ? "closed loop" : "open loop", r.sway_at_arrival, r.sway_after_5_s, spec.settle_band,
                         r.settling_time < 0.0 ? std::string("never") : fmt::format("from {:.1f} s", r.settling_time),
-                        r.dynamic_factor, r.wall_s,
+                        r.dynamic_factor, 1e-6 * (r.energy[0] + r.energy[1] + r.energy[2]), r.wall_s,
                         closed ? fmt::format(" (controller {:.3f} ms per sample)", 1e3 * r.controller_s / std::max(1L, r.samples))
                                : std::string()));
     }

@@ -180,24 +180,45 @@ ConstraintReaction Session::constraintLoad(int constraint) const {
   return constraintReaction(*model_, c, motion_constraints_.G, s.q.data(), s.lambda.data());
 }
 
-std::vector<double> Session::ropeTensions(const std::string& rope) const {
-  const auto spec = std::find_if(scene_.members.begin(), scene_.members.end(), [&](const MemberSpec& m) { return m.name == rope; });
+const MemberSpec& Session::rope(const std::string& name) const {
+  const auto spec = std::find_if(scene_.members.begin(), scene_.members.end(), [&](const MemberSpec& m) { return m.name == name; });
   if (spec == scene_.members.end() || spec->type != MemberType::Rope) {
     std::vector<std::string> ropes;
     for (const MemberSpec& m : scene_.members)
       if (m.type == MemberType::Rope) ropes.push_back(m.name);
-    throw std::invalid_argument(unknownName("rope", rope, ropes));
+    throw std::invalid_argument(unknownName("rope", name, ropes));
   }
-  if (spec->reeving) throw std::invalid_argument(fmt::format("rope '{}' is reeved: its parts' tensions are not observed yet", rope));
+  if (spec->reeving) throw std::invalid_argument(fmt::format("rope '{}' is reeved: its parts are not observed yet", name));
+  return *spec;
+}
+
+std::vector<double> Session::ropeTensions(const std::string& name) const {
+  rope(name);
   const VecX zero = VecX::Zero(model_->nv);
   const ElementInput in{state(), zero.data(), zero.data(), observed_t_, model_->gravity};
   std::vector<double> tensions;
-  for (const int e : memberForceElements(*model_, rope, true)) {
+  for (const int e : memberForceElements(*model_, name, true)) {
     double forces[kTensionPoints];
     model_->elements[static_cast<std::size_t>(e)]->tensions(in, forces);
     tensions.insert(tensions.end(), forces, forces + kTensionPoints);
   }
   return tensions;
+}
+
+double Session::drivePower(int constraint) const {
+  const Constraint& c = model_->constraints.at(static_cast<std::size_t>(constraint));
+  const double* y = state();
+  return assembler_->drivePower(c, observed_t_, y, y + assembler_->lambdaOffset());
+}
+
+double Session::winchPower(const std::string& name) const {
+  rope(name);
+  const double* y = state();
+  const ElementInput in{y, y + assembler_->vOffset(), nullptr, observed_t_, model_->gravity};
+  double power = 0.0;
+  for (const int e : memberForceElements(*model_, name, true))
+    power += model_->elements[static_cast<std::size_t>(e)]->explicitTimePower(in);
+  return power;
 }
 
 double Session::kineticEnergy() const {

@@ -346,6 +346,11 @@ def test_loads_and_energies_are_observed(crane):
         crane.set_inputs({"hoist_rope": -0.5})
         crane.step(0.02)
     assert crane.energy()["kinetic"] > 0.0
+    # Reeling the hoist rope in under the load: the winch's power is the rope's tension times
+    # the speed the input has reached (it follows its command through its lag).
+    speed = -crane.input_rates()[list(crane.inputs).index("hoist_rope")]
+    assert crane.winch_power("hoist_rope") == pytest.approx(crane.rope_tension("hoist_rope").mean() * speed, rel=0.01)
+    assert crane.drive_power("slewing") == 0.0  # not slewing
     assert "hook" in crane.constraints and "load.origin" in crane.joints
     with pytest.raises(ValueError, match="did you mean 'hook'"):
         crane.constraint_load("hok")

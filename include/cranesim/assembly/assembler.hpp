@@ -97,6 +97,8 @@ class Assembler {
   double constraintResidual(double t, const double* y) const;
   /// Power of the rheonomic drives on the system, λ·Φ_t (constraint forces −Gᵀλ, G dq = −Φ_t).
   double drivePower(double t, const double* q, const double* lambda) const;
+  /// The same of one constraint's drive (0 for a constraint without one).
+  double drivePower(const Constraint& constraint, double t, const double* q, const double* lambda) const;
   /// The powers of WorkTerms at y = [q, dq, λ, …], WorkTerms::kCount values into `out` in the
   /// order of its members: the integrands of the energy balance's quadratures.
   void workPowers(double t, const double* y, double* out) const;

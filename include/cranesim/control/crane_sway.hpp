@@ -23,7 +23,7 @@ struct CraneSwaySpec {
   std::string hoist_rope = "hoist_rope";      // input: the hoist winch, m/s (passed through)
   std::string hook = "load.origin";           // joint at the rope's lower end
   std::string sheave = "head.sheave";         // joint at its upper end, on the boom head
-  // The boom's sideways mode (0.76 Hz) and its luffing modes stay out of the feedback: 0.3 Hz.
+  // The boom's sideways mode (0.86 Hz), the load's bounce (0.76 Hz) stay out of the feedback: 0.3 Hz.
   SwayAxisSpec across{.measurement_cutoff = 0.3}, along{.angle = 0.02, .angle_rate = 0.02, .measurement_cutoff = 0.3};
   /// 1/s: the hoist winch's speed command corrects its length towards the reference's at this
   /// rate (0: the hoist speed passes through, an operator's lever).

@@ -35,6 +35,7 @@ class ResultsRecorder final : public SampleSink {
   double energyScale() const;
   /// max |balance − balance(t0)| / energyScale() over the samples (0 for a run at rest).
   double relativeBalanceDrift() const;
+  const std::vector<double>& driveWork() const { return drive_work_; }
   const std::vector<double>& winchWork() const { return winch_work_; }
   const std::vector<double>& dissipated() const { return dissipated_; }
   const std::vector<double>& kineticEnergy() const { return kinetic_; }

@@ -66,6 +66,10 @@ struct TrackingRun {
   /// The drives' largest speeds and accelerations along the run (m/s, m/s², the slewing drive's
   /// unit per s and s²), in the order luffing, hoist, slewing (0 without slewing).
   double peaks[3][2] = {};
+  /// J: the work each drive delivered to the crane along the run, in the same order: the
+  /// positive part of its power only (a drive that brakes or lowers is taken to regenerate
+  /// nothing).
+  double energy[3] = {};
   double wall_s = 0.0, controller_s = 0.0;  // the run's wall time; the controller's share of it
   long samples = 0;
   SimulationOutcome outcome;

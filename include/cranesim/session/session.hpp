@@ -103,6 +103,14 @@ class Session {
   /// The axial force along a rope member now: kTensionPoints per element, from each element's
   /// first node to its second (N, 0 where slack); std::invalid_argument for no such rope.
   std::vector<double> ropeTensions(const std::string& rope) const;
+  /// The power a driven constraint's drive delivers to the crane now, W: λ·Φ_t of its rows, as
+  /// the energy books count drive work (0 for a constraint without a drive). Negative while the
+  /// crane drives it (braking, lowering).
+  double drivePower(int constraint) const;
+  /// The power the winch of a rope delivers to the crane now, W: its elements' power through the
+  /// change of their unstretched length, as the energy books count winch work (positive while it
+  /// reels a rope under tension in); std::invalid_argument for no such rope or a reeved one.
+  double winchPower(const std::string& rope) const;
   /// Kinetic energy ½ dqᵀ M dq, and gravity's potential plus strain energy (J).
   double kineticEnergy() const;
   double potentialEnergy() const;
@@ -118,6 +126,8 @@ class Session {
 
   void start();
   void observed(double t);
+  /// The scene's rope named `name`; std::invalid_argument for none or a reeved one.
+  const MemberSpec& rope(const std::string& name) const;
   /// Accelerations and multipliers consistent with the state at time() (the saddle-point
   /// system (4-3)), solved once per observed time, as the results file's are; with them, the
   /// constraints at that state (motion_constraints_).
