@@ -252,3 +252,33 @@ modify:
   const Model model = compileModel(joined);
   CHECK(solveEquilibrium(joined, model, 0.0).converged);
 }
+
+TEST_CASE("The boom angle the luffing rope gives", "[scene][boom_assembly]") {
+  const auto withRope = [](double rope) {
+    return parseScene(fmt::format(R"(
+base: crane_configured.yaml
+modify:
+  booms.boom.angle_deg: from_luffing_rope
+  booms.boom.luffing.rope_length: {:.17g}
+)", rope), test::configPath("from_rope.yaml"));
+  };
+  const ThesisGeometry at85(55.0);
+  // The rope the tool sizes for 85° gives 85° back.
+  const Scene same = withRope((at85.derrick_top - at85.tie_joint).norm() - 30.0);
+  CHECK((body(same, "head").position - at85.head).norm() < 1e-9);
+
+  // crane.yaml's 6.1453 m rope, by the law of cosines in the triangle of the foot pin O, the
+  // derrick's top D (26 m at 65°) and the head's tie joint H, which lies ρ_H from O at the fixed
+  // angle ε below the boom axis: |D − H| = 36.1453 m fixes the angle at O between D and H.
+  const double rho_D = 26.0, rho_H = at85.tie_joint.norm(), line = 30.0 + 6.1453;
+  const double epsilon = 95.0 - std::atan2(at85.tie_joint.z(), at85.tie_joint.x()) / kDeg;  // H below the axis
+  const double at_O = std::acos((rho_D * rho_D + rho_H * rho_H - line * line) / (2.0 * rho_D * rho_H)) / kDeg;
+  const double hand_angle = 180.0 - (65.0 + at_O) - epsilon;
+  const Scene scene = withRope(6.1453);
+  const Model model = compileModel(scene);
+  const CraneFigures drawn = craneFigures(scene, model, model.q0.data(), 0.0);
+  CHECK(hand_angle == Approx(85.0).margin(1e-3));  // 16 µm more rope: a little lower
+  CHECK(hand_angle < 85.0);
+  CHECK(drawn.boom->boom_angle_deg == Approx(hand_angle).margin(1e-9));
+  CHECK((*member(scene, "luffing_rope").length)(0.0) == Approx(6.1453).margin(1e-12));
+}

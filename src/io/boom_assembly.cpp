@@ -104,17 +104,24 @@ class BoomAssembler {
   void assemble(const YamlField& boom) {
     boom.allowKeys({"name", "foot", "pin", "towards", "angle_deg", "fidelity", "damping", "sections", "head", "luffing", "hoist"});
     const std::string name = boom.at("name").identifier();
-    const Frame axes = boomAxes(boom);
     const YamlField sections = boom.at("sections");
     const std::vector<YamlField> items = sections.items();
     if (items.empty()) sections.fail(fmt::format("boom '{}' needs at least one section (foot, inserts, top)", name));
+    std::vector<std::pair<YAML::Node, double>> types;  // each section's truss type and length
+    double boom_length = 0.0;
+    for (const YamlField& section : items) {
+      section.allowKeys({"name", "truss", "length", "fidelity"});
+      section.at("name").identifier();
+      types.push_back(sectionType(section));
+      boom_length += types.back().second;
+    }
+    const Frame axes = boomAxes(boom, boomAngle(boom, boom_length));
     double along = 0.0;
     std::string previous;
     for (std::size_t k = 0; k < items.size(); ++k) {
       const YamlField& section = items[k];
-      section.allowKeys({"name", "truss", "length", "fidelity"});
-      const std::string section_name = section.at("name").identifier();
-      const auto [type, length] = sectionType(section);
+      const std::string section_name = section.at("name").text();
+      const auto& [type, length] = types[k];
       YAML::Node member(YAML::NodeType::Map);
       member["name"] = section.at("name").node();
       member["type"] = "truss";
@@ -176,31 +183,79 @@ class BoomAssembler {
   }
 
  private:
-  /// The boom's frame at its foot: x along the boom axis, `angle_deg` above the horizontal
-  /// `towards`; y the foot pin; z = x × y (the sections' z axis).
-  Frame boomAxes(const YamlField& boom) {
-    const YamlField foot = boom.at("foot");
-    const Frame pin_frame = jointFrame(foot, "the foot");
+  /// The boom's frame at its foot at the boom angle `angle` (deg) above the horizontal
+  /// `towards`: x along the boom axis, y the foot pin, z = x × y (the sections' z axis).
+  Frame boomAxes(const YamlField& boom, double angle) const {
+    const Frame pin_frame = jointFrame(boom.at("foot"), "the foot");
     const YamlField towards_field = boom.at("towards");
     Vec3 towards = towards_field.vec3();
     if (towards.norm() < 1e-12 || std::abs(towards.dot(kUp)) > 1e-9 * towards.norm())
       towards_field.fail("'towards' is the horizontal direction the boom leans to: a vector [x, y, 0], not zero");
     towards.normalize();
-    const YamlField angle_field = boom.at("angle_deg");
-    const double angle = angle_field.number();
-    if (!(angle > -90.0 && angle <= 90.0))
-      angle_field.fail(fmt::format("a boom angle lies in (−90°, 90°] above the horizontal 'towards', found {}°", angle));
     const Vec3 pin = pin_frame.axes.col(pinIndex(boom));
     if (std::abs(pin.dot(kUp)) > 1e-9 || std::abs(pin.dot(towards)) > 1e-9)
-      boom.at("pin").fail(fmt::format("the foot joint's {} axis is drawn along [{:.6g}, {:.6g}, {:.6g}]: a boom turns about a "
-                                      "horizontal pin across 'towards' (turn the foot joint, or choose its axis with 'pin')",
-                                      pinAxis(boom), pin.x(), pin.y(), pin.z()));
+      boom.at(boom.has("pin") ? "pin" : "foot")
+          .fail(fmt::format("the foot joint's {} axis is drawn along [{:.6g}, {:.6g}, {:.6g}]: a boom turns about a "
+                            "horizontal pin across 'towards' (turn the foot joint, or choose its axis with 'pin')",
+                            pinAxis(boom), pin.x(), pin.y(), pin.z()));
     Frame axes;
     axes.origin = pin_frame.origin;
     axes.axes.col(0) = std::cos(angle * kDeg) * towards + std::sin(angle * kDeg) * kUp;
     axes.axes.col(1) = pin.normalized();
     axes.axes.col(2) = axes.axes.col(0).cross(axes.axes.col(1));
     return axes;
+  }
+
+  /// `angle_deg`: the boom angle in degrees, or `from_luffing_rope`: the angle at which the
+  /// luffing line closes with a rope of `luffing.rope_length` (the boom `boom_length` long).
+  double boomAngle(const YamlField& boom, double boom_length) const {
+    const YamlField field = boom.at("angle_deg");
+    const std::optional<YamlField> luffing = boom.find("luffing");
+    const bool from_rope = field.isScalar() && field.text() == "from_luffing_rope";
+    if (luffing && luffing->has("rope_length") != from_rope)
+      (from_rope ? *luffing : luffing->at("rope_length"))
+          .fail("a luffing rope_length sets the boom angle: give both it and angle_deg: from_luffing_rope, or neither");
+    if (from_rope) {
+      if (!luffing || !boom.has("head")) field.fail("'from_luffing_rope' needs the boom's head and luffing line");
+      return angleFromLuffingRope(boom, *luffing, boom_length);
+    }
+    const double angle = field.number();
+    if (!(angle > -90.0 && angle <= 90.0))
+      field.fail(fmt::format("a boom angle lies in (−90°, 90°] above the horizontal 'towards', found {}°", angle));
+    return angle;
+  }
+
+  /// The steepest boom angle at which the straight luffing line from the head's joint to its
+  /// anchor is as long as its ties and a rope of `rope_length`, all drawn unstretched.
+  double angleFromLuffingRope(const YamlField& boom, const YamlField& luffing, double boom_length) const {
+    const YamlField rope_field = luffing.at("rope_length");
+    const double rope = rope_field.positive();
+    double reach = 0.0;
+    if (const auto ties = luffing.find("ties"))
+      for (const YamlField& tie : ties->items()) reach += tie.at("length").positive();
+    const YamlField head = boom.at("head");
+    const std::optional<Frame> joint = namedJoint(Frame{}, head.find("joints"), luffing.at("from").text());
+    if (!joint) luffing.at("from").fail(fmt::format("the head has no joint '{}'", luffing.at("from").text()));
+    const Vec3 from = boom_length * Vec3::UnitX() + joint->origin;  // in the boom's frame
+    const Vec3 anchor = jointFrame(luffing.at("to"), "the luffing line's anchor").origin;
+    const auto gap = [&](double angle) {
+      const Frame axes = boomAxes(boom, angle);
+      return (anchor - (axes.origin + axes.axes * from)).norm() - reach - rope;
+    };
+    constexpr double kStep = 0.25;  // deg: the scan for the steepest sign change
+    double high = 90.0, shortest = gap(high), longest = shortest;
+    for (double low = high - kStep; low > -90.0; high = low, low -= kStep) {
+      const double g_low = gap(low), g_high = gap(high);
+      shortest = std::min(shortest, g_low), longest = std::max(longest, g_low);
+      if ((g_low > 0.0) == (g_high > 0.0)) continue;
+      for (int k = 0; k < 100; ++k) {
+        const double mid = 0.5 * (low + high);
+        ((gap(mid) > 0.0) == (g_high > 0.0) ? high : low) = mid;
+      }
+      return 0.5 * (low + high);
+    }
+    rope_field.fail(fmt::format("no boom angle closes the luffing line with a {:g} m rope: over the boom's angles the "
+                                "rope would be {:.6g} … {:.6g} m", rope, rope + shortest, rope + longest));
   }
 
   std::string pinAxis(const YamlField& boom) const {
@@ -360,7 +415,7 @@ class BoomAssembler {
   /// one straight line from the head's joint to the anchor, the ties first; the luffing rope
   /// closes it, its unstretched length the rest of the line.
   void rigLuffingLine(const YamlField& luffing, const YamlField& head) {
-    luffing.allowKeys({"from", "to", "ties", "rope"});
+    luffing.allowKeys({"from", "to", "ties", "rope", "rope_length"});
     const std::string head_name = head.at("name").text();
     const Vec3 from = headJoint(head, luffing.at("from")).origin;
     const Vec3 anchor = jointFrame(luffing.at("to"), "the luffing line's anchor").origin;
