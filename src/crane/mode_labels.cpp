@@ -11,7 +11,8 @@ enum class Part { Load, Boom, Ropes, Rest };
 
 Part partOf(const Scene& scene, const Node& node) {
   if (node.member.empty()) return node.name == scene.crane->load ? Part::Load : Part::Rest;
-  const auto m = std::find_if(scene.members.begin(), scene.members.end(), [&](const MemberSpec& s) { return s.name == node.member; });
+  const auto m = std::find_if(scene.members.begin(), scene.members.end(),
+                              [&](const MemberSpec& s) { return s.name == node.member; });
   if (m == scene.members.end()) return Part::Rest;
   return m->type == MemberType::Rope || m->type == MemberType::StrutTie ? Part::Ropes : Part::Boom;
 }
@@ -48,7 +49,8 @@ std::vector<ModeLabel> labelModes(const Scene& scene, const Model& model, const 
   const Assembler assembler(model);
   const Eigen::SparseMatrix<double> M = assembler.massMatrix(t, q_eq.data());
   const BoomPlane plane = boomPlane(scene, model, q_eq.data());
-  const auto load_body = std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const RigidBodySpec& b) { return b.name == scene.crane->load; });
+  const auto load_body = std::find_if(scene.bodies.begin(), scene.bodies.end(),
+                                      [&](const RigidBodySpec& b) { return b.name == scene.crane->load; });
   std::vector<Part> parts;
   for (const Node& node : model.nodes) parts.push_back(partOf(scene, node));  // the reader found the load's body
   std::vector<ModeLabel> labels;

@@ -138,7 +138,8 @@ class BoomAssembler {
       member["z_axis"] = point(axes.axes.col(2));
       members_.push_back(member);
       if (k == 0) {
-        addConstraint(boom.at("foot"), name + "_foot", "revolute", boom.at("foot").text(), section_name + ".start")["axis"] = pinAxis(boom);
+        YAML::Node pin = addConstraint(boom.at("foot"), name + "_foot", "revolute", boom.at("foot").text(), section_name + ".start");
+        pin["axis"] = pinAxis(boom);
       } else {
         addConstraint(section, fmt::format("{}_splice{}", name, k), "fixed", previous + ".end", section_name + ".start");
       }
