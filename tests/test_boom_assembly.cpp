@@ -282,3 +282,30 @@ modify:
   CHECK(drawn.boom->boom_angle_deg == Approx(hand_angle).margin(1e-9));
   CHECK((*member(scene, "luffing_rope").length)(0.0) == Approx(6.1453).margin(1e-12));
 }
+
+TEST_CASE("A hook at a stated height, and a jib standing on the boom's head", "[scene][boom_assembly]") {
+  // The hoist by hook height: the rope's unstretched length is the sheave's height less it. A
+  // 5 m jib (truss type 3) pinned at the head's joint j5 (0, 0, 1.2 in the boom's frame), its own
+  // pin the head's y axis, at 30° towards −x: its end 5 m along (−cos 30°, 0, sin 30°) from j5
+  // (held by nothing: it is drawn, not stood).
+  const Scene scene = parseScene(R"(
+base: crane_configured.yaml
+modify:
+  booms.boom.hoist: {sheave: sheave, hook_height: 2.5, hook: load.origin,
+                     rope: {name: hoist_rope, section: {radius: 0.05}, material: {density: 7800, youngs_modulus: 1.0e11}}}
+add:
+  booms:
+    - {name: jib, foot: head.j5, towards: [-1, 0, 0], angle_deg: 30, sections: [{name: jib1, truss: type3}]}
+)", test::configPath("jib.yaml"));
+  const ThesisGeometry hand(55.0);
+  CHECK((*member(scene, "hoist_rope").length)(0.0) == Approx(hand.sheave.z() - 2.5).margin(1e-12));
+  CHECK(body(scene, "load").position.z() == Approx(2.5).margin(1e-12));
+  const Vec3 j5 = hand.head + 1.2 * hand.z;
+  const Vec3 along(-std::cos(30.0 * kDeg), 0.0, std::sin(30.0 * kDeg));
+  CHECK((member(scene, "jib1").start - j5).norm() < 1e-12);
+  CHECK((member(scene, "jib1").end - (j5 + 5.0 * along)).norm() < 1e-12);
+  CHECK(std::any_of(scene.constraints.begin(), scene.constraints.end(), [](const ConstraintSpec& c) {
+    return c.name == "jib_foot" && c.type == ConstraintType::Revolute && c.joint1 == "head.j5" && c.joint2 == "jib1.start";
+  }));
+  CHECK_NOTHROW(compileModel(scene));  // its pin lines up with the head's: the drawing closes (the jib hangs free)
+}
