@@ -14,6 +14,7 @@
 
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/source_location.hpp"
+#include "profile_reader.hpp"
 #include "rotation_reader.hpp"
 #include "yaml_field.hpp"
 
@@ -226,11 +227,21 @@ class BoomAssembler {
     return angle;
   }
 
+  /// A rope length: a number, or a profile (a reeling drive) drawn at its value at solver.t_start.
+  double lengthAtStart(const YamlField& field) const {
+    if (!field.isMap()) return field.positive();
+    const std::optional<YamlField> solver = YamlField(root_, "").find("solver");
+    const double t_start = solver ? solver->number("t_start", 0.0) : 0.0;
+    const double length = readProfile(field)(t_start, Limit::Right);
+    if (!(length > 0.0)) field.fail(fmt::format("the rope's length is {:g} m at t_start = {:g} s: it must be positive", length, t_start));
+    return length;
+  }
+
   /// The steepest boom angle at which the straight luffing line from the head's joint to its
   /// anchor is as long as its ties and a rope of `rope_length`, all drawn unstretched.
   double angleFromLuffingRope(const YamlField& boom, const YamlField& luffing, double boom_length) const {
     const YamlField rope_field = luffing.at("rope_length");
-    const double rope = rope_field.positive();
+    const double rope = lengthAtStart(rope_field);
     double reach = 0.0;
     if (const auto ties = luffing.find("ties"))
       for (const YamlField& tie : ties->items()) reach += tie.at("length").positive();
@@ -448,7 +459,7 @@ class BoomAssembler {
     const std::string name = rope.at("name").text();
     member["start"] = point(anchor);
     member["end"] = point(from + reach * along);
-    member["length"] = number(rope_length);
+    member["length"] = luffing.has("rope_length") ? luffing.at("rope_length").node() : number(rope_length);
     members_.push_back(member);
     addConstraint(rope.at("name"), name + "_start", "spherical", luffing.at("to").text(), name + ".start");
     addConstraint(rope.at("name"), name + "_end", "spherical", previous, name + ".end");
@@ -464,7 +475,7 @@ class BoomAssembler {
       hoist.fail("give the hook's hanging_length below the sheave or its hook_height, one of them");
     double length = 0.0;
     if (const auto h = hoist.find("hanging_length")) {
-      length = h->positive();
+      length = lengthAtStart(*h);
     } else {
       const YamlField height = hoist.at("hook_height");
       length = sheave.dot(kUp) - height.number();
@@ -478,7 +489,7 @@ class BoomAssembler {
     const Vec3 hook = sheave - length * kUp;
     member["start"] = point(sheave);
     member["end"] = point(hook);
-    member["length"] = number(length);
+    member["length"] = hoist.has("hanging_length") ? hoist.at("hanging_length").node() : number(length);
     members_.push_back(member);
     addConstraint(rope.at("name"), name + "_start", "spherical", head.at("name").text() + "." + hoist.at("sheave").text(),
                   name + ".start");
