@@ -19,6 +19,7 @@
 
 #include "cranesim/control/closed_loop.hpp"
 #include "cranesim/crane/crane_figures.hpp"
+#include "cranesim/crane/mode_labels.hpp"
 #include "cranesim/io/command_line.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_info.hpp"
@@ -249,14 +250,19 @@ int modes(const std::string& scene_path, std::string out, int count) {
   const ModalResult modal = computeModes(model, eq.q, eq.t, count);
   fmt::print("degrees of freedom: {}, rigid-body modes: {}, stiffness asymmetry: {:.2g}\n", modal.free_dofs,
              modal.rigid_modes, modal.stiffness_asymmetry);
-  fmt::print("{:>5}  {:>14}  {:>12}  {:>14}\n", "mode", "frequency (Hz)", "period (s)", "ω² (rad²/s²)");
+  std::vector<std::string> labels;
+  if (scene.crane)
+    for (const ModeLabel& label : labelModes(scene, model, eq.q, eq.t, modal)) labels.push_back(label.label);
+  fmt::print("{:>5}  {:>14}  {:>12}  {:>14}{}\n", "mode", "frequency (Hz)", "period (s)", "ω² (rad²/s²)",
+             labels.empty() ? "" : "  moves");
   for (int k = 0; k < modal.frequencies.size(); ++k) {
     const double f = modal.frequencies(k), w2 = modal.omega_squared(k);
-    if (modal.rigid[k]) fmt::print("{:>5}  {:>14}  {:>12}  {:>14.6g}\n", k + 1, "rigid", "-", w2);
-    else if (w2 < 0.0) fmt::print("{:>5}  {:>14}  {:>12}  {:>14.6g}\n", k + 1, "unstable", "-", w2);
-    else fmt::print("{:>5}  {:>14.6f}  {:>12.6g}  {:>14.6g}\n", k + 1, f, 1.0 / f, w2);
+    const std::string moves = labels.empty() ? "" : "  " + labels[static_cast<std::size_t>(k)];
+    if (modal.rigid[k]) fmt::print("{:>5}  {:>14}  {:>12}  {:>14.6g}{}\n", k + 1, "rigid", "-", w2, moves);
+    else if (w2 < 0.0) fmt::print("{:>5}  {:>14}  {:>12}  {:>14.6g}{}\n", k + 1, "unstable", "-", w2, moves);
+    else fmt::print("{:>5}  {:>14.6f}  {:>12.6g}  {:>14.6g}{}\n", k + 1, f, 1.0 / f, w2, moves);
   }
-  writeModes(out, model, eq.q, modal, {scene_path, scene.text, eq.t});
+  writeModes(out, model, eq.q, modal, {scene_path, scene.text, eq.t, labels});
   fmt::print(stderr, "  results: {}\n", out);
   return 0;
 }

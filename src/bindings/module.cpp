@@ -114,7 +114,7 @@ void writeModesFile(const Scene& scene, int count, const std::string& out) {
   nb::gil_scoped_release released;
   const StaticResult eq = sceneEquilibrium(scene, model, assembler, true);
   const ModalResult modal = computeModes(model, eq.q, eq.t, count);
-  writeModes(out, model, eq.q, modal, {scene.path, scene.text, eq.t});
+  writeModes(out, model, eq.q, modal, {scene.path, scene.text, eq.t, {}});
 }
 
 }  // namespace

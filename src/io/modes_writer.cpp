@@ -58,6 +58,7 @@ void writeModes(const std::string& path, const Model& model, const VecX& q_eq, c
     const auto nv = static_cast<hsize_t>(model.nv), nj = static_cast<hsize_t>(model.joints.size());
     file.writeDoubles("/modes/frequency", {count}, modes.frequencies.data());
     file.writeDoubles("/modes/omega_squared", {count}, modes.omega_squared.data());
+    if (!meta.labels.empty()) file.writeStrings("/modes/label", {count}, meta.labels);
     // Column k of the nv × count matrix is contiguous: row k of a (count, nv) dataset.
     file.writeDoubles("/modes/shapes", {count, nv}, modes.shapes.data());
     std::vector<double> displacements;

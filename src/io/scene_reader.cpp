@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <set>
 
+#include "boom_assembly.hpp"
 #include "bounded_yaml.hpp"
 #include "crane_reader.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
@@ -16,6 +16,7 @@
 #include "member_ends.hpp"
 #include "profile_reader.hpp"
 #include "reeving_reader.hpp"
+#include "rotation_reader.hpp"
 #include "scene_composition.hpp"
 #include "sensor_reader.hpp"
 #include "solver_reader.hpp"
@@ -25,32 +26,6 @@
 
 namespace cranesim {
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-/// `{axis: [..], angle: rad | angle_deg: deg}`, `{rotation_vector: [..]}` or `{matrix: [[..]x3]}`.
-Mat3 readRotation(const YamlField& f) {
-  f.allowKeys({"axis", "angle", "angle_deg", "rotation_vector", "matrix"});
-  const int forms = f.has("rotation_vector") + f.has("matrix") + f.has("axis");
-  if (forms != 1) f.fail("give exactly one of: axis with angle or angle_deg, rotation_vector, matrix");
-  if (const auto rv = f.find("rotation_vector")) return rotationMatrix<double>(rv->vec3());
-  if (const auto mf = f.find("matrix")) {
-    const auto rows = mf->items();
-    if (rows.size() != 3) mf->fail("expected 3 rows of 3 numbers");
-    Mat3 R;
-    for (int r = 0; r < 3; ++r) R.row(r) = rows[r].vec3().transpose();
-    if ((R.transpose() * R - Mat3::Identity()).norm() > 1e-9 || R.determinant() < 0.0)
-      mf->fail("is not a rotation matrix (orthonormal, determinant +1) to 1e-9");
-    return R;
-  }
-  const YamlField axis_field = f.at("axis");
-  const Vec3 axis = axis_field.vec3();
-  if (axis.norm() < 1e-12) axis_field.fail("axis must not be the zero vector");
-  if (f.has("angle") && f.has("angle_deg")) f.at("angle_deg").fail("give either angle (rad) or angle_deg, not both");
-  if (!f.has("angle") && !f.has("angle_deg")) f.fail("an axis needs an angle (rad) or angle_deg");
-  const double angle = f.has("angle") ? f.at("angle").number() : f.at("angle_deg").number() * kDeg;
-  return axisAngle(axis, angle);
-}
 
 Mat3 readInertia(const YamlField& f) {
   const std::vector<double> v = f.isSequence() && !f.items().empty() && f.items()[0].isSequence()
@@ -645,11 +620,11 @@ FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
 }  // namespace
 
 Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) {
-  const YAML::Node& root = composed.root;
+  const YAML::Node root = expandBooms(composed.root);
   const YamlField f(root, "");
   if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
   f.allowKeys({"name", "gravity", "ground", "bodies", "trusses", "members", "constraints", "loads", "wind", "solver",
-               "output", "feedback", "crane", "defaults"});
+               "output", "feedback", "crane", "defaults", "booms"});
   Scene s;
   s.path = path;
   s.text = composed.text;

@@ -48,7 +48,7 @@ void analyse(const Study& study, long index, const CaseOptions& options, CaseRow
     recorder.sample(eq.t, equilibriumSample(assembler, eq).data(), WorkTerms{});
     if (study.analysis == StudyAnalysis::Modes) {
       modal = computeModes(model, eq.q, eq.t, study.mode_count);
-      if (keep) writeModes(options.results_path, model, eq.q, *modal, {scene.path, scene.text, eq.t});
+      if (keep) writeModes(options.results_path, model, eq.q, *modal, {scene.path, scene.text, eq.t, {}});
       complete = true;
     } else {
       row.message = equilibriumInstability(model, eq, true);

@@ -404,3 +404,26 @@ criteria:
     assert all(row[3:5] == ["98%", "0%"] for row in rows), chart.stdout
     assert all(float(row[1]) < 1e-6 for row in rows)  # hanging under the suspension
     assert (tmp_path / "chart.png").stat().st_size > 0
+
+
+def test_load_chart_by_boom_angle_of_a_configured_crane(tmp_path: Path):
+    """A study varies a configured boom's angle (booms.boom.angle_deg): each case is drawn and its
+    luffing rope sized by the tool at that angle. The 40 m main boom of
+    configs/crane_configured_short.yaml puts the sheave, and the load under it, at the radius
+    (L + 2.2) cos β + 1.7 sin β of the head's sheave joint (2.2 m along the boom's axis past its
+    top, 1.7 m off it) as drawn; in equilibrium the ropes' stretch lowers the boom by less than 1°."""
+    table = computed_study(tmp_path, "angles", f"""\
+scene: {SOURCE_DIR / "configs" / "crane_configured_short.yaml"}
+analysis: static
+parameters:
+  - {{path: booms.boom.angle_deg, values: [85, 60]}}
+  - {{path: bodies.load.mass, values: [50000]}}
+figures:
+  - {{name: radius, quantity: horizontal_distance, body: load, relative_to: ground.slewing_ring}}
+""")
+    with h5py.File(table, "r") as f:
+        angles = f["parameters/booms.boom.angle_deg"][...]
+        radius = f["figures/radius"][...]
+    for angle, r in zip(angles, radius):
+        drawn = [42.2 * math.cos(math.radians(a)) + 1.7 * math.sin(math.radians(a)) for a in (angle, angle - 1.0)]
+        assert drawn[0] < r < drawn[1], (angle, r, drawn)

@@ -3,6 +3,7 @@
 // shapes in velocity coordinates and as joint displacements, and the equilibrium they belong to.
 
 #include <string>
+#include <vector>
 
 #include "cranesim/solvers/modes.hpp"
 
@@ -11,6 +12,7 @@ namespace cranesim {
 struct ModesMetadata {
   std::string scene_path, scene_text;
   double t = 0.0;  // time of the equilibrium (drives evaluated there)
+  std::vector<std::string> labels;  // what each mode moves (crane/mode_labels.hpp); empty: none
 };
 
 /// Writes under `path`.partial and renames to `path`.
