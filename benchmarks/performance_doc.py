@@ -581,7 +581,7 @@ def sway_sensor(r: Results) -> str:
     closed = [x for x in rows if x["loop"] == "closed"]
     delays = list(dict.fromkeys(x["delay_s"] for x in closed))
     noises = list(dict.fromkeys(x["noise"] for x in closed))
-    open_loop = next(x for x in rows if x["loop"] == "open")
+    open_loop = next((x for x in rows if x["loop"] == "open"), {"sway_from_5_s_m": "nan"})
 
     def cell(delay, noise):
         x = next(x for x in closed if (x["delay_s"], x["noise"]) == (delay, noise))
