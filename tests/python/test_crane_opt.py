@@ -453,6 +453,33 @@ def test_flatness_stretches_its_path_to_keep_the_drive_limits(tmp_path: Path):
         assert f["controls"].attrs["drive_limit_factor"] == pytest.approx(1.32 / 0.8, rel=0.01)
 
 
+MINIMUM_TIME_TARGET = SOURCE_DIR / "configs" / "target_minimum_time.yaml"
+
+
+def test_minimum_time_lift_beats_the_stretched_flatness_plan(tmp_path: Path):
+    """configs/target_minimum_time.yaml on the condensed crane: within the same drive limits that
+    stretch the flatness path to 55.6 s, the minimum-time lift takes 36.5 s (measured; ≥ 25 %
+    shorter asked), keeps every limit on its control splines (factor 0.996) and leaves the load
+    within 5 cm of the target in the 5 s after its arrival (measured 3.5 cm) and after (3.6 cm)."""
+    with h5py.File(plan_condensed_crane(tmp_path, (-35, 10), "minimum_time", MINIMUM_TIME_TARGET), "r") as f:
+        path, controls, v = f["path"].attrs, f["controls"].attrs, f["verification"]
+        assert path["method"] == "minimum_time"
+        assert path["flatness_duration"] == pytest.approx(55.6, abs=0.1)
+        assert path["motion_time"] <= 0.75 * path["flatness_duration"]
+        assert controls["drive_limit_factor"] <= 1.0
+        assert controls["hoist_peak_speed"] <= 0.8 and controls["hoist_peak_acceleration"] <= 0.1
+        assert controls["luffing_peak_speed"] <= 0.5
+        state = f["path/state"][()]
+        assert np.allclose(state[0, :2], f["trajectory/start"][0, :2], atol=1e-6)
+        assert np.allclose(state[-1, :2], f["trajectory/target"][0, :2], atol=1e-6)
+        arrival = controls["lead_time"] + path["motion_time"]
+        t, simulated, goal = v["t"][()], v["simulated"][()], v["planned"][-1]
+        off = np.linalg.norm((simulated - goal)[:, :2], axis=1)
+        assert np.max(off[(t >= arrival) & (t <= arrival + 5)]) < 0.05
+        assert np.max(off[t >= arrival + 5]) < 0.05
+        assert path["nlp_time_s"] < 5.0
+
+
 def hermite(t_query, t, y, slopes):
     """The cubic Hermite spline through (t, y, slopes), as crane-sim evaluates a table."""
     i = np.clip(np.searchsorted(t, t_query, side="right") - 1, 0, len(t) - 2)
