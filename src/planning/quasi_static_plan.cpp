@@ -190,8 +190,8 @@ ControlPoint pathControls(const TargetSpec& target, const QuasiStaticPlan& plan,
   return mapControls(target, plan, target.origin(0) + s(0), target.origin(1) + s(1));
 }
 
-/// The slewing angle φ relative to the scene's and its rates (φ, φ̇, φ̈) at path time t: the
-/// lift's nodes interpolated linearly (minimum_time), along the rest-to-rest path's progress
+/// The slewing angle φ of the path's point relative to the scene's and its rates (φ, φ̇, φ̈) at
+/// path time t: the plane's angle onto the lift's load, linear between its nodes (minimum_time), along the rest-to-rest path's progress
 /// (flatness, and minimum_time's start), or a rest-to-rest turn over the QR horizon convolved
 /// with the shaper's impulses (quasi_static: one impulse); 0 without a slewing target.
 Eigen::Vector3d slewingAt(const TargetSpec& target, const QuasiStaticPlan& plan, double t) {
@@ -199,13 +199,12 @@ Eigen::Vector3d slewingAt(const TargetSpec& target, const QuasiStaticPlan& plan,
   if (!target.slewing) return phi;
   const double turn = target.slewing->turn;
   if (plan.lift) {
-    const std::vector<double>& ts = plan.lift->t;
+    const std::vector<double>& ts = plan.path.t;
     const double clamped = std::clamp(t, ts.front(), ts.back());
     const std::size_t k = std::min<std::size_t>(std::upper_bound(ts.begin(), ts.end(), clamped) - ts.begin(), ts.size() - 1);
-    const double w = (clamped - ts[k - 1]) / (ts[k] - ts[k - 1]);
-    const LiftNode &a = plan.lift->nodes[k - 1], &b = plan.lift->nodes[k];
-    const auto slewing = [](const LiftNode& n) { return Eigen::Vector3d(n.q(2), n.rate(2), n.acceleration(2)); };
-    return (1.0 - w) * slewing(a) + w * slewing(b);
+    const double h = ts[k] - ts[k - 1], w = (clamped - ts[k - 1]) / h;
+    const double a = plan.path_turns[k - 1], b = plan.path_turns[k];
+    return Eigen::Vector3d((1.0 - w) * a + w * b, t > ts.front() && t < ts.back() ? (b - a) / h : 0.0, 0.0);
   }
   if (startsFromFlatness(target.method)) {
     for (int k = 0; k < 3; ++k) phi(k) = turn * plan.load_path.progress(t, k);
@@ -331,6 +330,7 @@ void liftControls(const TargetSpec& target, QuasiStaticPlan& plan) {
   plan.path = QrTrajectory{};
   plan.controls.clear();
   plan.slewing_angles.clear();
+  plan.path_turns.clear();
   for (std::size_t k = 0; k < lift.t.size(); ++k) {
     const LiftNode& node = lift.nodes[k];
     const DriveState& drives = lift.drives[k];
@@ -343,6 +343,7 @@ void liftControls(const TargetSpec& target, QuasiStaticPlan& plan) {
     }
     const PlanePoint at = plan.plane.locate(lift.load[k], node.q(2));
     plan.path.t.push_back(lift.t[k]);
+    plan.path_turns.push_back(at.phi);
     plan.path.states.push_back(EndState(at.x - target.origin.x(), at.z - target.origin.y(), 0.0, 0.0));
   }
   for (std::size_t k = 1; k + 1 < lift.t.size(); ++k)

@@ -85,6 +85,9 @@ struct QuasiStaticPlan {
   /// minimum_time only: the lift the controls follow (planning/minimum_time_lift.hpp), started
   /// from the flatness path of `load_path`'s duration.
   std::optional<LiftTrajectory> lift;
+  /// minimum_time with slewing: the slewing angle that turns the map's plane onto the load at
+  /// each path point (the load sways across the plane, so it differs from the drive's), rad.
+  std::vector<double> path_turns;
   std::vector<ControlPoint> controls;      // per path point
   TableProfile luffing_spline, hoist_spline;
   /// The map's plane and how it turns (a plane that does not turn without a slewing target).
