@@ -31,7 +31,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <string>
 #include <vector>
 
 #include "cranesim/planning/slewing_plane.hpp"

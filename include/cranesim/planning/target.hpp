@@ -84,8 +84,8 @@ struct TargetSpec {
   SourceLocation where_start, where_target, where_trajectory;
   PlanMethod method = PlanMethod::QuasiStatic;
   std::optional<SlewingSpec> slewing;
-  /// Flatness stretches its path's duration until every control spline keeps these; the other
-  /// methods report whether theirs do.
+  /// Flatness stretches its path's duration until every control spline keeps these, minimum_time
+  /// plans within them; the other methods report whether theirs do.
   ControlLimits drive_limits;
   MinimumTimeSpec minimum_time;
   int resample_points = 20;  // 6.4: knots taken at equal times from the discrete controls
