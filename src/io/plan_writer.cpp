@@ -136,10 +136,18 @@ void writePath(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& 
     }
     file.attribute("/path", "sway_period", plan.sway_period);
   }
-  if (target.method == PlanMethod::Flatness) {
+  if (startsFromFlatness(target.method)) {
     file.attribute("/path", "ramp_time", plan.load_path.ramp());
     file.attribute("/path", "pendulum_length_start", plan.pendulum_length_start);
     file.attribute("/path", "pendulum_length_end", plan.pendulum_length_end);
+  }
+  if (plan.lift) {
+    file.attribute("/path", "pendulum_across_start", plan.pendulum_across_start);
+    file.attribute("/path", "pendulum_across_end", plan.pendulum_across_end);
+    file.attribute("/path", "flatness_duration", plan.load_path.duration());
+    file.attribute("/path", "intervals", static_cast<long>(plan.lift->t.size()) - 1);
+    file.attribute("/path", "nlp_iterations", static_cast<long>(plan.lift->iterations));
+    file.attribute("/path", "nlp_time_s", plan.lift->solve_time_s);
   }
   if (plan.stretched_from > 0.0) file.attribute("/path", "stretched_from", plan.stretched_from);
   if (target.slewing) {

@@ -115,6 +115,33 @@ ControlLimits readDriveLimits(const YamlField& f, bool slewing) {
   return limits;
 }
 
+MinimumTimeSpec readMinimumTime(const YamlField& f) {
+  f.allowKeys({"intervals", "rise_time", "tolerance"});
+  MinimumTimeSpec m;
+  m.where = f.where();
+  if (const auto n = f.find("intervals")) {
+    m.intervals = n->integer();
+    if (m.intervals < 10 || m.intervals > 2000) n->fail(fmt::format("{} intervals: between 10 and 2000", m.intervals));
+  }
+  m.rise_time = f.positive("rise_time", m.rise_time);
+  m.tolerance = f.positive("tolerance", m.tolerance);
+  return m;
+}
+
+/// A minimum-time lift needs every drive it moves bounded in speed: else no time is the least.
+void checkMinimumTimeLimits(const YamlField& f, const TargetSpec& t) {
+  std::string missing;
+  for (const auto& [name, drive] : {std::pair{"luffing", &t.drive_limits.luffing}, std::pair{"hoist", &t.drive_limits.hoist},
+                                    std::pair{"slewing", &t.drive_limits.slewing}})
+    if (!drive->speed && (std::string(name) != "slewing" || t.slewing))
+      missing += fmt::format("{}{}: {{speed: …}}", missing.empty() ? "" : ", ", name);
+  if (missing.empty()) return;
+  const std::string what =
+      fmt::format("method minimum_time needs a speed limit for every drive it moves; missing: drive_limits: {{{}}}", missing);
+  if (const auto l = f.find("drive_limits")) l->fail(what);
+  f.at("method").fail(what);
+}
+
 StaticMapSpec readMap(const YamlField& f) {
   f.allowKeys({"boom_angle", "hoist_change", "hoist_length", "tolerance", "max_iterations", "threads"});
   StaticMapSpec m;
@@ -309,8 +336,8 @@ TargetSpec readTarget(const std::string& path) {
   const YamlField f(root, "");
   // An empty document has no mark of its own: the defect is the file from its first line on.
   if (!f.isMap()) throw SceneError({"<document>", 1, 1}, "a target file is a mapping (scene, crane, map, fit, trajectory, …)");
-  f.allowKeys({"name", "scene", "method", "crane", "slewing", "drive_limits", "map", "fit", "trajectory", "control_spline",
-               "verification", "feedback", "obstacles", "clearance_margin", "load_radius"});
+  f.allowKeys({"name", "scene", "method", "minimum_time", "crane", "slewing", "drive_limits", "map", "fit", "trajectory",
+               "control_spline", "verification", "feedback", "obstacles", "clearance_margin", "load_radius"});
 
   TargetSpec t;
   t.path = path;
@@ -323,11 +350,16 @@ TargetSpec readTarget(const std::string& path) {
     scene.fail(fmt::format("in the scene '{}': {}", scene_path, e.what()));
   }
   if (const auto method = f.find("method")) {
-    const std::string m = method->choice({"quasi_static", "zv", "zvd", "flatness"});
-    t.method = m == "zv"         ? PlanMethod::ZV
-               : m == "zvd"      ? PlanMethod::ZVD
-               : m == "flatness" ? PlanMethod::Flatness
-                                 : PlanMethod::QuasiStatic;
+    const std::string m = method->choice({"quasi_static", "zv", "zvd", "flatness", "minimum_time"});
+    t.method = m == "zv"             ? PlanMethod::ZV
+               : m == "zvd"          ? PlanMethod::ZVD
+               : m == "flatness"     ? PlanMethod::Flatness
+               : m == "minimum_time" ? PlanMethod::MinimumTime
+                                     : PlanMethod::QuasiStatic;
+  }
+  if (const auto m = f.find("minimum_time")) {
+    if (t.method != PlanMethod::MinimumTime) m->fail("minimum_time settings need method: minimum_time");
+    t.minimum_time = readMinimumTime(*m);
   }
   const YamlField crane = f.at("crane");
   t.controls = readControls(crane);
@@ -335,12 +367,13 @@ TargetSpec readTarget(const std::string& path) {
   checkControls(t.scene, t.controls, t.where_controls);
   if (const auto s = f.find("slewing")) t.slewing = readSlewing(*s, t.scene);
   if (const auto l = f.find("drive_limits")) t.drive_limits = readDriveLimits(*l, t.slewing.has_value());
+  if (t.method == PlanMethod::MinimumTime) checkMinimumTimeLimits(f, t);
   t.map = readMap(f.at("map"));
   if (const auto fit = f.find("fit")) t.fit = readFit(*fit);
   const YamlField trajectory = f.at("trajectory");
   t.where_trajectory = trajectory.where();
   readTrajectory(trajectory, t);
-  if (t.method == PlanMethod::Flatness) {
+  if (startsFromFlatness(t.method)) {
     try {
       restToRestPath(t.trajectory);
     } catch (const std::invalid_argument& e) {

@@ -12,6 +12,7 @@
 #include "cranesim/model/compile.hpp"
 #include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/planning/flat_pendulum.hpp"
+#include "cranesim/planning/minimum_time_plan.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/modes.hpp"
 
@@ -189,14 +190,23 @@ ControlPoint pathControls(const TargetSpec& target, const QuasiStaticPlan& plan,
   return mapControls(target, plan, target.origin(0) + s(0), target.origin(1) + s(1));
 }
 
-/// The slewing angle φ relative to the scene's and its rates (φ, φ̇, φ̈) at path time t: along the
-/// rest-to-rest path's progress (flatness), or a rest-to-rest turn over the QR horizon convolved
+/// The slewing angle φ of the path's point relative to the scene's and its rates (φ, φ̇, φ̈) at
+/// path time t: the plane's angle onto the lift's load, linear between its nodes (minimum_time), along the rest-to-rest path's progress
+/// (flatness, and minimum_time's start), or a rest-to-rest turn over the QR horizon convolved
 /// with the shaper's impulses (quasi_static: one impulse); 0 without a slewing target.
 Eigen::Vector3d slewingAt(const TargetSpec& target, const QuasiStaticPlan& plan, double t) {
   Eigen::Vector3d phi = Eigen::Vector3d::Zero();
   if (!target.slewing) return phi;
   const double turn = target.slewing->turn;
-  if (target.method == PlanMethod::Flatness) {
+  if (plan.lift) {
+    const std::vector<double>& ts = plan.path.t;
+    const double clamped = std::clamp(t, ts.front(), ts.back());
+    const std::size_t k = std::min<std::size_t>(std::upper_bound(ts.begin(), ts.end(), clamped) - ts.begin(), ts.size() - 1);
+    const double h = ts[k] - ts[k - 1], w = (clamped - ts[k - 1]) / h;
+    const double a = plan.path_turns[k - 1], b = plan.path_turns[k];
+    return Eigen::Vector3d((1.0 - w) * a + w * b, t > ts.front() && t < ts.back() ? (b - a) / h : 0.0, 0.0);
+  }
+  if (startsFromFlatness(target.method)) {
     for (int k = 0; k < 3; ++k) phi(k) = turn * plan.load_path.progress(t, k);
     return phi;
   }
@@ -274,6 +284,22 @@ double driveLimitFactor(const ControlLimits& limits, const QuasiStaticPlan& plan
   return factor;
 }
 
+/// The control splines through the controls at the path's points (6.4), resampled at `points`
+/// equal times, and what the splines ask of the drives.
+void setControlSplines(const TargetSpec& target, QuasiStaticPlan& plan, const std::vector<double>& luffing,
+                       const std::vector<double>& hoist, const std::vector<double>& slewing, int points) {
+  plan.luffing_spline = smoothControlTrajectory(plan.path.t, luffing, points, target.steady_points);
+  plan.hoist_spline = smoothControlTrajectory(plan.path.t, hoist, points, target.steady_points);
+  plan.luffing_peaks = ratePeaks(plan.luffing_spline);
+  plan.hoist_peaks = ratePeaks(plan.hoist_spline);
+  if (target.slewing) {
+    plan.slewing_spline = smoothControlTrajectory(plan.path.t, slewing, points, target.steady_points);
+    plan.slewing_peaks = ratePeaks(plan.slewing_spline);
+  }
+  plan.lead_time = plan.luffing_spline.t[target.steady_points] - plan.path.t.front();
+  plan.drive_limit_factor = driveLimitFactor(target.drive_limits, plan);
+}
+
 /// The control trajectory of the plan's path (6.4): the controls at every path point, their
 /// smoothed splines, and what the splines ask of the drives.
 void computeControls(const TargetSpec& target, QuasiStaticPlan& plan, const EffectivePendulum& pendulum) {
@@ -282,7 +308,7 @@ void computeControls(const TargetSpec& target, QuasiStaticPlan& plan, const Effe
   plan.slewing_angles.clear();
   for (std::size_t k = 0; k < plan.path.states.size(); ++k) {
     const double t = plan.path.t[k];
-    const auto [c, phi] = target.method == PlanMethod::Flatness
+    const auto [c, phi] = startsFromFlatness(target.method)
                               ? flatControls(target, plan, pendulum, t)
                               : std::pair{pathControls(target, plan, plan.path.states[k]), slewingAt(target, plan, t)(0)};
     plan.controls.push_back(c);
@@ -293,16 +319,37 @@ void computeControls(const TargetSpec& target, QuasiStaticPlan& plan, const Effe
       slewing.push_back(target.slewing->start + phi);
     }
   }
-  plan.luffing_spline = smoothControlTrajectory(plan.path.t, luffing, target.resample_points, target.steady_points);
-  plan.hoist_spline = smoothControlTrajectory(plan.path.t, hoist, target.resample_points, target.steady_points);
-  plan.luffing_peaks = ratePeaks(plan.luffing_spline);
-  plan.hoist_peaks = ratePeaks(plan.hoist_spline);
-  if (target.slewing) {
-    plan.slewing_spline = smoothControlTrajectory(plan.path.t, slewing, target.resample_points, target.steady_points);
-    plan.slewing_peaks = ratePeaks(plan.slewing_spline);
+  setControlSplines(target, plan, luffing, hoist, slewing, target.resample_points);
+}
+
+/// The controls of the minimum-time lift at its nodes, and its load as the path (relative to
+/// the origin; speeds by central differences).
+void liftControls(const TargetSpec& target, QuasiStaticPlan& plan) {
+  const LiftTrajectory& lift = *plan.lift;
+  std::vector<double> luffing, hoist, slewing;
+  plan.path = QrTrajectory{};
+  plan.controls.clear();
+  plan.slewing_angles.clear();
+  plan.path_turns.clear();
+  for (std::size_t k = 0; k < lift.t.size(); ++k) {
+    const LiftNode& node = lift.nodes[k];
+    const DriveState& drives = lift.drives[k];
+    plan.controls.push_back({node.q(0), node.q(1), drives.value(kLuffingDrive), drives.value(kHoistDrive)});
+    luffing.push_back(drives.value(kLuffingDrive));
+    hoist.push_back(drives.value(kHoistDrive));
+    if (target.slewing) {
+      plan.slewing_angles.push_back(node.q(2));
+      slewing.push_back(drives.value(kSlewingDrive));
+    }
+    const PlanePoint at = plan.plane.locate(lift.load[k], node.q(2));
+    plan.path.t.push_back(lift.t[k]);
+    plan.path_turns.push_back(at.phi);
+    plan.path.states.push_back(EndState(at.x - target.origin.x(), at.z - target.origin.y(), 0.0, 0.0));
   }
-  plan.lead_time = plan.luffing_spline.t[target.steady_points] - plan.path.t.front();
-  plan.drive_limit_factor = driveLimitFactor(target.drive_limits, plan);
+  for (std::size_t k = 1; k + 1 < lift.t.size(); ++k)
+    plan.path.states[k].tail<2>() = (plan.path.states[k + 1].head<2>() - plan.path.states[k - 1].head<2>()) / (lift.t[k + 1] - lift.t[k - 1]);
+  // The nodes are equally spaced: the splines interpolate them.
+  setControlSplines(target, plan, luffing, hoist, slewing, static_cast<int>(lift.t.size()));
 }
 
 }  // namespace
@@ -387,7 +434,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
   // 5. The path: the QR trajectory, it input-shaped for the sway period, or the load's
   // rest-to-rest path.
   plan.path = plan.trajectory;
-  if (target.method == PlanMethod::Flatness) {
+  if (startsFromFlatness(target.method)) {
     const double gravity = -target.scene.gravity.z();
     for (auto [period, length] : {std::pair{plan.sway_period_start, &pendulum.length_start},
                                   std::pair{plan.sway_period_end, &pendulum.length_end},
@@ -396,6 +443,8 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
       *length = gravity * std::pow(period / (2.0 * std::numbers::pi), 2);
     plan.pendulum_length_start = pendulum.length_start;
     plan.pendulum_length_end = pendulum.length_end;
+    plan.pendulum_across_start = pendulum.across_start;
+    plan.pendulum_across_end = pendulum.across_end;
     plan.load_path = restToRestPath(problem, problem.steps * problem.sample_time);
     plan.path = sampleTrajectory(plan.load_path, problem.sample_time);
     say(fmt::format("flatness: rest-to-rest path over {:.4g} s with {:.4g} s ramps; the load's pendulum {:.4g} → {:.4g} m "
@@ -417,7 +466,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
   // the duration grows by the limits' factor until they hold, and is bisected back to 0.1 %.
   t0 = Clock::now();
   computeControls(target, plan, pendulum);
-  if (target.method == PlanMethod::Flatness && plan.drive_limit_factor > 1.0) {
+  if (startsFromFlatness(target.method) && plan.drive_limit_factor > 1.0) {
     const auto flatPath = [&](double duration) {
       plan.load_path = restToRestPath(problem, duration);
       plan.path = sampleTrajectory(plan.load_path, problem.sample_time);
@@ -435,6 +484,17 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
     plan.stretched_from = horizon;
     say(fmt::format("flatness: the path stretched from {:.4g} s to {:.4g} s to keep the drive limits", horizon, high));
   }
+  plan.controls_s = secondsSince(t0);
+
+  // 7. The minimum-time lift, started from the flatness plan.
+  if (target.method == PlanMethod::MinimumTime) {
+    const LiftProblem problem = liftProblem(target, plan);
+    plan.lift = solveMinimumTimeLift(problem, flatnessGuess(target, plan, problem));
+    const double flat = plan.load_path.duration();
+    liftControls(target, plan);
+    say(fmt::format("minimum time: {:.4g} s instead of the flatness path's {:.4g} s ({} intervals, {} Ipopt iterations in {:.3g} s)",
+                    plan.lift->final_time, flat, target.minimum_time.intervals, plan.lift->iterations, plan.lift->solve_time_s));
+  }
   if (target.drive_limits.any())
     say(fmt::format("drive limits: {} (largest peak / limit, as duration factor: {:.3g})",
                     plan.drive_limit_factor <= 1.0 ? "kept" : "EXCEEDED by the " + methodName(target.method) + " path",
@@ -449,7 +509,6 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
                     target.slewing->turn * deg, plan.slewing_peaks.speed * deg, plan.slewing_peaks.acceleration * deg,
                     plan.slewing_peaks.jerk * deg));
   }
-  plan.controls_s = secondsSince(t0);
   return plan;
 }
 

@@ -10,6 +10,7 @@
 #include "cranesim/planning/clearance.hpp"
 #include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/planning/input_shaping.hpp"
+#include "cranesim/planning/minimum_time_lift.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
 #include "cranesim/planning/slewing_plane.hpp"
 #include "cranesim/planning/target.hpp"
@@ -79,6 +80,14 @@ struct QuasiStaticPlan {
   /// Flatness only: the simple pendulums of those periods, g (T / 2π)², m; between them the
   /// pendulum's length is interpolated linearly in the hoist rope's length.
   double pendulum_length_start = 0.0, pendulum_length_end = 0.0;
+  /// The same across the plane (flatness and minimum_time).
+  double pendulum_across_start = 0.0, pendulum_across_end = 0.0;
+  /// minimum_time only: the lift the controls follow (planning/minimum_time_lift.hpp), started
+  /// from the flatness path of `load_path`'s duration.
+  std::optional<LiftTrajectory> lift;
+  /// minimum_time with slewing: the slewing angle that turns the map's plane onto the load at
+  /// each path point (the load sways across the plane, so it differs from the drive's), rad.
+  std::vector<double> path_turns;
   std::vector<ControlPoint> controls;      // per path point
   TableProfile luffing_spline, hoist_spline;
   /// The map's plane and how it turns (a plane that does not turn without a slewing target).

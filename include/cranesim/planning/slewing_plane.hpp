@@ -31,6 +31,9 @@ class SlewingPlane {
   SlewingPlane(const Vec3& axis_point, double plane_y, double side);
 
   bool turns() const { return turns_; }
+  /// A point of the slewing axis, and the y of the plane's points at φ = 0.
+  const Vec3& axisPoint() const { return axis_point_; }
+  double planeY() const { return plane_y_; }
 
   /// The world point of map point (x, z) with the plane turned by φ.
   Vec3 place(double x, double z, double phi) const;

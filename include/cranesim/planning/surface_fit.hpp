@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "cranesim/math/autodiff.hpp"
+
 namespace cranesim {
 
 /// Values on a regular grid: values(i, j) at (u[i], v[j]); u, v strictly increasing.
@@ -43,6 +45,9 @@ class FittedSurface {
   double operator()(double u, double v) const;
   /// (∂s/∂u, ∂s/∂v).
   Eigen::Vector2d gradient(double u, double v) const;
+  /// s(u, v) in any scalar with a value (double, or math/autodiff.hpp's Dual, nested for higher
+  /// derivatives); the piece is chosen by the values.
+  template <class S> S evaluate(const S& u, const S& v) const;
 
   /// Largest and root-mean-square |s(u_i, v_j) − values(i, j)| over the grid.
   double maxResidual() const { return max_residual_; }
@@ -68,6 +73,20 @@ class FittedSurface {
   std::vector<double> coefficients_;
   double max_residual_ = 0.0, rms_residual_ = 0.0;
 };
+
+template <class S> S FittedSurface::evaluate(const S& u, const S& v) const {
+  const std::size_t k_u = u_axis_.locate(valueOf(u)).first, k_v = v_axis_.locate(valueOf(v)).first;
+  const S s = (u - u_axis_.origin[k_u]) / u_axis_.scale[k_u], t = (v - v_axis_.origin[k_v]) / v_axis_.scale[k_v];
+  const double* c = piece(k_u, k_v);
+  const int terms_v = v_axis_.degree + 1;
+  S value(0.0);
+  for (int a = u_axis_.degree; a >= 0; --a) {
+    S p(0.0);
+    for (int b = v_axis_.degree; b >= 0; --b) p = p * t + c[a * terms_v + b];
+    value = value * s + p;
+  }
+  return value;
+}
 
 /// An end point the fitted surfaces do not reach inside the grid's rectangle: where the
 /// inversion ended (the rectangle's point whose end point came nearest) and how far it missed.

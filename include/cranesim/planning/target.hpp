@@ -17,8 +17,13 @@ namespace cranesim {
 
 /// How the end-point path is planned: the thesis' quasi-static QR trajectory (6.3), that
 /// trajectory input-shaped for the load's sway period (planning/input_shaping.hpp), or a
-/// rest-to-rest path of the load carried by the flat map of its pendulum (docs/planning.md).
-enum class PlanMethod { QuasiStatic, ZV, ZVD, Flatness };
+/// rest-to-rest path of the load carried by the flat map of its pendulum, or the minimum-time
+/// lift of that pendulum within the drive limits, started from the flatness plan
+/// (docs/planning.md).
+enum class PlanMethod { QuasiStatic, ZV, ZVD, Flatness, MinimumTime };
+
+/// Whether the method starts from the flatness path (the minimum-time lift is warm-started from it).
+inline bool startsFromFlatness(PlanMethod method) { return method == PlanMethod::Flatness || method == PlanMethod::MinimumTime; }
 
 /// The method's name in a target file.
 inline std::string methodName(PlanMethod method) {
@@ -26,6 +31,7 @@ inline std::string methodName(PlanMethod method) {
     case PlanMethod::ZV: return "zv";
     case PlanMethod::ZVD: return "zvd";
     case PlanMethod::Flatness: return "flatness";
+    case PlanMethod::MinimumTime: return "minimum_time";
     case PlanMethod::QuasiStatic: break;
   }
   return "quasi_static";
@@ -54,6 +60,16 @@ struct ControlLimits {
   bool any() const { return luffing.any() || hoist.any() || slewing.any(); }
 };
 
+/// The minimum-time lift's collocation (planning/minimum_time_lift.hpp) and smoothness: a drive
+/// without an acceleration limit is held to speed / rise_time, a drive without a jerk limit to
+/// acceleration / rise_time.
+struct MinimumTimeSpec {
+  int intervals = 200;
+  double rise_time = 2.0;   // s
+  double tolerance = 1e-6;  // Ipopt's
+  SourceLocation where;
+};
+
 struct TargetSpec {
   std::string path, text;
   Scene scene;
@@ -68,9 +84,10 @@ struct TargetSpec {
   SourceLocation where_start, where_target, where_trajectory;
   PlanMethod method = PlanMethod::QuasiStatic;
   std::optional<SlewingSpec> slewing;
-  /// Flatness stretches its path's duration until every control spline keeps these; the other
-  /// methods report whether theirs do.
+  /// Flatness stretches its path's duration until every control spline keeps these, minimum_time
+  /// plans within them; the other methods report whether theirs do.
   ControlLimits drive_limits;
+  MinimumTimeSpec minimum_time;
   int resample_points = 20;  // 6.4: knots taken at equal times from the discrete controls
   int steady_points = 5;     // 6.4: steady-state knots added before and after
   double settle_time = 20.0;  // verification: simulated time after the motion, s

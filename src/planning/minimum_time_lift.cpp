@@ -1,0 +1,374 @@
+#include "cranesim/planning/minimum_time_lift.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-parameter"  // Ipopt 3.11 headers
+#include <IpIpoptApplication.hpp>
+#include <IpSolveStatistics.hpp>
+#include <IpTNLP.hpp>
+#pragma GCC diagnostic pop
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "cranesim/math/autodiff.hpp"
+#include "cranesim/planning/ipopt_application.hpp"
+#include "cranesim/planning/rest_to_rest_path.hpp"
+
+namespace cranesim {
+namespace {
+
+// A node's variables: q, q̇, q̈, q⃛ (3 each), α, β, α̇, β̇.
+constexpr int kRate = 3, kAcceleration = 6, kJerk = 9, kSwing = 12, kNodeSize = 16;
+// The states are the node's variables but the jerk; the pendulum and the drives depend on them only.
+constexpr int kStateSize = 13;
+
+/// The node variable of state c.
+constexpr int stateVariable(int c) { return c < kJerk ? c : c + 3; }
+/// The node variable that is state c's rate; −1 for α̇ and β̇, whose rates the pendulum gives.
+constexpr int rateVariable(int c) { return c < kJerk ? c + 3 : c < 11 ? c + 5 : -1; }
+
+/// Ipopt treats |bound| ≥ 1e19 as absent.
+double ipoptBound(double bound) { return std::clamp(bound, -1e20, 1e20); }
+
+template <class G> struct NodeEvaluation {
+  std::array<G, 3> load;
+  std::array<G, 2> swing_acceleration;
+  std::array<G, 3> drive, speed, acceleration;
+};
+
+/// x(t) as a truncated Taylor series in two nested dual numbers: x + ẋ ε₁ + ẋ ε₂ + ẍ ε₁ε₂, so
+/// that a function f(x(t)) carries ḟ in ε₁ and f̈ in ε₁ε₂.
+template <class G> Dual<Dual<G, 1>, 1> inMotion(const G& x, const G& rate, const G& acceleration) {
+  using Inner = Dual<G, 1>;
+  Inner value(x), slope(rate);
+  value.derivatives()(0) = rate;
+  slope.derivatives()(0) = acceleration;
+  Dual<Inner, 1> moving(value);
+  moving.derivatives()(0) = slope;
+  return moving;
+}
+template <class G> const G& valueIn(const Dual<Dual<G, 1>, 1>& x) { return x.value().value(); }
+template <class G> const G& rateIn(const Dual<Dual<G, 1>, 1>& x) { return x.value().derivatives()(0); }
+template <class G> const G& accelerationIn(const Dual<Dual<G, 1>, 1>& x) { return x.derivatives()(0).derivatives()(0); }
+
+/// The load, the pendulum's angular accelerations and the drives at a node whose states are s
+/// (in G: double for values, a dual number for their gradient).
+template <class G> NodeEvaluation<G> evaluateNode(const LiftKinematics& k, const std::array<G, kStateSize>& s) {
+  using std::cos, std::sin;
+  using T = Dual<Dual<G, 1>, 1>;
+  const T u = inMotion(s[0], s[3], s[6]), v = inMotion(s[1], s[4], s[7]), phi = inMotion(s[2], s[5], s[8]);
+  const T alpha = inMotion(s[9], s[11], G(0.0)), beta = inMotion(s[10], s[12], G(0.0));  // α̈, β̈ added below
+  const T hoist = k.hoist_length - v;
+  const T along = k.along(hoist), across = k.across(hoist);
+  // The resting point r = c + R_z(φ)((x, y_m) − c) and the load p = r + ℓ_a ẑ + R_z(φ) D n.
+  const Vec3& axis = k.plane.axisPoint();
+  const T lever_x = k.end_x.evaluate(u, v) - axis.x();
+  const double lever_y = k.plane.planeY() - axis.y();
+  const T sa = sin(alpha), ca = cos(alpha), sb = sin(beta), cb = cos(beta), sp = sin(phi), cp = cos(phi);
+  const T m_along = along * sa * cb, m_across = across * sb;
+  const std::array<T, 3> p = {axis.x() + cp * (lever_x + m_along) - sp * (lever_y + m_across),
+                              axis.y() + sp * (lever_x + m_along) + cp * (lever_y + m_across),
+                              k.end_z.evaluate(u, v) + along * (1.0 - ca * cb)};
+  NodeEvaluation<G> e;
+  for (int i = 0; i < 3; ++i) e.load[i] = valueIn(p[i]);
+
+  // (p̈ + g ẑ) in the plane's axes, with α̈ = β̈ = 0, against the directions the rope swings in.
+  const G c_phi = cos(s[2]), s_phi = sin(s[2]);
+  const G a_along = c_phi * accelerationIn(p[0]) + s_phi * accelerationIn(p[1]);
+  const G a_across = -s_phi * accelerationIn(p[0]) + c_phi * accelerationIn(p[1]);
+  const G a_up = accelerationIn(p[2]) + k.gravity;
+  const G s_a = sin(s[9]), c_a = cos(s[9]), s_b = sin(s[10]), c_b = cos(s[10]);
+  const G l_a = valueIn(along), l_c = valueIn(across);
+  // e_α = (cos α, 0, sin α), e_β = (−sin α sin β, cos β, cos α sin β); p̈ gains D ∂n/∂α α̈ + D ∂n/∂β β̈.
+  const std::array<G, 3> d_alpha = {l_a * c_b * c_a, G(0.0), l_a * c_b * s_a};
+  const std::array<G, 3> d_beta = {-l_a * s_a * s_b, l_c * c_b, l_a * c_a * s_b};
+  const G m11 = c_a * d_alpha[0] + s_a * d_alpha[2], m12 = c_a * d_beta[0] + s_a * d_beta[2];
+  const G m21 = -s_a * s_b * d_alpha[0] + c_b * d_alpha[1] + c_a * s_b * d_alpha[2];
+  const G m22 = -s_a * s_b * d_beta[0] + c_b * d_beta[1] + c_a * s_b * d_beta[2];
+  const G r1 = -(c_a * a_along + s_a * a_up), r2 = -(-s_a * s_b * a_along + c_b * a_across + c_a * s_b * a_up);
+  const G determinant = m11 * m22 - m12 * m21;
+  e.swing_acceleration = {(r1 * m22 - m12 * r2) / determinant, (m11 * r2 - m21 * r1) / determinant};
+
+  const std::array<T, 3> drives = {k.luffing.evaluate(u, v), hoist, k.slewing_start + phi};
+  for (int d = 0; d < 3; ++d) {
+    e.drive[d] = valueIn(drives[d]);
+    e.speed[d] = rateIn(drives[d]);
+    e.acceleration[d] = accelerationIn(drives[d]);
+  }
+  return e;
+}
+
+std::array<double, kStateSize> statesOf(const LiftNode& node) {
+  std::array<double, kStateSize> s{};
+  for (int i = 0; i < 3; ++i) s[i] = node.q(i), s[3 + i] = node.rate(i), s[6 + i] = node.acceleration(i);
+  for (int i = 0; i < 4; ++i) s[9 + i] = node.swing(i);
+  return s;
+}
+
+LiftNode nodeOf(const double* z) {
+  LiftNode node;
+  node.q = Eigen::Vector3d(z[0], z[1], z[2]);
+  node.rate = Eigen::Vector3d(z + kRate);
+  node.acceleration = Eigen::Vector3d(z + kAcceleration);
+  node.jerk = Eigen::Vector3d(z + kJerk);
+  node.swing = Eigen::Vector4d(z + kSwing);
+  return node;
+}
+
+void writeNode(const LiftNode& node, double* z) {
+  for (int i = 0; i < 3; ++i)
+    z[i] = node.q(i), z[kRate + i] = node.rate(i), z[kAcceleration + i] = node.acceleration(i), z[kJerk + i] = node.jerk(i);
+  for (int i = 0; i < 4; ++i) z[kSwing + i] = node.swing(i);
+}
+
+using Gradient = Dual<double, kStateSize>;
+
+/// The node's evaluation with its gradient in the node's states.
+NodeEvaluation<Gradient> evaluateWithGradient(const LiftKinematics& k, const double* z) {
+  std::array<Gradient, kStateSize> s;
+  for (int c = 0; c < kStateSize; ++c) s[c] = seeded<double, kStateSize>(z[stateVariable(c)], c);
+  return evaluateNode(k, s);
+}
+
+/// A drive's speed or acceleration limited at every node: one ranged constraint each.
+struct DriveRow {
+  int drive = 0;
+  bool acceleration = false;
+  double limit = 0.0;
+};
+
+class MinimumTimeLiftNlp final : public Ipopt::TNLP {
+ public:
+  MinimumTimeLiftNlp(const LiftProblem& problem, std::vector<double> start) : p_(problem), N_(problem.intervals), start_(std::move(start)) {
+    for (int d = 0; d < 3; ++d) {
+      if (std::isfinite(p_.drives[d].speed)) rows_.push_back({d, false, p_.drives[d].speed});
+      if (std::isfinite(p_.drives[d].acceleration)) rows_.push_back({d, true, p_.drives[d].acceleration});
+    }
+  }
+
+  std::vector<double> solution;
+
+  bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac_g, Ipopt::Index& nnz_h_lag,
+                    IndexStyleEnum& index_style) override {
+    n = finalTimeIndex() + 1;
+    m = kStateSize * N_ + static_cast<int>(rows_.size()) * (N_ + 1);
+    nnz_jac_g = kStateSize * N_ * (2 * kNodeSize + 1) + static_cast<int>(rows_.size()) * (N_ + 1) * kStateSize;
+    nnz_h_lag = 0;
+    index_style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Ipopt::Index n, Ipopt::Number* x_l, Ipopt::Number* x_u, Ipopt::Index m, Ipopt::Number* g_l,
+                       Ipopt::Number* g_u) override {
+    std::fill(x_l, x_l + n, -1e20);
+    std::fill(x_u, x_u + n, 1e20);
+    for (int k = 0; k <= N_; ++k) {
+      double* lower = x_l + kNodeSize * k;
+      double* upper = x_u + kNodeSize * k;
+      for (int i = 0; i < 3; ++i) {
+        lower[i] = p_.q_min(i), upper[i] = p_.q_max(i);
+        lower[kJerk + i] = ipoptBound(-p_.jerk_limit(i)), upper[kJerk + i] = ipoptBound(p_.jerk_limit(i));
+      }
+      for (int i : {kSwing, kSwing + 1}) lower[i] = -1.0, upper[i] = 1.0;  // rad: far beyond any sway of a lift
+      if (k == 0 || k == N_) {
+        const Eigen::Vector3d& q = k == 0 ? p_.start : p_.end;
+        for (int i = 0; i < 3; ++i) lower[i] = upper[i] = q(i);
+        for (int i = kRate; i < kJerk; ++i) lower[i] = upper[i] = 0.0;
+        for (int i = kSwing; i < kNodeSize; ++i) lower[i] = upper[i] = 0.0;
+      }
+    }
+    x_l[n - 1] = 1e-3;
+    std::fill(g_l, g_l + kStateSize * N_, 0.0);
+    std::fill(g_u, g_u + kStateSize * N_, 0.0);
+    for (int r = kStateSize * N_; r < m; ++r) {
+      const double limit = rows_[(r - kStateSize * N_) % rows_.size()].limit;
+      g_l[r] = -limit, g_u[r] = limit;
+    }
+    return true;
+  }
+
+  bool get_starting_point(Ipopt::Index n, bool, Ipopt::Number* z, bool, Ipopt::Number*, Ipopt::Number*, Ipopt::Index,
+                          bool, Ipopt::Number*) override {
+    std::copy(start_.begin(), start_.begin() + n, z);
+    return true;
+  }
+
+  bool eval_f(Ipopt::Index n, const Ipopt::Number* z, bool, Ipopt::Number& objective) override {
+    objective = z[n - 1];
+    return true;
+  }
+
+  bool eval_grad_f(Ipopt::Index n, const Ipopt::Number*, bool, Ipopt::Number* gradient) override {
+    std::fill(gradient, gradient + n, 0.0);
+    gradient[n - 1] = 1.0;
+    return true;
+  }
+
+  bool eval_g(Ipopt::Index, const Ipopt::Number* z, bool, Ipopt::Index, Ipopt::Number* g) override {
+    std::vector<NodeEvaluation<double>> nodes;
+    std::vector<std::array<double, kStateSize>> rates;
+    for (int k = 0; k <= N_; ++k) {
+      const double* node = z + kNodeSize * k;
+      nodes.push_back(evaluateNode(p_.crane, statesOf(nodeOf(node))));
+      std::array<double, kStateSize> f{};
+      for (int c = 0; c < kStateSize; ++c) f[c] = rateVariable(c) >= 0 ? node[rateVariable(c)] : nodes.back().swing_acceleration[c - 11];
+      rates.push_back(f);
+    }
+    const double h = z[finalTimeIndex()] / N_;
+    for (int k = 0; k < N_; ++k)
+      for (int c = 0; c < kStateSize; ++c) {
+        const int i = stateVariable(c);
+        g[kStateSize * k + c] = z[kNodeSize * (k + 1) + i] - z[kNodeSize * k + i] - 0.5 * h * (rates[k][c] + rates[k + 1][c]);
+      }
+    int r = kStateSize * N_;
+    for (int k = 0; k <= N_; ++k)
+      for (const DriveRow& row : rows_) g[r++] = row.acceleration ? nodes[k].acceleration[row.drive] : nodes[k].speed[row.drive];
+    return true;
+  }
+
+  bool eval_jac_g(Ipopt::Index, const Ipopt::Number* z, bool, Ipopt::Index, Ipopt::Index, Ipopt::Index* rows,
+                  Ipopt::Index* cols, Ipopt::Number* values) override {
+    int e = 0;
+    if (values == nullptr) {
+      for (int k = 0; k < N_; ++k)
+        for (int c = 0; c < kStateSize; ++c) {
+          for (int i = 0; i < 2 * kNodeSize; ++i) rows[e] = kStateSize * k + c, cols[e++] = kNodeSize * k + i;
+          rows[e] = kStateSize * k + c, cols[e++] = finalTimeIndex();
+        }
+      int r = kStateSize * N_;
+      for (int k = 0; k <= N_; ++k)
+        for (std::size_t d = 0; d < rows_.size(); ++d, ++r)
+          for (int c = 0; c < kStateSize; ++c) rows[e] = r, cols[e++] = kNodeSize * k + stateVariable(c);
+      return true;
+    }
+    // ∂f_c/∂(node variables) and f_c at every node.
+    std::vector<std::array<std::array<double, kNodeSize>, kStateSize>> rate_gradients(N_ + 1);
+    std::vector<std::array<double, kStateSize>> rates(N_ + 1);
+    std::vector<NodeEvaluation<Gradient>> nodes;
+    for (int k = 0; k <= N_; ++k) {
+      const double* node = z + kNodeSize * k;
+      nodes.push_back(evaluateWithGradient(p_.crane, node));
+      for (int c = 0; c < kStateSize; ++c) {
+        auto& gradient = rate_gradients[k][c];
+        gradient.fill(0.0);
+        if (rateVariable(c) >= 0) {
+          gradient[rateVariable(c)] = 1.0;
+          rates[k][c] = node[rateVariable(c)];
+          continue;
+        }
+        const Gradient& f = nodes.back().swing_acceleration[c - 11];
+        rates[k][c] = f.value();
+        for (int i = 0; i < kStateSize; ++i) gradient[stateVariable(i)] = f.derivatives()(i);
+      }
+    }
+    const double h = z[finalTimeIndex()] / N_;
+    for (int k = 0; k < N_; ++k)
+      for (int c = 0; c < kStateSize; ++c) {
+        for (int j : {k, k + 1})
+          for (int i = 0; i < kNodeSize; ++i)
+            values[e++] = (i == stateVariable(c) ? (j == k ? -1.0 : 1.0) : 0.0) - 0.5 * h * rate_gradients[j][c][i];
+        values[e++] = -0.5 / N_ * (rates[k][c] + rates[k + 1][c]);
+      }
+    for (int k = 0; k <= N_; ++k)
+      for (const DriveRow& row : rows_) {
+        const Gradient& value = row.acceleration ? nodes[k].acceleration[row.drive] : nodes[k].speed[row.drive];
+        for (int c = 0; c < kStateSize; ++c) values[e++] = value.derivatives()(c);
+      }
+    return true;
+  }
+
+  void finalize_solution(Ipopt::SolverReturn, Ipopt::Index n, const Ipopt::Number* z, const Ipopt::Number*,
+                         const Ipopt::Number*, Ipopt::Index, const Ipopt::Number*, const Ipopt::Number*, Ipopt::Number,
+                         const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+    solution.assign(z, z + n);
+  }
+
+ private:
+  int finalTimeIndex() const { return kNodeSize * (N_ + 1); }
+
+  const LiftProblem& p_;
+  const int N_;
+  const std::vector<double> start_;
+  std::vector<DriveRow> rows_;
+};
+
+/// The guess at N + 1 equally spaced nodes (linear interpolation between its own), then t_f.
+std::vector<double> startingPoint(const LiftGuess& guess, int N) {
+  std::vector<double> z(kNodeSize * (N + 1) + 1);
+  const int M = static_cast<int>(guess.nodes.size()) - 1;
+  for (int k = 0; k <= N; ++k) {
+    const double position = M * static_cast<double>(k) / N;
+    const int j = std::min(static_cast<int>(position), std::max(M - 1, 0));
+    const double w = M == 0 ? 0.0 : position - j;
+    std::array<double, kNodeSize> a{}, b{};
+    writeNode(guess.nodes[j], a.data());
+    writeNode(guess.nodes[std::min(j + 1, M)], b.data());
+    for (int i = 0; i < kNodeSize; ++i) z[kNodeSize * k + i] = (1.0 - w) * a[i] + w * b[i];
+  }
+  z.back() = guess.final_time;
+  return z;
+}
+
+}  // namespace
+
+PendulumState pendulumAt(const LiftKinematics& crane, const LiftNode& node) {
+  const NodeEvaluation<double> e = evaluateNode(crane, statesOf(node));
+  return {Vec3(e.load[0], e.load[1], e.load[2]), Eigen::Vector2d(e.swing_acceleration[0], e.swing_acceleration[1])};
+}
+
+DriveState drivesAt(const LiftKinematics& crane, const LiftNode& node) {
+  const NodeEvaluation<double> e = evaluateNode(crane, statesOf(node));
+  DriveState d;
+  for (int i = 0; i < 3; ++i) d.value(i) = e.drive[i], d.speed(i) = e.speed[i], d.acceleration(i) = e.acceleration[i];
+  return d;
+}
+
+LiftGuess restToRestGuess(const LiftProblem& problem, double duration) {
+  LiftGuess guess{duration, {}};
+  const Eigen::Vector3d travel = problem.end - problem.start;
+  const int N = problem.intervals;
+  for (int k = 0; k <= N; ++k) {
+    const double tau = static_cast<double>(k) / N;
+    LiftNode node;
+    node.q = problem.start + travel * restToRest(tau, 0);
+    node.rate = travel * restToRest(tau, 1) / duration;
+    node.acceleration = travel * restToRest(tau, 2) / std::pow(duration, 2);
+    node.jerk = travel * restToRest(tau, 3) / std::pow(duration, 3);
+    guess.nodes.push_back(node);
+  }
+  return guess;
+}
+
+LiftTrajectory solveMinimumTimeLift(const LiftProblem& problem, const LiftGuess& guess) {
+  if (problem.intervals < 2) throw std::invalid_argument("intervals must be ≥ 2");
+  if (guess.nodes.empty() || !(guess.final_time > 0.0)) throw std::invalid_argument("the guess needs nodes and a positive duration");
+  for (const DriveBounds& d : problem.drives)
+    if (!(d.speed > 0.0) || !(d.acceleration > 0.0)) throw std::invalid_argument("drive limits must be > 0");
+  if (!(problem.jerk_limit.array() > 0.0).all()) throw std::invalid_argument("jerk limits must be > 0");
+
+  const auto started = std::chrono::steady_clock::now();
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> ipopt =
+      ipoptApplication({problem.print_level, problem.tolerance, problem.max_iterations});
+  ipopt->Options()->SetStringValue("hessian_approximation", "limited-memory");
+  const Ipopt::SmartPtr<MinimumTimeLiftNlp> nlp = new MinimumTimeLiftNlp(problem, startingPoint(guess, problem.intervals));
+  const Ipopt::ApplicationReturnStatus status = ipopt->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(nlp)));
+  if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level)
+    throw std::runtime_error("Ipopt: minimum-time lift ended with " + ipoptStatusInWords(status));
+
+  LiftTrajectory trajectory;
+  trajectory.final_time = nlp->solution.back();
+  for (int k = 0; k <= problem.intervals; ++k) {
+    const LiftNode node = nodeOf(nlp->solution.data() + kNodeSize * k);
+    trajectory.t.push_back(trajectory.final_time * k / problem.intervals);
+    trajectory.nodes.push_back(node);
+    trajectory.load.push_back(pendulumAt(problem.crane, node).load);
+    trajectory.drives.push_back(drivesAt(problem.crane, node));
+  }
+  trajectory.iterations = ipopt->Statistics()->IterationCount();
+  trajectory.solve_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return trajectory;
+}
+
+}  // namespace cranesim

@@ -1,0 +1,218 @@
+// The minimum-time lift NLP (a spatial pendulum carried through a static map) against what is
+// known without it: with the slewing and the hoist held and a map that moves the suspension
+// along a line, it is the line NLP (planning/minimum_time_nlp.hpp) and reaches its optimum; on a
+// slewing, luffing and hoisting crane its load follows an independent integration of the
+// pendulum (Newton's law in Cartesian coordinates with the rope's tension) under its controls.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "cranesim/math/autodiff.hpp"
+#include "cranesim/planning/minimum_time_lift.hpp"
+#include "cranesim/planning/minimum_time_nlp.hpp"
+
+using namespace cranesim;
+
+namespace {
+
+constexpr double kG = 9.81;
+
+/// A surface fitted exactly (order 1 in u and v) to values f(u, v) = a + b u + c v.
+FittedSurface planeSurface(const std::vector<double>& u, const std::vector<double>& v, double a, double b, double c) {
+  GridData data{u, v, Eigen::MatrixXd(u.size(), v.size())};
+  for (std::size_t i = 0; i < u.size(); ++i)
+    for (std::size_t j = 0; j < v.size(); ++j) data.values(i, j) = a + b * u[i] + c * v[j];
+  return FittedSurface::fit(data, {SurfaceKind::Polynomial, 1, 1});
+}
+
+/// A pendulum of length L whose suspension the first coordinate moves along x (x = u, the
+/// "luffing" drive equal to u), the hoist and slewing held.
+LiftProblem linePendulum(double length, double distance, double speed, double acceleration) {
+  const std::vector<double> u = {-10.0, 0.0, 20.0, 50.0}, v = {-1.0, 0.0, 1.0};
+  LiftProblem problem;
+  problem.crane.end_x = planeSurface(u, v, 0.0, 1.0, 0.0);
+  problem.crane.end_z = planeSurface(u, v, 5.0, 0.0, 0.0);
+  problem.crane.luffing = planeSurface(u, v, 0.0, 1.0, 0.0);
+  problem.crane.hoist_length = 30.0;
+  for (double* l : {&problem.crane.along_start, &problem.crane.along_end, &problem.crane.across_start, &problem.crane.across_end})
+    *l = length;
+  problem.crane.gravity = kG;
+  problem.end = Eigen::Vector3d(distance, 0.0, 0.0);
+  problem.q_min = Eigen::Vector3d(-10.0, 0.0, 0.0);
+  problem.q_max = Eigen::Vector3d(50.0, 0.0, 0.0);
+  problem.drives[kLuffingDrive] = {speed, acceleration};
+  return problem;
+}
+
+/// A luffing crane slewing about the z axis: a 40 m boom at u degrees hinged at the axis, the
+/// load at rest (25 − v) m below the head, the luffing rope shortening as the boom rises; the
+/// map fitted as crane-opt fits it (order 5 in u, 2 in v).
+LiftProblem slewingCrane(double pendulum_length) {
+  GridData x, z, luffing;
+  for (GridData* d : {&x, &z, &luffing}) {
+    for (double u = 40.0; u <= 80.0; u += 2.0) d->u.push_back(u);
+    for (double v = 0.0; v <= 10.0; v += 1.0) d->v.push_back(v);
+    d->values.resize(d->u.size(), d->v.size());
+  }
+  for (std::size_t i = 0; i < x.u.size(); ++i)
+    for (std::size_t j = 0; j < x.v.size(); ++j) {
+      const double angle = x.u[i] * std::numbers::pi / 180.0;
+      x.values(i, j) = -40.0 * std::cos(angle);
+      z.values(i, j) = 40.0 * std::sin(angle) - (25.0 - x.v[j]);
+      luffing.values(i, j) = 2.0 * 30.0 * std::sin(0.5 * (std::numbers::pi / 2 - angle)) + 10.0;
+    }
+  const SurfaceSpec spec{SurfaceKind::Polynomial, 5, 2};
+  LiftProblem problem;
+  LiftKinematics& crane = problem.crane;
+  crane.end_x = FittedSurface::fit(x, spec);
+  crane.end_z = FittedSurface::fit(z, spec);
+  crane.luffing = FittedSurface::fit(luffing, spec);
+  crane.hoist_length = 60.0;
+  crane.plane = SlewingPlane(Vec3::Zero(), 0.0, -1.0);
+  for (double* l : {&crane.along_start, &crane.along_end, &crane.across_start, &crane.across_end}) *l = pendulum_length;
+  crane.gravity = kG;
+  problem.start = Eigen::Vector3d(70.0, 0.0, 0.0);
+  problem.end = Eigen::Vector3d(55.0, 6.0, 0.5);
+  problem.q_min = Eigen::Vector3d(40.0, 0.0, -1.0);
+  problem.q_max = Eigen::Vector3d(80.0, 10.0, 1.0);
+  problem.drives[kLuffingDrive] = {0.8, 0.2};
+  problem.drives[kHoistDrive] = {0.5, 0.2};
+  problem.drives[kSlewingDrive] = {0.08, 0.03};
+  problem.jerk_limit = Eigen::Vector3d(2.0, 0.5, 0.05);
+  problem.intervals = 100;
+  return problem;
+}
+
+/// The controls between nodes: the quintic Hermite interpolant of q, q̇, q̈ (C², as the chain's
+/// nodes describe it).
+Eigen::Vector3d controlsAt(const LiftTrajectory& plan, double t) {
+  const double h = plan.t[1];
+  const std::size_t k = std::min(static_cast<std::size_t>(std::max(t, 0.0) / h), plan.t.size() - 2);
+  const double s = std::clamp(t / h - static_cast<double>(k), 0.0, 1.0);
+  const double s2 = s * s, s3 = s2 * s, s4 = s3 * s, s5 = s4 * s;
+  const double h00 = 1 - 10 * s3 + 15 * s4 - 6 * s5, h01 = 10 * s3 - 15 * s4 + 6 * s5;
+  const double h10 = s - 6 * s3 + 8 * s4 - 3 * s5, h11 = -4 * s3 + 7 * s4 - 3 * s5;
+  const double h20 = 0.5 * (s2 - 3 * s3 + 3 * s4 - s5), h21 = 0.5 * (s3 - 2 * s4 + s5);
+  const LiftNode &a = plan.nodes[k], &b = plan.nodes[k + 1];
+  return h00 * a.q + h01 * b.q + h * (h10 * a.rate + h11 * b.rate) + h * h * (h20 * a.acceleration + h21 * b.acceleration);
+}
+
+/// The suspension point c = r + ℓ ẑ of controls q (isotropic pendulum of length ℓ).
+Vec3 suspension(const LiftKinematics& crane, const Eigen::Vector3d& q, double length) {
+  return crane.plane.place(crane.end_x(q(0), q(1)), crane.end_z(q(0), q(1)), q(2)) + length * Vec3::UnitZ();
+}
+
+/// The load on a rope of fixed length ℓ from c(t), integrated by RK4 in Cartesian coordinates:
+/// p̈ = −λ (p − c) − g ẑ with λ from d²/dt² ‖p − c‖² = 0. Returns the load at every plan node.
+std::vector<Vec3> integrateLoad(const LiftProblem& problem, const LiftTrajectory& plan, double length) {
+  const auto c = [&](double t) { return suspension(problem.crane, controlsAt(plan, t), length); };
+  const auto cdd = [&](double t) {
+    const double d = 1e-3;
+    return Vec3((c(t + d) - 2.0 * c(t) + c(t - d)) / (d * d));
+  };
+  using State = Eigen::Matrix<double, 6, 1>;
+  const auto rate = [&](double t, const State& y) {
+    const Vec3 d = y.head<3>() - c(t);
+    const Vec3 cd = (c(t + 1e-4) - c(t - 1e-4)) / 2e-4;
+    const Vec3 dd = y.tail<3>() - cd;
+    const Vec3 g(0.0, 0.0, kG);
+    const double lambda = (dd.squaredNorm() - d.dot(g + cdd(t))) / d.squaredNorm();
+    State f;
+    f << y.tail<3>(), -lambda * d - g;
+    return f;
+  };
+  State y;
+  y << plan.load.front(), Vec3::Zero();
+  std::vector<Vec3> loads = {y.head<3>()};
+  const int substeps = 40;
+  const double dt = plan.t[1] / substeps;
+  for (std::size_t k = 0; k + 1 < plan.t.size(); ++k) {
+    for (int i = 0; i < substeps; ++i) {
+      const double t = plan.t[k] + i * dt;
+      const State k1 = rate(t, y), k2 = rate(t + dt / 2, y + dt / 2 * k1), k3 = rate(t + dt / 2, y + dt / 2 * k2),
+                  k4 = rate(t + dt, y + dt * k3);
+      y += dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    loads.push_back(y.head<3>());
+  }
+  return loads;
+}
+
+}  // namespace
+
+TEST_CASE("minimum-time lift: slewing and hoist held, it is the line NLP", "[minimum_time]") {
+  const double length = 10.0, distance = 40.0, acceleration = 0.5, speed = 3.17;
+  const LiftProblem lift = linePendulum(length, distance, speed, acceleration);
+  const LiftTrajectory plan = solveMinimumTimeLift(lift, restToRestGuess(lift, 30.0));
+
+  MinimumTimeProblem line;
+  line.distance = distance;
+  line.rope_length = length;
+  line.gravity = kG;
+  line.speed_limit = speed;
+  line.acceleration_limit = acceleration;
+  line.jerk_limit = 1e6;  // only to start and end at a = 0, as the lift's drives do
+  line.intervals = lift.intervals;
+  const MinimumTimeTrajectory reference = solveMinimumTime(line);
+
+  CHECK(plan.final_time == Approx(reference.final_time).epsilon(1e-6));
+  double largest = 0.0;
+  for (int k = 0; k <= lift.intervals; ++k) {
+    largest = std::max(largest, std::abs(plan.nodes[k].q(0) - reference.position[k]));
+    largest = std::max(largest, std::abs(plan.nodes[k].swing(0) - reference.angle[k]));
+    CHECK(plan.nodes[k].swing(1) == Approx(0.0).margin(1e-9));  // nothing swings it across
+  }
+  CHECK(largest <= 1e-3);  // m and rad: the same optimum (measured 1.0e-4, both solved to 1e-8)
+}
+
+TEST_CASE("minimum-time lift: a slewing, luffing, hoisting crane against an integration of its pendulum", "[minimum_time]") {
+  const double length = 10.0;
+  const LiftProblem problem = slewingCrane(length);
+  const LiftTrajectory plan = solveMinimumTimeLift(problem, restToRestGuess(problem, 60.0));
+  const int N = problem.intervals;
+  INFO("t_f " << plan.final_time << " s in " << plan.iterations << " iterations, " << plan.solve_time_s << " s");
+
+  SECTION("rest to rest: the load hangs at its resting points at both ends") {
+    for (int k : {0, N}) {
+      const Eigen::Vector3d& q = k == 0 ? problem.start : problem.end;
+      const Vec3 resting = problem.crane.plane.place(problem.crane.end_x(q(0), q(1)), problem.crane.end_z(q(0), q(1)), q(2));
+      CHECK((plan.load[k] - resting).norm() <= 1e-6);
+      CHECK(plan.nodes[k].swing.norm() <= 1e-6);
+      CHECK(plan.drives[k].speed.norm() <= 1e-6);
+    }
+  }
+  SECTION("every drive keeps its limits at every node") {
+    for (const DriveState& d : plan.drives)
+      for (int i = 0; i < 3; ++i) {
+        CHECK(std::abs(d.speed(i)) <= problem.drives[i].speed * (1 + 1e-6));
+        CHECK(std::abs(d.acceleration(i)) <= problem.drives[i].acceleration * (1 + 1e-6));
+      }
+  }
+  SECTION("the load follows the Cartesian pendulum under the planned controls") {
+    const std::vector<Vec3> integrated = integrateLoad(problem, plan, length);
+    double largest = 0.0, excursion = 0.0;
+    for (int k = 0; k <= N; ++k) {
+      largest = std::max(largest, (integrated[k] - plan.load[k]).norm());
+      const Vec3 c = suspension(problem.crane, plan.nodes[k].q, length);
+      excursion = std::max(excursion, (plan.load[k] - (c - length * Vec3::UnitZ())).head<2>().norm());
+    }
+    INFO("largest sway from the resting point " << excursion << " m, collocation vs integration " << largest << " m");
+    CHECK(excursion >= 0.05);               // the motion does swing the load
+    CHECK(largest <= 0.02 * excursion);     // O(h²) of the trapezoidal rule: measured 1.1 %
+    const Vec3 arrival = suspension(problem.crane, problem.end, length) - length * Vec3::UnitZ();
+    CHECK((integrated.back() - arrival).norm() <= 0.02 * excursion);
+  }
+}
+
+TEST_CASE("minimum-time lift: bad sizes and limits are refused", "[minimum_time]") {
+  LiftProblem problem = linePendulum(10.0, 40.0, 3.0, 0.5);
+  const LiftGuess guess = restToRestGuess(problem, 30.0);
+  problem.intervals = 1;
+  CHECK_THROWS_WITH(solveMinimumTimeLift(problem, guess), Catch::Contains("intervals must be ≥ 2"));
+  problem.intervals = 100;
+  problem.drives[kHoistDrive].speed = 0.0;
+  CHECK_THROWS_WITH(solveMinimumTimeLift(problem, guess), Catch::Contains("drive limits must be > 0"));
+  CHECK_THROWS_WITH(solveMinimumTimeLift(problem, LiftGuess{}), Catch::Contains("the guess needs nodes"));
+}
