@@ -17,6 +17,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "cranesim/crane/envelope_monitor.hpp"
+#include "cranesim/crane/support_reading.hpp"
 #include "cranesim/crane/support_statics.hpp"
 #include "cranesim/model/contact_elements.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
@@ -202,14 +204,14 @@ namespace {
 /// A 30 t crawler carriage on two tracks 5 m long, 3 m apart, 0.8 m wide, each borne by
 /// `segments` stretches on soil of modulus 1e9 N/m³; its centroid `eccentricity` forward of the
 /// tracks' middle.
-std::string crawlerOnTracks(double eccentricity, int segments) {  // smoothing: a hundredth
+std::string crawlerOnTracks(double eccentricity, int segments, double allowable = 1.0e6) {  // smoothing: a hundredth
   return fmt::format(R"(
 name: crawler on two tracks
 gravity: [0, 0, -9.81]
 ground:
   supports:
     body: crawler
-    soil: {{subgrade_modulus: 1.0e9, allowable_pressure: 1.0e6}}
+    soil: {{subgrade_modulus: 1.0e9, allowable_pressure: {}}}
     smoothing: 0.01
     tracks:
       - {{name: left, from: crawler.left_rear, to: crawler.left_front, width: 0.8, segments: {}}}
@@ -226,7 +228,7 @@ bodies:
       - {{name: right_front, position: [2.5, -1.5, 0]}}
 solver: {{t_end: 1, rtol: 1.0e-8, atol: 1.0e-10}}
 )",
-                     segments, segments, eccentricity);
+                     allowable, segments, segments, eccentricity);
 }
 
 /// The length of a rigid track's triangular bed pressure under an eccentricity beyond L/6.
@@ -273,4 +275,38 @@ TEST_CASE("Two crawler tracks carry a rigid track's trapezoid, and its triangle 
       CHECK(error_by_segments[1] < length / (80.0 * triangleLength(eccentricity, length)));
     }
   }
+}
+
+TEST_CASE("The supports' reading: track peaks, the tipping line and margin, and the envelope's events", "[supports]") {
+  // The crawler with its centroid 1.25 m forward: the tracks' front ends carry the peak, the
+  // front edge x = 2.5 m is the tipping line, the margin W (2.5 m − x_c) with x_c where the
+  // resultant acts; an allowable pressure below the peak is reported as leaving the envelope.
+  const double weight = 30000 * 9.81, length = 5.0, stretch = length / 20;
+  const Standing s = standing(crawlerOnTracks(1.25, 20, 5.0e4));  // the peak: about 98 kPa
+  REQUIRE(s.eq.converged);
+  const EnvelopeSupports& supports = *s.model.envelope.supports;
+  const VecX zero = VecX::Zero(s.model.nv);
+  const ElementInput in{s.eq.q.data(), zero.data(), zero.data(), 0.0, s.model.gravity};
+  const SupportReading r = readSupports(s.model, supports, in);
+  const auto [w, resultant] = weightResultant(s);
+  CHECK(r.carried == Approx(weight).epsilon(1e-9));
+  CHECK((r.resultant - resultant).norm() <= 1e-9);
+  CHECK(r.tipping.from.x() == Approx(2.5).margin(1e-3));
+  CHECK(r.tipping.to.x() == Approx(2.5).margin(1e-3));
+  CHECK(r.tipping.margin == Approx(weight * (r.tipping.from.x() - resultant.x())).epsilon(1e-9));
+  for (const TrackReading& t : r.tracks) {
+    CHECK(t.force == Approx(weight / 2).epsilon(1e-6));
+    CHECK(t.peak_at == Approx(length - stretch / 2));
+    CHECK(t.peak_pressure == Approx(supportForces(s, supports.tracks[0]).back() / (0.8 * stretch)).epsilon(1e-6));
+    CHECK(std::abs(t.contact_length - triangleLength(1.25, length)) <= stretch);
+  }
+  EnvelopeMonitor monitor(s.model);
+  monitor.sample(0.0, s.eq.q.data(), zero.data());
+  const std::vector<EnvelopeEvent> events = monitor.events();
+  const auto over = std::find_if(events.begin(), events.end(), [](const EnvelopeEvent& e) { return e.what == "over the allowable pressure"; });
+  REQUIRE(over != events.end());
+  CHECK(over->leaves_envelope);
+  CHECK(over->peak == Approx(r.tracks[0].peak_pressure));
+  CHECK(std::count_if(events.begin(), events.end(), [](const EnvelopeEvent& e) { return e.what == "lifted off"; }) == 2);
+  CHECK(monitor.lastSampleOutside());
 }
