@@ -310,3 +310,28 @@ TEST_CASE("The supports' reading: track peaks, the tipping line and margin, and 
   CHECK(std::count_if(events.begin(), events.end(), [](const EnvelopeEvent& e) { return e.what == "lifted off"; }) == 2);
   CHECK(monitor.lastSampleOutside());
 }
+
+TEST_CASE("The thesis crane on crawlers stands on the trapezoid of its tracks", "[supports][crane]") {
+  // configs/crane_on_crawlers.yaml before its slew: the resultant lies within the tracks' kern,
+  // both tracks carry along their whole length, their pressure the rigid track's trapezoid under
+  // each track's force at the resultant's eccentricity (tracks from x = 6 m to −6 m: along −x).
+  const Scene scene = test::loadScene("crane_on_crawlers.yaml");
+  const Model model = compileModel(scene);
+  const StaticResult eq = solveEquilibrium(scene, model, 0.0);
+  REQUIRE(eq.converged);
+  const EnvelopeSupports& supports = *model.envelope.supports;
+  const VecX zero = VecX::Zero(model.nv);
+  const SupportReading r = readSupports(model, supports, {eq.q.data(), zero.data(), zero.data(), 0.0, model.gravity});
+  const double length = 12.0, width = 2.0, stretches = 24, eccentricity = -r.resultant.x();
+  CAPTURE(eccentricity, r.carried);
+  CHECK(eccentricity > 1.0);
+  CHECK(eccentricity < length / 6);
+  CHECK(r.tipping.margin == Approx(r.carried * (6.0 - eccentricity)).epsilon(1e-3));
+  for (const TrackReading& t : r.tracks) {
+    CHECK(t.contact_length == Approx(length));
+    CHECK(t.force == Approx(r.carried / 2).epsilon(1e-3));
+    CHECK(t.peak_at == Approx(length - length / stretches / 2));
+    const double end_stretch = length / 2 - length / stretches / 2;
+    CHECK(t.peak_pressure == Approx(rigidTrackPressureAt(t.force, eccentricity, length, width, end_stretch)).epsilon(3.0 / (stretches * stretches)));
+  }
+}
