@@ -38,6 +38,24 @@ struct BedPoint {
   double area;
 };
 
+/// The supports' outline (pads' centres, tracks' ends) spans a polygon in the ground plane: a
+/// carriage on supports in one line has no tipping line across it.
+void requireSupportPolygon(const EnvelopeSupports& supports, const Mat3& drawn, const Vec3& up, const SourceLocation& where) {
+  std::vector<Vec3> points;
+  for (const auto* list : {&supports.pads, &supports.tracks})
+    for (const EnvelopeSupport& s : *list)
+      for (const Vec3& p : s.outline) points.push_back(drawn * p - up * up.dot(drawn * p));
+  const auto farthest = [&](const auto& distance) {
+    return *std::max_element(points.begin(), points.end(), [&](const Vec3& a, const Vec3& b) { return distance(a) < distance(b); });
+  };
+  const Vec3 a = points.front();
+  const Vec3 b = farthest([&](const Vec3& p) { return (p - a).norm(); });
+  const Vec3 c = farthest([&](const Vec3& p) { return std::abs(up.dot((b - a).cross(p - a))); });
+  const double span = (b - a).norm();
+  if (std::abs(up.dot((b - a).cross(c - a))) <= 1e-3 * span * span)
+    throw SceneError(where, "the supports stand in one line seen from above: place the pads and tracks so that they span an area");
+}
+
 }  // namespace
 
 void compileSupports(Model& model, const Scene& scene) {
@@ -62,11 +80,17 @@ void compileSupports(Model& model, const Scene& scene) {
   for (const SupportTrackSpec& track : spec.tracks) {
     const Vec3 from = offset(track.from), to = offset(track.to);
     const double length = (to - from).norm(), stretch = length / track.segments;
+    if (length < 1e-3)
+      throw SceneError(track.where_to, fmt::format("track '{}' runs {:.3g} m from '{}' to '{}': its joints must lie apart along it", track.name,
+                                                   length, track.from, track.to));
     supports.tracks.push_back({track.name, track.width * stretch, length, {from, to}, {}});
     std::vector<BedPoint> points;
     for (int k = 0; k < track.segments; ++k) points.push_back({from + (to - from) * ((k + 0.5) / track.segments), track.width * stretch});
     beds.push_back(std::move(points));
   }
+
+  const Frame drawn = model.nodeFrame(model.q0.data(), body);
+  requireSupportPolygon(supports, drawn.R, up, spec.where);
 
   // The drawing stands on the bed settled by the mean settlement s = W / Σk of the weight, so that
   // every spring carries from the start; the springs are smoothed over a fraction of it.
@@ -77,7 +101,6 @@ void compileSupports(Model& model, const Scene& scene) {
   const double mass = modelMass(model, up), total_stiffness = k_s * bed_area;
   const double settlement = mass * model.gravity.norm() / total_stiffness;
   const double smoothing = std::max(settlement * spec.smoothing, 1e-9);
-  const Frame drawn = model.nodeFrame(model.q0.data(), body);
   std::size_t support = 0;
   for (auto* list : {&supports.pads, &supports.tracks})
     for (EnvelopeSupport& s : *list) {
