@@ -178,7 +178,7 @@ TEST_CASE("The contact elements' Jacobians match finite differences", "[contact]
     checkJacobian(e, q, v);
     checkEnergyGradient(e, q, {0});
   }
-  SECTION("a support point of a turned body, settled, sliding and displaced from its anchor") {
+  SECTION("a support of a turned body: one point settled, one lifted off, sliding, off their anchors") {
     SupportBed bed;
     bed.up = Vec3(0.1, -0.2, 1.0).normalized();
     bed.level = 0.3;
@@ -186,7 +186,10 @@ TEST_CASE("The contact elements' Jacobians match finite differences", "[contact]
     bed.law = {4.0e7, 3.0e5, 0.002};
     bed.shear_stiffness = 3.2e7;
     bed.shear_damping = 2.7e5;
-    const SupportPointElement e(bed, Vec3(0.5, -0.4, -0.3), 0, {0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4, 5});
+    SupportBed lifted = bed;
+    lifted.level = -5.0;
+    lifted.anchor = Vec3(0.4, 2.6, -0.1);
+    const SupportElement e({{Vec3(0.5, -0.4, -0.3), bed}, {Vec3(-0.6, 0.3, -0.3), lifted}}, 0, {0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4, 5});
     VecX q(6), v(6);
     q << 1.0, 2.0, 0.0, 0.2 * uniform(random), 0.2 * uniform(random), 0.2 * uniform(random);
     for (int k = 0; k < 6; ++k) v(k) = 0.2 * uniform(random);

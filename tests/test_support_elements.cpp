@@ -16,11 +16,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 
 #include "cranesim/crane/envelope_monitor.hpp"
 #include "cranesim/crane/support_reading.hpp"
 #include "cranesim/crane/support_statics.hpp"
-#include "cranesim/model/contact_elements.hpp"
+#include "cranesim/model/support_elements.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
 #include "scene_fixtures.hpp"
 
@@ -96,18 +97,19 @@ Standing standing(const std::string& yaml) {
   return {std::move(scene), std::move(model), std::move(eq)};
 }
 
-/// The force each support point of a support carries at the equilibrium.
+/// The force each point of a support carries at the equilibrium (their sum: the element's force).
 std::vector<double> supportForces(const Standing& s, const EnvelopeSupport& support) {
   const VecX zero = VecX::Zero(s.model.nv);
   const ElementInput in{s.eq.q.data(), zero.data(), zero.data(), 0.0, s.model.gravity};
-  std::vector<double> out;
-  for (const int e : support.elements) out.push_back(dynamic_cast<const ContactElement&>(*s.model.elements[e]).contactForce(in));
+  const auto& element = dynamic_cast<const SupportElement&>(*s.model.elements[support.elements[0]]);
+  const std::vector<double> out = element.pointForces(in);
+  CHECK(element.contactForce(in) == Approx(std::accumulate(out.begin(), out.end(), 0.0)).epsilon(1e-12));
   return out;
 }
 
 double closure(const Standing& s, const EnvelopeSupport& support) {
   const VecX zero = VecX::Zero(s.model.nv);
-  return dynamic_cast<const ContactElement&>(*s.model.elements[support.elements[0]]).closure({s.eq.q.data(), zero.data(), zero.data(), 0.0, s.model.gravity});
+  return dynamic_cast<const SupportElement&>(*s.model.elements[support.elements[0]]).closure({s.eq.q.data(), zero.data(), zero.data(), 0.0, s.model.gravity});
 }
 
 Vector2d horizontal(const Vec3& x) { return x.head<2>(); }

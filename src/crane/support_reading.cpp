@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "cranesim/model/contact_elements.hpp"
+#include "cranesim/model/support_elements.hpp"
 
 namespace cranesim {
 
@@ -19,12 +19,12 @@ SupportReading readSupports(const Model& model, const EnvelopeSupports& supports
     const Vec3 at = body.r + body.R * point;
     return Eigen::Vector2d(e1.dot(at), e2.dot(at));
   };
-  const auto forceOf = [&](int element) { return dynamic_cast<const ContactElement&>(*model.elements[element]).contactForce(in); };
+  const auto forcesOf = [&](const EnvelopeSupport& s) { return dynamic_cast<const SupportElement&>(*model.elements[s.elements[0]]).pointForces(in); };
   SupportReading reading;
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector2d> polygon;
   for (const EnvelopeSupport& pad : supports.pads) {
-    const double force = forceOf(pad.elements[0]);
+    const double force = forcesOf(pad)[0];
     reading.pads.push_back({force, force / pad.bearing_area});
     polygon.push_back(inPlane(pad.outline[0]));
     moment += force * polygon.back();
@@ -32,10 +32,11 @@ SupportReading readSupports(const Model& model, const EnvelopeSupports& supports
   }
   for (const EnvelopeSupport& track : supports.tracks) {
     TrackReading t;
-    const auto n = static_cast<double>(track.elements.size());
+    const std::vector<double> forces = forcesOf(track);
+    const auto n = static_cast<double>(forces.size());
     const Vec3 from = track.outline[0], to = track.outline[1];
-    for (std::size_t k = 0; k < track.elements.size(); ++k) {
-      const double force = forceOf(track.elements[k]), along = (k + 0.5) / n;
+    for (std::size_t k = 0; k < forces.size(); ++k) {
+      const double force = forces[k], along = (k + 0.5) / n;
       t.force += force;
       if (force > 0.0) t.contact_length += track.length / n;
       if (force / track.bearing_area > t.peak_pressure) t.peak_pressure = force / track.bearing_area, t.peak_at = along * track.length;

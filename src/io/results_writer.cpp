@@ -138,7 +138,6 @@ void writeSupports(Hdf5File& file, const EnvelopeSupports& supports, const Envel
     const std::string path = "/supports/tracks/" + track.name;
     file.ensureGroup(path);
     file.attribute(path, "length", track.length);
-    file.attribute(path, "stretches", static_cast<long>(track.elements.size()));
     write(path + "/force", [&](const SupportReading& r) { return r.tracks[t].force; });
     write(path + "/peak_pressure", [&](const SupportReading& r) { return r.tracks[t].peak_pressure; });
     write(path + "/peak_at", [&](const SupportReading& r) { return r.tracks[t].peak_at; });

@@ -104,7 +104,8 @@ void compileSupports(Model& model, const Scene& scene) {
   std::size_t support = 0;
   for (auto* list : {&supports.pads, &supports.tracks})
     for (EnvelopeSupport& s : *list) {
-      for (const BedPoint& p : beds[support]) {
+      std::vector<SupportPoint> points;
+      for (const BedPoint& p : beds[support++]) {
         const double k = k_s * p.area;
         const double damping = 2.0 * spec.damping_ratio * std::sqrt(k * mass * k / total_stiffness);
         SupportBed bed;
@@ -114,12 +115,12 @@ void compileSupports(Model& model, const Scene& scene) {
         bed.law = {k, damping, smoothing};
         bed.shear_stiffness = spec.shear_ratio * k;
         bed.shear_damping = std::sqrt(spec.shear_ratio) * damping;
-        std::vector<int> q, v;
-        for (int i = 0; i < 6; ++i) q.push_back(node->q + i), v.push_back(node->v + i);
-        s.elements.push_back(static_cast<int>(model.elements.size()));
-        model.elements.push_back(std::make_unique<SupportPointElement>(bed, p.point, body, std::move(q), std::move(v)));
+        points.push_back({p.point, bed});
       }
-      ++support;
+      std::vector<int> q, v;
+      for (int i = 0; i < 6; ++i) q.push_back(node->q + i), v.push_back(node->v + i);
+      s.elements.push_back(static_cast<int>(model.elements.size()));
+      model.elements.push_back(std::make_unique<SupportElement>(std::move(points), body, std::move(q), std::move(v)));
     }
   model.envelope.node_in_contact[static_cast<std::size_t>(body)] = true;
   model.envelope.supports = std::move(supports);
