@@ -101,7 +101,7 @@ Standing standing(const std::string& yaml) {
 std::vector<double> supportForces(const Standing& s, const EnvelopeSupport& support) {
   const VecX zero = VecX::Zero(s.model.nv);
   const ElementInput in{s.eq.q.data(), zero.data(), zero.data(), 0.0, s.model.gravity};
-  const auto& element = dynamic_cast<const SupportElement&>(*s.model.elements[support.elements[0]]);
+  const auto& element = dynamic_cast<const SupportElement&>(*s.model.elements[support.element]);
   const std::vector<double> out = element.pointForces(in);
   CHECK(element.contactForce(in) == Approx(std::accumulate(out.begin(), out.end(), 0.0)).epsilon(1e-12));
   return out;
@@ -109,7 +109,7 @@ std::vector<double> supportForces(const Standing& s, const EnvelopeSupport& supp
 
 double closure(const Standing& s, const EnvelopeSupport& support) {
   const VecX zero = VecX::Zero(s.model.nv);
-  return dynamic_cast<const SupportElement&>(*s.model.elements[support.elements[0]]).closure({s.eq.q.data(), zero.data(), zero.data(), 0.0, s.model.gravity});
+  return dynamic_cast<const SupportElement&>(*s.model.elements[support.element]).closure({s.eq.q.data(), zero.data(), zero.data(), 0.0, s.model.gravity});
 }
 
 Vector2d horizontal(const Vec3& x) { return x.head<2>(); }

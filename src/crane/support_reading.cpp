@@ -19,7 +19,7 @@ SupportReading readSupports(const Model& model, const EnvelopeSupports& supports
     const Vec3 at = body.r + body.R * point;
     return Eigen::Vector2d(e1.dot(at), e2.dot(at));
   };
-  const auto forcesOf = [&](const EnvelopeSupport& s) { return dynamic_cast<const SupportElement&>(*model.elements[s.elements[0]]).pointForces(in); };
+  const auto forcesOf = [&](const EnvelopeSupport& s) { return dynamic_cast<const SupportElement&>(*model.elements[s.element]).pointForces(in); };
   SupportReading reading;
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector2d> polygon;

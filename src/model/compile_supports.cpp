@@ -74,7 +74,7 @@ void compileSupports(Model& model, const Scene& scene) {
   EnvelopeSupports supports{spec.body, body, spec.soil.allowable_pressure, {}, {}};
   std::vector<std::vector<BedPoint>> beds;  // per support: pads, then tracks
   for (const SupportPadSpec& pad : spec.pads) {
-    supports.pads.push_back({pad.name, pad.area, 0.0, {offset(pad.joint)}, {}});
+    supports.pads.push_back({pad.name, pad.area, 0.0, {offset(pad.joint)}});
     beds.push_back({{offset(pad.joint), pad.area}});
   }
   for (const SupportTrackSpec& track : spec.tracks) {
@@ -83,7 +83,7 @@ void compileSupports(Model& model, const Scene& scene) {
     if (length < 1e-3)
       throw SceneError(track.where_to, fmt::format("track '{}' runs {:.3g} m from '{}' to '{}': its joints must lie apart along it", track.name,
                                                    length, track.from, track.to));
-    supports.tracks.push_back({track.name, track.width * stretch, length, {from, to}, {}});
+    supports.tracks.push_back({track.name, track.width * stretch, length, {from, to}});
     std::vector<BedPoint> points;
     for (int k = 0; k < track.segments; ++k) points.push_back({from + (to - from) * ((k + 0.5) / track.segments), track.width * stretch});
     beds.push_back(std::move(points));
@@ -119,7 +119,7 @@ void compileSupports(Model& model, const Scene& scene) {
       }
       std::vector<int> q, v;
       for (int i = 0; i < 6; ++i) q.push_back(node->q + i), v.push_back(node->v + i);
-      s.elements.push_back(static_cast<int>(model.elements.size()));
+      s.element = static_cast<int>(model.elements.size());
       model.elements.push_back(std::make_unique<SupportElement>(std::move(points), body, std::move(q), std::move(v)));
     }
   model.envelope.node_in_contact[static_cast<std::size_t>(body)] = true;

@@ -19,7 +19,7 @@ namespace cranesim {
 struct EnvelopeRope {
   std::string name;
   double breaking_force = 0.0;  // N
-  std::vector<int> elements;   // the one element that carries all its points    // its rope elements
+  std::vector<int> elements;    // its rope elements
 };
 
 /// The boom's angle: the line from the foot hinge's joint to the head joint above the
@@ -37,17 +37,17 @@ struct EnvelopeBoom {
 /// The parts that rest on the ground (a body, a member) and their contact elements.
 struct GroundContactPart {
   std::string name;
-  std::vector<int> elements;   // the one element that carries all its points
+  std::vector<int> elements;
 };
 
 /// One support of the crane's carriage (model/support_elements.hpp): a pad, or a track whose
 /// points are its stretches' middles in order from its `from` joint to its `to` joint.
 struct EnvelopeSupport {
   std::string name;
-  double bearing_area = 0.0;  // m² under each element: the pad's area, or a stretch's width × length
+  double bearing_area = 0.0;  // m² under each point: the pad's area, or a stretch's width × length
   double length = 0.0;        // m: a track's length; 0 for a pad
   std::vector<Vec3> outline;  // in the body's axes: the pad's centre, or the track's two ends
-  std::vector<int> elements;   // the one element that carries all its points
+  int element = -1;           // the element that carries all its points
 };
 
 /// The carriage's supports on the ground and the pressure the soil allows.
