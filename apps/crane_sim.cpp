@@ -20,6 +20,7 @@
 #include "cranesim/control/closed_loop.hpp"
 #include "cranesim/crane/crane_figures.hpp"
 #include "cranesim/crane/mode_labels.hpp"
+#include "cranesim/crane/support_reading.hpp"
 #include "cranesim/io/command_line.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_info.hpp"
@@ -117,6 +118,11 @@ void printEquilibriumReport(const Model& model, const StaticResult& eq) {
     const ConstraintLoad load = constraintLoad(c, eq.lambda.data());
     fmt::print("{:<24} {:>12.5g} {:>22.5g}\n", c.name, load.force, load.other);
   }
+  if (const auto& supports = model.envelope.supports) {
+    const VecX rest = VecX::Zero(model.nv);
+    const ElementInput in{eq.q.data(), rest.data(), rest.data(), eq.t, model.gravity};
+    fmt::print("{}", describeSupportReading(*supports, readSupports(model, *supports, in)));
+  }
 }
 
 /// How far the energy balance may drift, relative to the run's energy scale, in units of rtol
@@ -192,6 +198,8 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
                recorder.energyScale());
     fmt::print(stderr, "  results: {}{}\n", out, outcome.complete ? "" : " (incomplete)");
   }
+  if (const auto& supports = model.envelope.supports; supports && !quiet)
+    fmt::print(stderr, "{}", summarizeSupportReadings(*supports, recorder.envelope().time(), recorder.envelope().supports()));
   if (left_envelope || (!quiet && !envelope.empty())) {
     fmt::print(stderr, "{}\n", left_envelope ? "warning: the run left the crane's envelope:" : "envelope: within; contacts:");
     std::string lines = describeEnvelopeEvents(envelope);

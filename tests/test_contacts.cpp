@@ -1,7 +1,7 @@
-// Contacts and the crane's envelope: the penalty law against its energy, the ground's and the
-// backstop's Jacobians against finite differences, a body resting on the ground and a boom
-// pressed onto its backstop against hand statics, a bounce without losses, and the hard case of
-// a hoist rope paid out fast on the thesis crane with and without its backstop.
+// Contacts and the crane's envelope: the penalty law against its energy, the ground's, the
+// supports' and the backstop's Jacobians against finite differences, a body resting on the
+// ground and a boom pressed onto its backstop against hand statics, a bounce without losses, and
+// the hard case of a hoist rope paid out fast on the thesis crane with and without its backstop.
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -11,6 +11,7 @@
 #include <random>
 
 #include "cranesim/model/contact_elements.hpp"
+#include "cranesim/model/support_elements.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 #include "scene_fixtures.hpp"
 
@@ -174,6 +175,31 @@ TEST_CASE("The contact elements' Jacobians match finite differences", "[contact]
     VecX q(3), v(3);
     q << 0.5, -0.2, -0.205;
     v << 0.03, -0.02, -0.4;
+    checkJacobian(e, q, v);
+    checkEnergyGradient(e, q, {0});
+  }
+  SECTION("a support of a turned body: one point settled, one lifted off, sliding, off their anchors") {
+    SupportBed bed;
+    bed.up = Vec3(0.1, -0.2, 1.0).normalized();
+    bed.level = 0.3;
+    bed.anchor = Vec3(1.2, 1.9, 0.0);
+    bed.law = {4.0e7, 3.0e5, 0.002};
+    bed.shear_stiffness = 3.2e7;
+    bed.shear_damping = 2.7e5;
+    SupportBed lifted = bed;
+    lifted.level = -5.0;
+    lifted.anchor = Vec3(0.4, 2.6, -0.1);
+    const SupportElement e({{Vec3(0.5, -0.4, -0.3), bed}, {Vec3(-0.6, 0.3, -0.3), lifted}}, 0, {0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4, 5});
+    VecX q(6), v(6);
+    q << 1.0, 2.0, 0.0, 0.2 * uniform(random), 0.2 * uniform(random), 0.2 * uniform(random);
+    for (int k = 0; k < 6; ++k) v(k) = 0.2 * uniform(random);
+    const double settled = e.closure({q.data(), v.data(), nullptr, 0.0, Vec3::Zero()});
+    CAPTURE(q.transpose(), settled);
+    REQUIRE(settled > 0.002);
+    checkJacobian(e, q, v);
+    checkEnergyGradient(e, q, {0});
+    q(2) += (settled - 0.001) / bed.up.z();  // raised into the smoothing band
+    REQUIRE(e.closure({q.data(), v.data(), nullptr, 0.0, Vec3::Zero()}) == Approx(0.001));
     checkJacobian(e, q, v);
     checkEnergyGradient(e, q, {0});
   }

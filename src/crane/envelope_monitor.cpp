@@ -58,6 +58,13 @@ std::string withUnit(double value, const std::string& unit) {
   return fmt::format("{:.4g} {}", value, unit);
 }
 
+/// Whether a support presses the soil beyond its allowable pressure, or the margin is negative.
+bool supportsOutside(const SupportReading& r, double allowable) {
+  const auto over = [&](double pressure) { return pressure > allowable; };
+  return r.tipping.margin < 0.0 || std::any_of(r.pads.begin(), r.pads.end(), [&](const PadReading& p) { return over(p.pressure); }) ||
+         std::any_of(r.tracks.begin(), r.tracks.end(), [&](const TrackReading& t) { return over(t.peak_pressure); });
+}
+
 }  // namespace
 
 EnvelopeMonitor::EnvelopeMonitor(const Model& model) : model_(model) {
@@ -79,7 +86,7 @@ EnvelopeMonitor::EnvelopeMonitor(const Model& model) : model_(model) {
 }
 
 bool EnvelopeMonitor::empty() const {
-  return rope_tension_.empty() && contact_force_.empty() && lowest_.empty() && !model_.envelope.boom;
+  return rope_tension_.empty() && contact_force_.empty() && lowest_.empty() && !model_.envelope.boom && !model_.envelope.supports;
 }
 
 void EnvelopeMonitor::sample(double t, const double* q, const double* v) {
@@ -112,7 +119,9 @@ void EnvelopeMonitor::sample(double t, const double* q, const double* v) {
     for (const int n : part_nodes_[p]) lowest = std::min(lowest, e.up.dot(model_.nodeFrame(q, n).r));
     lowest_[p].values.push_back(lowest);
   }
+  if (const auto& supports = e.supports) supports_.push_back(readSupports(model_, *supports, in));
   last_outside_ = false;
+  if (e.supports) last_outside_ |= supportsOutside(supports_.back(), e.supports->allowable_pressure);
   for (std::size_t r = 0; r < e.ropes.size(); ++r) last_outside_ |= rope_tension_[r].values.back() > e.ropes[r].breaking_force;
   if (e.boom) last_outside_ |= boom_angle_.back() > e.boom->limit_deg;
   for (const EnvelopeSeries& s : lowest_) last_outside_ |= s.values.back() < *e.ground_height;
@@ -121,6 +130,7 @@ void EnvelopeMonitor::sample(double t, const double* q, const double* v) {
 void EnvelopeMonitor::keep(std::size_t kept) {
   if (kept >= time_.size()) return;
   time_.resize(kept);
+  if (!supports_.empty()) supports_.resize(kept);
   for (auto* series : {&boom_angle_, &backstop_moment_, &backstop_compression_})
     if (!series->empty()) series->resize(kept);
   for (auto* group : {&rope_tension_, &lowest_, &contact_force_, &contact_depth_})
@@ -162,6 +172,32 @@ std::vector<EnvelopeEvent> EnvelopeMonitor::events() const {
     if (out.size() > before)
       out.back().depth = *std::max_element(contact_depth_[p].values.begin(), contact_depth_[p].values.end()), out.back().depth_unit = "m";
   }
+  if (const auto& supports = e.supports) {
+    const double allowable = supports->allowable_pressure;
+    const auto smaller = [](double a, double b) { return a < b; };
+    const auto series = [&](const auto& reading) {
+      std::vector<double> values;
+      for (const SupportReading& r : supports_) values.push_back(reading(r));
+      return values;
+    };
+    for (std::size_t p = 0; p < supports->pads.size(); ++p) {
+      const std::vector<double> pressure = series([&](const SupportReading& r) { return r.pads[p].pressure; });
+      add(eventOf(time_, pressure, [&](double x) { return x > allowable; }, larger), "over the allowable pressure", supports->pads[p].name,
+          true, allowable, "Pa");
+      add(eventOf(time_, pressure, [](double x) { return x <= 0.0; }, smaller), "lifted off", supports->pads[p].name, false, 0.0, "Pa");
+    }
+    for (std::size_t t = 0; t < supports->tracks.size(); ++t) {
+      const EnvelopeSupport& track = supports->tracks[t];
+      add(eventOf(time_, series([&](const SupportReading& r) { return r.tracks[t].peak_pressure; }), [&](double x) { return x > allowable; },
+                  larger),
+          "over the allowable pressure", track.name, true, allowable, "Pa");
+      add(eventOf(time_, series([&](const SupportReading& r) { return r.tracks[t].contact_length; }),
+                  [&](double x) { return x < track.length * (1.0 - 1e-9); }, smaller),
+          "lifted off", track.name, false, track.length, "m");
+    }
+    add(eventOf(time_, series([](const SupportReading& r) { return r.tipping.margin; }), [](double x) { return x < 0.0; }, smaller),
+        "stability margin below zero", supports->body, true, 0.0, "N·m");
+  }
   std::stable_sort(out.begin(), out.end(), [](const EnvelopeEvent& a, const EnvelopeEvent& b) { return a.first_time < b.first_time; });
   return out;
 }
@@ -182,6 +218,17 @@ std::string describeEnvelopeEvents(const std::vector<EnvelopeEvent>& events) {
     else if (e.what == "below ground")
       out += fmt::format("below ground: {} reached {} at t = {:.4g} s, {:.3g} m below the ground's surface at {} (from t = {:.4g} s)\n",
                          e.part, withUnit(e.peak, e.unit), e.peak_time, e.limit - e.peak, withUnit(e.limit, e.unit), e.first_time);
+    else if (e.what == "over the allowable pressure")
+      out += fmt::format("over the allowable pressure: {} pressed the soil with {} at t = {:.4g} s, above the allowable {} (from t = {:.4g} s)\n",
+                         e.part, withUnit(e.peak, e.unit), e.peak_time, withUnit(e.limit, e.unit), e.first_time);
+    else if (e.what == "stability margin below zero")
+      out += fmt::format("stability margin below zero: {} at t = {:.4g} s, the supports' resultant outside their polygon (from t = {:.4g} s)\n",
+                         withUnit(e.peak, e.unit), e.peak_time, e.first_time);
+    else if (e.what == "lifted off" && e.unit == "m")
+      out += fmt::format("{} lifted off: from t = {:.4g} s, down to {} of its {} in contact at t = {:.4g} s\n", e.part, e.first_time,
+                         withUnit(e.peak, e.unit), withUnit(e.limit, e.unit), e.peak_time);
+    else if (e.what == "lifted off")
+      out += fmt::format("{} lifted off: from t = {:.4g} s\n", e.part, e.first_time);
     else
       out += fmt::format("{} {}: from t = {:.4g} s, at most {} at t = {:.4g} s, {} by at most {}\n", e.part, e.what, e.first_time,
                          withUnit(e.peak, e.unit), e.peak_time, e.what == "on its backstop" ? "compressed" : "pressed in",

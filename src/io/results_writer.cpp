@@ -113,6 +113,47 @@ void writeEnvelope(Hdf5File& file, const Model& model, const EnvelopeMonitor& en
   }
 }
 
+/// /supports: what each pad and track carries, and the carriage's stability, per sample
+/// (crane/support_reading.hpp).
+void writeSupports(Hdf5File& file, const EnvelopeSupports& supports, const EnvelopeMonitor& envelope) {
+  const std::vector<SupportReading>& readings = envelope.supports();
+  const hsize_t N = readings.size();
+  const auto write = [&](const std::string& path, const auto& value) {
+    std::vector<double> values;
+    for (const SupportReading& r : readings) values.push_back(value(r));
+    file.writeDoubles(path, {N}, values.data());
+  };
+  file.ensureGroup("/supports");
+  file.attribute("/supports", "body", supports.body);
+  file.attribute("/supports", "allowable_pressure", supports.allowable_pressure);
+  for (std::size_t p = 0; p < supports.pads.size(); ++p) {
+    const std::string path = "/supports/pads/" + supports.pads[p].name;
+    file.ensureGroup(path);
+    file.attribute(path, "area", supports.pads[p].bearing_area);
+    write(path + "/force", [&](const SupportReading& r) { return r.pads[p].force; });
+    write(path + "/pressure", [&](const SupportReading& r) { return r.pads[p].pressure; });
+  }
+  for (std::size_t t = 0; t < supports.tracks.size(); ++t) {
+    const EnvelopeSupport& track = supports.tracks[t];
+    const std::string path = "/supports/tracks/" + track.name;
+    file.ensureGroup(path);
+    file.attribute(path, "length", track.length);
+    write(path + "/force", [&](const SupportReading& r) { return r.tracks[t].force; });
+    write(path + "/peak_pressure", [&](const SupportReading& r) { return r.tracks[t].peak_pressure; });
+    write(path + "/peak_at", [&](const SupportReading& r) { return r.tracks[t].peak_at; });
+    write(path + "/contact_length", [&](const SupportReading& r) { return r.tracks[t].contact_length; });
+  }
+  std::vector<double> resultant, line;
+  for (const SupportReading& r : readings) {
+    resultant.insert(resultant.end(), {r.resultant.x(), r.resultant.y()});
+    line.insert(line.end(), {r.tipping.from.x(), r.tipping.from.y(), r.tipping.to.x(), r.tipping.to.y()});
+  }
+  file.writeDoubles("/supports/resultant", {N, 2}, resultant.data());
+  file.writeDoubles("/supports/tipping_line", {N, 4}, line.data());
+  write("/supports/carried", [](const SupportReading& r) { return r.carried; });
+  write("/supports/margin", [](const SupportReading& r) { return r.tipping.margin; });
+}
+
 }  // namespace
 
 ResultsRecorder::ResultsRecorder(const Assembler& assembler)
@@ -385,6 +426,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     }
     if (meta.crane) writeCraneFigures(file, *meta.crane);
     if (!envelope_.empty()) writeEnvelope(file, model, envelope_);
+    if (const auto& supports = model.envelope.supports) writeSupports(file, *supports, envelope_);
     file.writeDoubles("/residual/position", {N}, residual_position_.data());
     file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());
 

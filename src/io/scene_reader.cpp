@@ -21,6 +21,7 @@
 #include "sensor_reader.hpp"
 #include "solver_reader.hpp"
 #include "ground_reader.hpp"
+#include "support_reader.hpp"
 #include "wind_reader.hpp"
 #include "yaml_field.hpp"
 
@@ -631,7 +632,7 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
   s.name = f.has("name") ? f.at("name").text() : path;
   s.gravity = f.vec3("gravity", s.gravity);
   if (const auto g = f.find("ground")) {
-    g->allowKeys({"joints", "surface"});
+    g->allowKeys({"joints", "surface", "supports"});
     if (g->has("joints")) s.ground_joints = readJoints(g->at("joints"));
   }
   std::set<std::string> body_names;
@@ -667,6 +668,7 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
     for (const YamlField& l : ls->items()) s.loads.push_back(readLoad(l));
   if (const auto w = f.find("wind")) s.wind = readWind(*w, s);
   if (const auto g = f.find("ground"); g && g->has("surface")) s.ground_surface = readGroundSurface(g->at("surface"), s);
+  if (const auto g = f.find("ground"); g && g->has("supports")) s.ground_supports = readGroundSupports(g->at("supports"), s);
   const YamlField solver = f.at("solver");
   s.solver = readSolver(solver);
   s.where_solver = solver.where();

@@ -16,6 +16,7 @@
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/member_force_elements.hpp"
 #include "compile_contacts.hpp"
+#include "compile_supports.hpp"
 #include "compile_reeving.hpp"
 #include "compile_truss.hpp"
 #include "compile_wind.hpp"
@@ -272,6 +273,7 @@ Model compileModel(const Scene& scene) {
 
   if (scene.wind) compileWind(model, scene);
   compileContacts(model, scene);
+  if (scene.ground_supports) compileSupports(model, scene);
 
   for (const std::string& member : scene.output.section_forces) {
     const auto spec = std::find_if(scene.members.begin(), scene.members.end(), [&](const MemberSpec& m) { return m.name == member; });

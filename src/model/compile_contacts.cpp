@@ -43,19 +43,24 @@ void compileGroundContacts(Model& model, const Scene& scene, const GroundSurface
   }
 }
 
-/// The joint of the slewing constraint on the turning side.
-int superstructureJoint(const Model& model, const CraneSpec& crane) {
+/// The joint of the slewing constraint on the turning side: the other one is on the ground or on
+/// the carriage that stands on the supports.
+int superstructureJoint(const Model& model, const Scene& scene, const CraneSpec& crane) {
   const Constraint& slewing = model.constraints[static_cast<std::size_t>(model.findConstraint(crane.slewing))];
-  return model.joints[slewing.joint1].node >= 0 ? slewing.joint1 : slewing.joint2;
+  const auto standing = [&](int joint) {
+    const int node = model.joints[joint].node;
+    return node < 0 || (scene.ground_supports && model.nodes[node].member.empty() && model.nodes[node].name == scene.ground_supports->body);
+  };
+  return standing(slewing.joint1) ? slewing.joint2 : slewing.joint1;
 }
 
-EnvelopeBoom compileBoom(const Model& model, const CraneSpec& crane) {
+EnvelopeBoom compileBoom(const Model& model, const Scene& scene, const CraneSpec& crane) {
   EnvelopeBoom boom;
   const Constraint& foot = model.constraints[static_cast<std::size_t>(model.findConstraint(crane.boom_foot))];
   boom.foot_joint = foot.joint1;
   boom.head_joint = model.findJoint(crane.boom_head);
   if (boom.head_joint < 0) throw SceneError(crane.where_boom_head, unknownName("joint", crane.boom_head, namesOf(model.joints)));
-  boom.superstructure_joint = superstructureJoint(model, crane);
+  boom.superstructure_joint = superstructureJoint(model, scene, crane);
   boom.limit_deg = crane.boom_angle_limit_deg;
   const Vec3& up = model.envelope.up;
   const Vec3 line = model.jointFrame(model.q0.data(), boom.head_joint).r - model.jointFrame(model.q0.data(), boom.foot_joint).r;
@@ -130,7 +135,7 @@ void compileContacts(Model& model, const Scene& scene) {
     compileGroundContacts(model, scene, *scene.ground_surface);
   }
   if (scene.crane) {
-    envelope.boom = compileBoom(model, *scene.crane);
+    envelope.boom = compileBoom(model, scene, *scene.crane);
     if (scene.crane->backstop) compileBackstop(model, *scene.crane, *envelope.boom);
   }
 }

@@ -6,7 +6,9 @@
 // - a rope's largest tension (over its elements and tension points) against its breaking force;
 // - the boom angle against the limit of the crane's envelope, and the backstop's moment;
 // - the lowest point of every part (a body's origin, a member's nodes) that does not rest on
-//   the ground through a contact, against the ground's surface; the contacts' normal forces.
+//   the ground through a contact, against the ground's surface; the contacts' normal forces;
+// - the supports' pad and track pressures against the soil's allowable pressure, and the
+//   carriage's stability margin against 0 (crane/support_reading.hpp).
 //
 // Events say what left the envelope, when first, and how far at worst; touching the backstop
 // or the ground is an event too, but one within the envelope.
@@ -14,12 +16,15 @@
 #include <string>
 #include <vector>
 
+#include "cranesim/crane/support_reading.hpp"
 #include "cranesim/model/model.hpp"
 
 namespace cranesim {
 
 struct EnvelopeEvent {
-  std::string what;  // "rope overload", "boom past its angle limit", "below ground", "on its backstop", "on the ground"
+  /// "rope overload", "boom past its angle limit", "below ground", "on its backstop", "on the
+  /// ground", "over the allowable pressure", "stability margin below zero", "lifted off"
+  std::string what;
   std::string part;
   bool leaves_envelope = false;
   double first_time = 0.0;  // s
@@ -61,6 +66,7 @@ class EnvelopeMonitor {
   const std::vector<EnvelopeSeries>& lowestPoints() const { return lowest_; }         // m, along up
   const std::vector<EnvelopeSeries>& contactForces() const { return contact_force_; }  // N, each resting part's in all
   const std::vector<EnvelopeSeries>& contactDepths() const { return contact_depth_; }  // m, each resting part's deepest
+  const std::vector<SupportReading>& supports() const { return supports_; }             // with ground.supports
   bool empty() const;
 
  private:
@@ -68,6 +74,7 @@ class EnvelopeMonitor {
   std::vector<double> time_, boom_angle_, backstop_moment_, backstop_compression_;
   std::vector<EnvelopeSeries> rope_tension_, lowest_, contact_force_, contact_depth_;
   std::vector<std::vector<int>> part_nodes_;  // per entry of lowest_: its nodes without a contact
+  std::vector<SupportReading> supports_;
   bool last_outside_ = false;
 };
 

@@ -2,7 +2,8 @@
 // What a run checks to stay within the crane's physical envelope, compiled from the scene
 // (model/compile_contacts.cpp) and checked at every output sample (crane/envelope_monitor.hpp):
 // ropes against their breaking force, the boom against its angle limit and its backstop, parts
-// against the ground's surface.
+// against the ground's surface, the supports' pads and tracks against the soil's allowable
+// pressure and the carriage's stability.
 
 #include <algorithm>
 #include <cmath>
@@ -39,6 +40,24 @@ struct GroundContactPart {
   std::vector<int> elements;
 };
 
+/// One support of the crane's carriage (model/support_elements.hpp): a pad, or a track whose
+/// points are its stretches' middles in order from its `from` joint to its `to` joint.
+struct EnvelopeSupport {
+  std::string name;
+  double bearing_area = 0.0;  // m² under each point: the pad's area, or a stretch's width × length
+  double length = 0.0;        // m: a track's length; 0 for a pad
+  std::vector<Vec3> outline;  // in the body's axes: the pad's centre, or the track's two ends
+  int element = -1;           // the element that carries all its points
+};
+
+/// The carriage's supports on the ground and the pressure the soil allows.
+struct EnvelopeSupports {
+  std::string body;
+  int node = -1;
+  double allowable_pressure = 0.0;  // Pa
+  std::vector<EnvelopeSupport> pads, tracks;
+};
+
 struct Envelope {
   std::vector<EnvelopeRope> ropes;
   std::optional<EnvelopeBoom> boom;
@@ -47,6 +66,7 @@ struct Envelope {
   Vec3 up = Vec3::UnitZ();
   std::vector<GroundContactPart> ground_contacts;
   std::vector<bool> node_in_contact;  // per node
+  std::optional<EnvelopeSupports> supports;
 };
 
 /// The boom angle (EnvelopeBoom) from the foot and head positions, `up`, and the boom's forward

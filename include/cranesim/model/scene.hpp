@@ -182,6 +182,44 @@ struct GroundSurfaceSpec {
   SourceLocation where;
 };
 
+/// The soil under a crane's supports: its modulus of subgrade reaction k_s (a pad of area A
+/// settles by p/k_s under a pressure p: its spring is k_s·A) and the pressure it may carry.
+struct SoilSpec {
+  std::string soil_class;           // the named class the figures come from, or empty
+  double subgrade_modulus = 0.0;    // N/m³
+  double allowable_pressure = 0.0;  // Pa
+};
+
+/// An outrigger pad: a joint of the supported body (its pad's centre, on the ground) and the area
+/// it bears on.
+struct SupportPadSpec {
+  std::string name, joint;
+  double area = 0.0;  // m²
+  SourceLocation where, where_joint;
+};
+
+/// A crawler track: the line of its ground contact from joint `from` to joint `to` of the
+/// supported body, `width` wide, borne by `segments` equal stretches of bed.
+struct SupportTrackSpec {
+  std::string name, from, to;
+  double width = 0.0;  // m
+  int segments = 20;
+  SourceLocation where, where_from, where_to;
+};
+
+/// A crane's lower carriage on the ground (`ground.supports`): a free body standing on pads and
+/// tracks on an elastic bed (model/support_elements.hpp).
+struct GroundSupportsSpec {
+  std::string body;
+  SoilSpec soil;
+  double damping_ratio = 0.2;  // of each bed spring with its share of the crane's mass
+  double shear_ratio = 0.8;    // horizontal over vertical stiffness of a support
+  double smoothing = 0.1;      // the springs' smoothing band over the mean settlement
+  std::vector<SupportPadSpec> pads;
+  std::vector<SupportTrackSpec> tracks;
+  SourceLocation where, where_body;
+};
+
 enum class Formulation { GGL, Baumgarte };
 
 enum class StaticMethod { Newton, Relaxation };
@@ -278,6 +316,7 @@ struct Scene {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
   std::vector<JointSpec> ground_joints;
   std::optional<GroundSurfaceSpec> ground_surface;
+  std::optional<GroundSupportsSpec> ground_supports;
   std::vector<RigidBodySpec> bodies;
   std::vector<TrussDescription> trusses;  // truss types, referenced by truss members
   std::vector<MemberSpec> members;

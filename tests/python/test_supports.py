@@ -1,0 +1,63 @@
+"""ground.supports in the results: the thesis crane on crawler tracks (configs/crane_on_crawlers.yaml).
+
+Statically the tracks carry the carriage's weight and what the slewing ring hands down to it
+(the ring's constraint load); crane-sim static prints the supports' table. Its slew presses the
+left track's front end past dense sand's allowable 400 kPa at about 12 s: the run reports it as an
+envelope event whose peak is the largest of /supports' track pressures, and summarises the run.
+
+Environment: CRANESIM_BIN (default <repo>/build/crane-sim) and CRANESIM_SOURCE_DIR.
+"""
+
+import os
+import subprocess
+from pathlib import Path
+
+import h5py
+import numpy as np
+import pytest
+
+SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
+BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
+SCENE = SOURCE_DIR / "configs" / "crane_on_crawlers.yaml"
+CARRIAGE_WEIGHT = 250000 * 9.8  # N: the scene's carriage under its gravity of 9.8 m/s²
+
+
+def crane_sim(directory: Path, *arguments: str) -> subprocess.CompletedProcess:
+    if not BINARY.is_file():
+        pytest.fail(f"crane-sim not found at {BINARY}: build it first or set CRANESIM_BIN")
+    done = subprocess.run([str(BINARY), *arguments], cwd=directory, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    return done
+
+
+def test_static_tracks_carry_the_carriage_and_the_ring(tmp_path):
+    done = crane_sim(tmp_path, "static", str(SCENE), "-o", "static.h5")
+    assert "left" in done.stdout and "right" in done.stdout and "stability margin" in done.stdout
+    with h5py.File(tmp_path / "static.h5", "r") as f:
+        supports = f["supports"]
+        carried = supports["carried"][0]
+        tracks = [supports[f"tracks/{name}/force"][0] for name in ("left", "right")]
+        ring = f["constraint_loads/slewing/force"][0]
+        assert sum(tracks) == pytest.approx(carried, rel=1e-12)
+        # Newton stops on its step (1e-10 of the coordinates' 55 m), which on the tracks' 4.8e9 N/m
+        # leaves about 100 N of force unbalanced (crane-sim reports max |F + Gᵀλ| 96 N): 1e-5 of W.
+        assert carried == pytest.approx(CARRIAGE_WEIGHT + np.linalg.norm(ring), rel=2e-5)
+        assert supports["margin"][0] > 0.0
+        assert supports["tipping_line"].shape == (1, 4)
+        assert supports.attrs["allowable_pressure"] == pytest.approx(400e3)
+
+
+def test_the_slew_presses_past_the_allowable_pressure(tmp_path):
+    (tmp_path / "slew.yaml").write_text(f"base: {SCENE}\nmodify: {{solver.t_end: 16}}\n")
+    done = crane_sim(tmp_path, "run", "slew.yaml", "-o", "slew.h5")
+    assert "supports: peak pressure" in done.stderr
+    with h5py.File(tmp_path / "slew.h5", "r") as f:
+        samples = f["time"].shape[0]
+        peak = f["supports/tracks/left/peak_pressure"][...]
+        assert peak.shape == (samples,) and f["supports/margin"].shape == (samples,)
+        events = [dict(e.attrs) for e in f["envelope/events"].values()]
+        over = [e for e in events if e["what"] == "over the allowable pressure"]
+        assert len(over) == 1 and over[0]["part"] == "left"
+        assert over[0]["peak"] == pytest.approx(peak.max(), rel=1e-12)
+        assert over[0]["peak"] > 400e3 > peak[0]
+        assert f["envelope"].attrs["left_envelope"] == 1
