@@ -11,8 +11,6 @@ struct SwaySensorSpec {
   double rate_noise = 0.0;   // rad/s: σ of the noise on each angular rate
   double delay = 0.0;        // s
   std::uint64_t seed = 0;    // of the noise (a 64-bit Mersenne twister)
-
-  bool ideal() const { return angle_noise == 0.0 && rate_noise == 0.0 && delay == 0.0; }
 };
 
 }  // namespace cranesim
