@@ -36,6 +36,13 @@ QUANTITY_SYNTAX = re.compile(r"^/?(?P<path>[^\[\]]+?)(?:\[(?P<selector>-?\d+|nor
 # Checked in order: the first fragment contained in the path decides the unit.
 UNIT_BY_PATH_FRAGMENT = (
     ("residual", "-"),
+    ("supports/margin", "N·m"),
+    ("pressure", "Pa"),
+    ("peak_at", "m"),
+    ("contact_length", "m"),
+    ("supports/resultant", "m"),
+    ("supports/tipping_line", "m"),
+    ("supports/", "N"),
     ("energy/", "J"),
     ("lambda", "N, N·m"),
     ("angular_velocity", "rad/s"),

@@ -54,6 +54,10 @@ def test_units_are_guessed_from_the_path():
     assert guess_unit("energy/balance") == "J"
     assert guess_unit("lambda[0]") == "N, N·m"
     assert guess_unit("residual/position") == "-"
+    assert guess_unit("supports/tracks/left/peak_pressure") == "Pa"
+    assert guess_unit("supports/pads/front_left/force") == "N"
+    assert guess_unit("supports/tracks/left/peak_at") == "m"
+    assert guess_unit("supports/margin") == "N·m"
 
 
 def test_reader_lists_contents(results_file):
