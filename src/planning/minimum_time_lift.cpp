@@ -4,7 +4,6 @@
 #pragma GCC diagnostic ignored "-Wunused-parameter"  // Ipopt 3.11 headers
 #include <IpIpoptApplication.hpp>
 #include <IpSolveStatistics.hpp>
-#include <IpTNLP.hpp>
 #pragma GCC diagnostic pop
 
 #include <algorithm>
@@ -14,6 +13,7 @@
 
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/planning/ipopt_application.hpp"
+#include "final_time_tnlp.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
 
 namespace cranesim {
@@ -139,16 +139,15 @@ struct DriveRow {
   double limit = 0.0;
 };
 
-class MinimumTimeLiftNlp final : public Ipopt::TNLP {
+class MinimumTimeLiftNlp final : public FinalTimeTnlp {
  public:
-  MinimumTimeLiftNlp(const LiftProblem& problem, std::vector<double> start) : p_(problem), N_(problem.intervals), start_(std::move(start)) {
+  MinimumTimeLiftNlp(const LiftProblem& problem, std::vector<double> start)
+      : FinalTimeTnlp(std::move(start)), p_(problem), N_(problem.intervals) {
     for (int d = 0; d < 3; ++d) {
       if (std::isfinite(p_.drives[d].speed)) rows_.push_back({d, false, p_.drives[d].speed});
       if (std::isfinite(p_.drives[d].acceleration)) rows_.push_back({d, true, p_.drives[d].acceleration});
     }
   }
-
-  std::vector<double> solution;
 
   bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac_g, Ipopt::Index& nnz_h_lag,
                     IndexStyleEnum& index_style) override {
@@ -186,23 +185,6 @@ class MinimumTimeLiftNlp final : public Ipopt::TNLP {
       const double limit = rows_[(r - kStateSize * N_) % rows_.size()].limit;
       g_l[r] = -limit, g_u[r] = limit;
     }
-    return true;
-  }
-
-  bool get_starting_point(Ipopt::Index n, bool, Ipopt::Number* z, bool, Ipopt::Number*, Ipopt::Number*, Ipopt::Index,
-                          bool, Ipopt::Number*) override {
-    std::copy(start_.begin(), start_.begin() + n, z);
-    return true;
-  }
-
-  bool eval_f(Ipopt::Index n, const Ipopt::Number* z, bool, Ipopt::Number& objective) override {
-    objective = z[n - 1];
-    return true;
-  }
-
-  bool eval_grad_f(Ipopt::Index n, const Ipopt::Number*, bool, Ipopt::Number* gradient) override {
-    std::fill(gradient, gradient + n, 0.0);
-    gradient[n - 1] = 1.0;
     return true;
   }
 
@@ -279,18 +261,11 @@ class MinimumTimeLiftNlp final : public Ipopt::TNLP {
     return true;
   }
 
-  void finalize_solution(Ipopt::SolverReturn, Ipopt::Index n, const Ipopt::Number* z, const Ipopt::Number*,
-                         const Ipopt::Number*, Ipopt::Index, const Ipopt::Number*, const Ipopt::Number*, Ipopt::Number,
-                         const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
-    solution.assign(z, z + n);
-  }
-
  private:
   int finalTimeIndex() const { return kNodeSize * (N_ + 1); }
 
   const LiftProblem& p_;
   const int N_;
-  const std::vector<double> start_;
   std::vector<DriveRow> rows_;
 };
 

@@ -4,7 +4,6 @@
 #pragma GCC diagnostic ignored "-Wunused-parameter"  // Ipopt 3.11 headers
 #include <IpIpoptApplication.hpp>
 #include <IpSolveStatistics.hpp>
-#include <IpTNLP.hpp>
 #pragma GCC diagnostic pop
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include <string>
 
 #include "cranesim/planning/ipopt_application.hpp"
+#include "final_time_tnlp.hpp"
 #include "cranesim/planning/qr_trajectory.hpp"
 
 namespace cranesim {
@@ -31,12 +31,10 @@ double ipoptBound(double bound) { return std::clamp(bound, -1e20, 1e20); }
 
 /// Trapezoidal collocation of the suspended pendulum, z = (node 0 … node N, t_f); the defect
 /// of interval k is s_{k+1} − s_k − h/2 (f_k + f_{k+1}) with h = t_f / N.
-class MinimumTimeNlp final : public Ipopt::TNLP {
+class MinimumTimeNlp final : public FinalTimeTnlp {
  public:
   MinimumTimeNlp(const MinimumTimeProblem& problem, std::vector<double> initial_guess)
-      : p_(problem), N_(problem.intervals), guess_(std::move(initial_guess)) {}
-
-  std::vector<double> solution;
+      : FinalTimeTnlp(std::move(initial_guess)), p_(problem), N_(problem.intervals) {}
 
   bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac_g, Ipopt::Index& nnz_h_lag,
                     IndexStyleEnum& index_style) override {
@@ -72,23 +70,6 @@ class MinimumTimeNlp final : public Ipopt::TNLP {
       g_l[r] = ipoptBound(-inf), g_u[r] = 0.0;      // a_{k+1} − a_k − j_max h ≤ 0
       g_l[r + 1] = 0.0, g_u[r + 1] = ipoptBound(inf);  // a_{k+1} − a_k + j_max h ≥ 0
     }
-    return true;
-  }
-
-  bool get_starting_point(Ipopt::Index n, bool, Ipopt::Number* z, bool, Ipopt::Number*, Ipopt::Number*, Ipopt::Index,
-                          bool, Ipopt::Number*) override {
-    std::copy(guess_.begin(), guess_.begin() + n, z);
-    return true;
-  }
-
-  bool eval_f(Ipopt::Index n, const Ipopt::Number* z, bool, Ipopt::Number& objective) override {
-    objective = z[n - 1];
-    return true;
-  }
-
-  bool eval_grad_f(Ipopt::Index n, const Ipopt::Number*, bool, Ipopt::Number* gradient) override {
-    std::fill(gradient, gradient + n, 0.0);
-    gradient[n - 1] = 1.0;
     return true;
   }
 
@@ -184,12 +165,6 @@ class MinimumTimeNlp final : public Ipopt::TNLP {
     return true;
   }
 
-  void finalize_solution(Ipopt::SolverReturn, Ipopt::Index n, const Ipopt::Number* z, const Ipopt::Number*,
-                         const Ipopt::Number*, Ipopt::Index, const Ipopt::Number*, const Ipopt::Number*, Ipopt::Number,
-                         const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
-    solution.assign(z, z + n);
-  }
-
  private:
   bool hasJerkLimit() const { return std::isfinite(p_.jerk_limit); }
   int finalTimeIndex() const { return kNodeSize * (N_ + 1); }
@@ -220,7 +195,6 @@ class MinimumTimeNlp final : public Ipopt::TNLP {
 
   const MinimumTimeProblem& p_;
   const int N_;
-  const std::vector<double> guess_;
 };
 
 void requirePositive(const char* name, double value) {
