@@ -258,3 +258,22 @@ TEST_CASE("minimum-time lift: around a pillar that the obstacle-free lift runs i
   CHECK(nearest >= margin - 1e-6);
   CHECK(nearest <= margin + 0.05);  // the pillar shapes the lift: its clearance is active
 }
+
+TEST_CASE("minimum-time lift: a wall across the whole turn blocks it, and the failure names it", "[minimum_time][obstacles]") {
+  LiftProblem problem = slewingCrane(10.0);
+  problem.crane.body.boom_length = 40.0, problem.crane.body.load_radius = 1.0, problem.crane.body.rope_longest = 26.0;
+  // A 100 m wall from 1 m to 60 m out, half-way through the turn; the slewing may not go the other way round.
+  const Vec3 centre = Eigen::AngleAxisd(0.25, Vec3::UnitZ()) * Vec3(-30.5, 0.0, 0.0);
+  problem.obstacles = {Obstacle{"wall", BoxShape{Vec3(centre.x(), centre.y(), 50.0), Vec3(59.0, 0.5, 100.0), 0.25}, {}}};
+  problem.clearance_margin = 0.5;
+  problem.q_min(2) = 0.0, problem.q_max(2) = 0.5;
+  problem.max_iterations = 200;
+  try {
+    solveMinimumTimeLift(problem, restToRestGuess(problem, 60.0));
+    FAIL("the lift went through the wall");
+  } catch (const LiftBlocked& blocked) {
+    CHECK(blocked.closest.obstacle == 0);
+    CHECK(blocked.closest.clearance < problem.clearance_margin - 1e-3);
+    CHECK(blocked.t > 0.0);
+  }
+}

@@ -92,11 +92,10 @@ void checkLiftEndsClear(const TargetSpec& target, const LiftProblem& problem) {
     const NodeClearance c = clearanceAt(problem, restingAt(q));
     if (c.clearance >= problem.clearance_margin) continue;
     const Obstacle& o = problem.obstacles[c.obstacle];
-    throw SceneError(where, fmt::format("the {} at the {} is {:.3g} m from obstacle '{}' (line {}): the minimum-time lift needs "
-                                        "{:.3g} m, the clearance margin {:.3g} m and its allowance {:.3g} m",
-                                        liftPartName(c.part), what, c.clearance, o.name, o.where.line,
-                                        problem.clearance_margin, target.clearance_margin,
-                                        target.minimum_time.clearance_allowance));
+    throw SceneError(where, fmt::format("the {} at the {} is too close to obstacle '{}' (line {}) for the minimum-time lift: "
+                                        "{:.3g} m, where it needs {:.3g} m (the clearance margin {:.3g} m and its allowance {:.3g} m)",
+                                        liftPartName(c.part), what, o.name, o.where.line, c.clearance, problem.clearance_margin,
+                                        target.clearance_margin, target.minimum_time.clearance_allowance));
   }
 }
 
