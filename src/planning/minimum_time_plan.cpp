@@ -121,8 +121,10 @@ LiftProblem liftProblem(const TargetSpec& target, const QuasiStaticPlan& plan) {
   p.start = Eigen::Vector3d(a.boom_angle_deg, a.hoist_change, 0.0);
   p.end = Eigen::Vector3d(b.boom_angle_deg, b.hoist_change, turn);
   const double slew_range = target.slewing ? 2.0 * std::numbers::pi : 0.0;
-  p.q_min = Eigen::Vector3d(plan.map.boom_angles_deg.front(), plan.map.hoist_changes.front(), std::min(0.0, turn) - slew_range);
-  p.q_max = Eigen::Vector3d(plan.map.boom_angles_deg.back(), plan.map.hoist_changes.back(), std::max(0.0, turn) + slew_range);
+  // The hoist rope between its lengths at the ends (liftStart widens this to its start's): the
+  // pendulum is measured there and affine in the hoist rope between them, not beyond.
+  p.q_min = Eigen::Vector3d(plan.map.boom_angles_deg.front(), std::min(p.start(1), p.end(1)), std::min(0.0, turn) - slew_range);
+  p.q_max = Eigen::Vector3d(plan.map.boom_angles_deg.back(), std::max(p.start(1), p.end(1)), std::max(0.0, turn) + slew_range);
 
   const ControlLimits& limits = target.drive_limits;
   const double rise = target.minimum_time.rise_time;
@@ -181,13 +183,22 @@ LiftGuess flatnessGuess(const TargetSpec& target, const QuasiStaticPlan& plan, c
   return guess;
 }
 
-LiftStart liftStart(const TargetSpec& target, const QuasiStaticPlan& plan, const LiftProblem& problem) {
+LiftStart liftStart(const TargetSpec& target, const QuasiStaticPlan& plan, LiftProblem& problem) {
+  const auto holdHoist = [&](const LiftGuess& guess) {
+    for (const LiftNode& node : guess.nodes) {
+      problem.q_min(1) = std::min(problem.q_min(1), node.q(1));
+      problem.q_max(1) = std::max(problem.q_max(1), node.q(1));
+    }
+  };
   LiftGuess flat = flatnessGuess(target, plan, problem);
   const auto clears = [&](const LiftGuess& guess) {
     return std::all_of(guess.nodes.begin(), guess.nodes.end(),
                        [&](const LiftNode& n) { return clearanceAt(problem, n).clearance >= problem.clearance_margin; });
   };
-  if (problem.obstacles.empty() || clears(flat)) return {std::move(flat), "the flatness plan"};
+  if (problem.obstacles.empty() || clears(flat)) {
+    holdHoist(flat);
+    return {std::move(flat), "the flatness plan"};
+  }
 
   const Eigen::Vector2d from = target.origin + target.trajectory.start.head<2>(), to = target.origin + target.trajectory.target.head<2>();
   const double turn = problem.end(2);
@@ -209,7 +220,9 @@ LiftStart liftStart(const TargetSpec& target, const QuasiStaticPlan& plan, const
     if (q && (*q - waypoints.back()).norm() > 1e-9) waypoints.push_back(*q);
   }
   waypoints.push_back(problem.end);
-  return {waypointGuess(problem, waypoints), "a lift over and around the obstacles"};
+  LiftGuess guess = waypointGuess(problem, waypoints);
+  holdHoist(guess);
+  return {std::move(guess), "a lift over and around the obstacles"};
 }
 
 }  // namespace cranesim

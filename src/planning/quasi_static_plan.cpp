@@ -490,7 +490,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
 
   // 7. The minimum-time lift, started from the flatness plan.
   if (target.method == PlanMethod::MinimumTime) {
-    const LiftProblem problem = liftProblem(target, plan);
+    LiftProblem problem = liftProblem(target, plan);
     checkLiftEndsClear(target, problem);
     const LiftStart start = liftStart(target, plan, problem);
     try {

@@ -613,8 +613,8 @@ def test_minimum_time_lift_goes_over_and_around_the_shipped_obstacles(target: Pa
     """The shipped minimum-time targets with obstacles: the lift without them runs the load into
     the obstacle; with them the verified flexible crane clears it by the margin, every part, and
     takes longer. Measured (condensed crane): the wall 37.7 s against 36.5 s, 0.67 m (the load),
-    ±6.8 cm of sway; the building 58.4 s against 49.3 s, 0.61 m (the boom passing its corner),
-    ±12.5 cm."""
+    ±6.6 cm of sway; the building 58.4 s against 49.3 s, 0.60 m (the boom passing its corner),
+    ±11.0 cm."""
     free = tmp_path / "free.h5"
     result = crane_opt("plan", without_obstacles(target, tmp_path), "-o", free, "--quiet", cwd=tmp_path, timeout=600)
     assert result.returncode == 0, result.stderr
@@ -637,4 +637,4 @@ def test_minimum_time_lift_goes_over_and_around_the_shipped_obstacles(target: Pa
         assert np.all(f["clearance/minimum"][...] >= 0.5)  # every part
         assert free_motion < path["motion_time"] < 1.3 * free_motion
         assert f["verification"].attrs["residual_sway"] < 0.15
-        assert path["nlp_time_s"] < 20.0  # measured 2.8 s and 3.5 s; the machine is shared
+        assert path["nlp_time_s"] < 20.0  # measured 3.1–7.5 s; the machine is shared

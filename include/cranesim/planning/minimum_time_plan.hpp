@@ -14,7 +14,8 @@ namespace cranesim {
 /// lengths of plan.controls' ends), within the target's drive limits: a drive without an
 /// acceleration limit is held to speed / rise_time, and every coordinate's jerk to its drive's
 /// acceleration / rise_time, or to the drive's jerk limit (the luffing rope's through the map's
-/// steepest slope in the boom angle at the lift's ends). With obstacles, the crane's body (plan.lift_body) keeps clear of them by the clearance margin
+/// steepest slope in the boom angle at the lift's ends), the hoist rope between its lengths at
+/// the lift's ends (where the pendulum is measured). With obstacles, the crane's body (plan.lift_body) keeps clear of them by the clearance margin
 /// plus the minimum_time's clearance allowance.
 LiftProblem liftProblem(const TargetSpec& target, const QuasiStaticPlan& plan);
 
@@ -39,11 +40,12 @@ LiftGuess flatnessGuess(const TargetSpec& target, const QuasiStaticPlan& plan, c
 /// margin; else over and around them: the load lifted at the pick to clear the tops of the
 /// obstacles it can clear within the map (by the margin, the load radius and 1 m; at the pick,
 /// the set and the nearer of them to the slewing axis), moved in to that nearer one, slewed,
-/// moved out over the set and lowered (waypointGuess).
+/// moved out over the set and lowered (waypointGuess). The problem's hoist range is widened to
+/// hold the start.
 struct LiftStart {
   LiftGuess guess;
   std::string from;  // "the flatness plan" or "a lift over and around the obstacles"
 };
-LiftStart liftStart(const TargetSpec& target, const QuasiStaticPlan& plan, const LiftProblem& problem);
+LiftStart liftStart(const TargetSpec& target, const QuasiStaticPlan& plan, LiftProblem& problem);
 
 }  // namespace cranesim
