@@ -470,6 +470,31 @@ def modes_page_data(results: Results, load_name: str | None) -> dict:
     }
 
 
+def plan_obstacles(target: dict, plan: Results) -> list[dict]:
+    """The target's obstacles as the page draws them (world coordinates, yaw in radians), each with
+    its smallest verified clearance over the crane's parts (the plan's /clearance), m."""
+    obstacles = []
+    closest = {}
+    if plan.has("clearance/minimum") and plan.has("clearance/obstacle"):
+        names = [str(name) for name in plan.names("clearance/obstacle")]
+        closest = dict(zip(names, np.atleast_2d(plan.get("clearance/minimum")).min(axis=1)))
+    for obstacle in target.get("obstacles") or []:
+        shape = obstacle.get("shape")
+        drawn = {"name": str(obstacle.get("name", "")), "shape": shape}
+        if shape == "box":
+            drawn.update(centre=obstacle["centre"], size=obstacle["size"], yaw=np.radians(obstacle.get("yaw", 0.0)))
+        elif shape == "cylinder":
+            drawn.update(base=obstacle["base"], radius=obstacle["radius"], height=obstacle["height"])
+        elif shape == "prism":
+            drawn.update(footprint=obstacle["footprint"], bottom=obstacle["bottom"], top=obstacle["top"])
+        else:
+            continue
+        if drawn["name"] in closest:
+            drawn["clearance"] = float(closest[drawn["name"]])
+        obstacles.append(drawn)
+    return obstacles
+
+
 def plan_page_data(plan: Results, frames: int, load_name: str | None) -> dict:
     """A plan file (crane-opt plan): its verification run replayed, with the planned path, the
     simulated end point's path, the start and the target, and the tracking error."""
@@ -512,15 +537,20 @@ def plan_page_data(plan: Results, frames: int, load_name: str | None) -> dict:
         {"title": "tracking error ‖simulated − planned‖", "unit": "m",
          "curves": [{"label": "error", "values": encode(error)}]},
     ]
-    target_name = ""
+    target_file = {}
     try:
         import yaml
-        target_name = str((yaml.safe_load(plan.attribute("target_text") or "") or {}).get("name", ""))
-    except Exception:  # the name is decoration; the plan is shown without it
+        target_file = yaml.safe_load(plan.attribute("target_text") or "") or {}
+    except Exception:  # the name and obstacles are decoration; the plan is shown without them
         pass
+    clearance = {name: plan.attribute(name, "clearance")
+                 for name in ("status", "margin", "distance", "t", "closest_part", "closest_obstacle")} \
+        if plan.has("clearance") else None
     data["plan"] = {
         "file": plan.path.name,
-        "name": target_name,
+        "name": str(target_file.get("name", "")),
+        "obstacles": plan_obstacles(target_file, plan),
+        "clearance": clearance,
         "planned": encode(at_frames),            # the planned end point at each frame
         "planned_path": encode(planned),
         "simulated_path": encode(simulated),

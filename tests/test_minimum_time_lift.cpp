@@ -216,3 +216,64 @@ TEST_CASE("minimum-time lift: bad sizes and limits are refused", "[minimum_time]
   CHECK_THROWS_WITH(solveMinimumTimeLift(problem, guess), Catch::Contains("drive limits must be > 0"));
   CHECK_THROWS_WITH(solveMinimumTimeLift(problem, LiftGuess{}), Catch::Contains("the guess needs nodes"));
 }
+
+TEST_CASE("minimum-time lift: around a pillar that the obstacle-free lift runs into", "[minimum_time][obstacles]") {
+  const double length = 10.0, margin = 0.5;
+  const LiftProblem free = slewingCrane(length);
+  LiftProblem problem = free;
+  LiftBody& body = problem.crane.body;  // slewingCrane's 40 m boom hinged on the axis, the load 25 − v below its head
+  body.boom_length = 40.0, body.boom_radius = 0.5;
+  body.load_radius = 1.0;
+  body.rope_longest = 26.0;
+  // A 20 m pillar at 18 m from the axis, half-way through the turn: where the straight lift takes the load.
+  const Vec3 centre = Eigen::AngleAxisd(0.25, Vec3::UnitZ()) * Vec3(-18.0, 0.0, 0.0);
+  problem.obstacles = {Obstacle{"pillar", CylinderShape{Vec3(centre.x(), centre.y(), 0.0), 1.5, 20.0}, {}}};
+  problem.clearance_margin = margin;
+
+  const LiftTrajectory straight = solveMinimumTimeLift(free, restToRestGuess(free, 60.0));
+  double straight_clearance = 1e9;
+  for (const LiftNode& node : straight.nodes) straight_clearance = std::min(straight_clearance, clearanceAt(problem, node).clearance);
+  CHECK(straight_clearance < -1.0);  // it runs through the pillar
+
+  // Slewed with the boom up (the load 13.7 m out, the pillar's face at 16.5 m), then luffed out.
+  const LiftGuess guess = waypointGuess(problem, {problem.start, Eigen::Vector3d(70.0, 0.0, 0.5), problem.end});
+  for (const LiftNode& node : guess.nodes) REQUIRE(clearanceAt(problem, node).clearance >= margin);
+  const LiftTrajectory plan = solveMinimumTimeLift(problem, guess);
+  INFO("t_f " << plan.final_time << " s (" << straight.final_time << " s through the pillar) in " << plan.iterations
+              << " iterations, " << plan.solve_time_s << " s");
+  CHECK(plan.final_time > straight.final_time);
+
+  // Every part at every node, by the exact distances: the boom's and the rope's capsules, the load's sphere.
+  const ObstacleShape& pillar = problem.obstacles[0].shape;
+  double nearest = 1e9;
+  for (int k = 0; k <= problem.intervals; ++k) {
+    const LiftNode& node = plan.nodes[k];
+    const BoomPoints<double> boom = boomPoints(body, problem.crane.plane, node.q(0), node.q(2));
+    const auto at = [](const LiftPoint<double>& x) { return Vec3(x[0], x[1], x[2]); };
+    for (const Capsule& part : {Capsule{at(boom.foot), at(boom.head), body.boom_radius}, Capsule{at(boom.sheave), plan.load[k], 0.0},
+                                Capsule{plan.load[k], plan.load[k], body.load_radius}})
+      nearest = std::min(nearest, signedDistance(pillar, part));
+    CHECK(plan.clearance[k] >= margin - 1e-6);
+  }
+  CHECK(nearest >= margin - 1e-6);
+  CHECK(nearest <= margin + 0.05);  // the pillar shapes the lift: its clearance is active
+}
+
+TEST_CASE("minimum-time lift: a wall across the whole turn blocks it, and the failure names it", "[minimum_time][obstacles]") {
+  LiftProblem problem = slewingCrane(10.0);
+  problem.crane.body.boom_length = 40.0, problem.crane.body.load_radius = 1.0, problem.crane.body.rope_longest = 26.0;
+  // A 100 m wall from 1 m to 60 m out, half-way through the turn; the slewing may not go the other way round.
+  const Vec3 centre = Eigen::AngleAxisd(0.25, Vec3::UnitZ()) * Vec3(-30.5, 0.0, 0.0);
+  problem.obstacles = {Obstacle{"wall", BoxShape{Vec3(centre.x(), centre.y(), 50.0), Vec3(59.0, 0.5, 100.0), 0.25}, {}}};
+  problem.clearance_margin = 0.5;
+  problem.q_min(2) = 0.0, problem.q_max(2) = 0.5;
+  problem.max_iterations = 200;
+  try {
+    solveMinimumTimeLift(problem, restToRestGuess(problem, 60.0));
+    FAIL("the lift went through the wall");
+  } catch (const LiftBlocked& blocked) {
+    CHECK(blocked.closest.obstacle == 0);
+    CHECK(blocked.closest.clearance < problem.clearance_margin - 1e-3);
+    CHECK(blocked.t > 0.0);
+  }
+}

@@ -115,3 +115,25 @@ TEST_CASE("Segments and capsules against a cylinder and a prism", "[planning][ob
   // Parallel to the hypotenuse, 1 m out: (4, 0) + (3, 4)/5 to (0, 3) + (3, 4)/5.
   CHECK(segment(prism, Vec3(4.6, 0.8, 1), Vec3(0.6, 3.8, 1), 0.25) == Approx(0.75).margin(kExact));
 }
+
+TEST_CASE("Point distances' gradients: central differences outside and inside every shape", "[planning][obstacles]") {
+  const std::vector<ObstacleShape> shapes = {BoxShape{Vec3(1, -2, 3), Vec3(2, 4, 6), 0.3}, CylinderShape{Vec3(1, 1, 0), 2.0, 3.0},
+                                             triangle()};
+  // Off faces, edges and corners, and inside off-centre (one face nearest, so the gradient exists).
+  const std::vector<Vec3> points = {{4.1, -1.3, 3.2}, {3.7, 1.9, 7.4}, {-2.2, -6.1, -1.3}, {1.2, -1.6, 3.4},
+                                    {5.3, 1.2, 1.1}, {2.6, 1.3, 1.6}, {1.4, 0.8, 2.6}, {4.5, 3.5, 1.2}, {0.8, 0.9, 0.6}};
+  const double h = 1e-6;
+  int checked = 0;
+  for (const ObstacleShape& shape : shapes)
+    for (const Vec3& p : points) {
+      const DistanceWithGradient d = signedDistanceWithGradient(shape, p);
+      CHECK(d.distance == signedDistance(shape, p));
+      CHECK(d.gradient.norm() == Approx(1.0).margin(1e-12));  // a distance grows at unit rate, in or out
+      Vec3 difference;
+      for (int i = 0; i < 3; ++i)
+        difference(i) = (signedDistance(shape, Vec3(p + h * Vec3::Unit(i))) - signedDistance(shape, Vec3(p - h * Vec3::Unit(i)))) / (2 * h);
+      CHECK((d.gradient - difference).norm() < 1e-6);
+      ++checked;
+    }
+  CHECK(checked == 27);
+}

@@ -9,7 +9,8 @@
 // data-error), data-t, data-frame, data-load-world "x,y,z", data-load-px "x,y" (the load's
 // position on the page, in CSS pixels from the page's top left, by Vector3.project),
 // data-view-matrix and data-projection-matrix (column-major, as three.js stores them),
-// data-canvas "left,top,width,height", data-force-range, data-planned-world, data-ready-ms,
+// data-canvas "left,top,width,height", data-force-range, data-planned-world, data-obstacles (the
+// obstacle meshes' names), data-ready-ms,
 // data-bench-fps; document.title starts with "cranesim replay: ready".
 (function () {
   "use strict";
@@ -239,7 +240,7 @@
 
   // A plan: the planned end-point path (dashed), the simulated one (green), start (green block),
   // target (black block) and the planned end point now (a black marker drawn over everything).
-  var plan = data.plan || null, plannedMarker = null, planned = null;
+  var plan = data.plan || null, plannedMarker = null, planned = null, obstacleMeshes = [];
   if (plan) {
     var pathLine = function (values, material) {
       var geometry = new THREE.BufferGeometry();
@@ -258,6 +259,32 @@
       block.scale.setScalar(0.012 * size);
       block.position.fromArray(end[0]);
       scene.add(block);
+    });
+    // The target's obstacles, translucent: red when the verified motion came closer than the
+    // margin, orange the one it came closest to, grey the others.
+    (plan.obstacles || []).forEach(function (o) {
+      var geometry, zAxis = new THREE.Vector3(0, 0, 1);
+      if (o.shape === "box") {
+        geometry = new THREE.BoxBufferGeometry(o.size[0], o.size[1], o.size[2]);
+        geometry.applyMatrix(new THREE.Matrix4().makeRotationZ(o.yaw));
+        geometry.translate(o.centre[0], o.centre[1], o.centre[2]);
+      } else if (o.shape === "cylinder") {
+        geometry = new THREE.CylinderBufferGeometry(o.radius, o.radius, o.height, 48);
+        geometry.applyMatrix(new THREE.Matrix4().makeRotationFromQuaternion(
+          new THREE.Quaternion().setFromUnitVectors(new THREE.Vector3(0, 1, 0), zAxis)));
+        geometry.translate(o.base[0], o.base[1], o.base[2] + 0.5 * o.height);
+      } else {
+        var outline = new THREE.Shape(o.footprint.map(function (p) { return new THREE.Vector2(p[0], p[1]); }));
+        geometry = new THREE.ExtrudeBufferGeometry(outline, { depth: o.top - o.bottom, bevelEnabled: false });
+        geometry.translate(0, 0, o.bottom);
+      }
+      var c = plan.clearance, colour = 0x8c8c8c;
+      if (c && o.name === c.closest_obstacle) colour = c.status === "failed" ? 0xd62728 : 0xff7f0e;
+      var mesh = new THREE.Mesh(geometry, new THREE.MeshLambertMaterial(
+        { color: colour, transparent: true, opacity: 0.3, depthWrite: false }));
+      mesh.name = "obstacle " + o.name;
+      scene.add(mesh);
+      obstacleMeshes.push(mesh);
     });
     planned = decode(plan.planned);
     plannedMarker = new THREE.Mesh(new THREE.SphereBufferGeometry(0.008 * size, 16, 12),
@@ -702,6 +729,13 @@
       "target black · verification " + (v.status || "?") + ": tracking error max " +
       formatNumber(v.max_error) + " m, rms " + formatNumber(v.rms_error) + " m; residual sway " +
       formatNumber(v.residual_sway) + " m; final error " + formatNumber(v.final_error) + " m";
+    var c = plan.clearance;
+    if (c) {
+      planLine.textContent += " · obstacles (" + plan.obstacles.length + "): clearance " +
+        formatNumber(c.distance) + " m, " + c.closest_part + " to " + c.closest_obstacle + " at t = " +
+        formatNumber(c.t) + " s (" + (c.status === "failed" ? "closer than" : "at least") + " the margin " +
+        formatNumber(c.margin) + " m; closest obstacle orange" + (c.status === "failed" ? ", red: failed" : "") + ")";
+    }
     planLine.id = "plan-line";
     planLine.style.maxWidth = "640px";
     document.getElementById("info").insertBefore(planLine, document.getElementById("incomplete"));
@@ -748,6 +782,7 @@
     status.setAttribute("data-projection-matrix", camera.projectionMatrix.elements.join(","));
     if (plannedMarker) {
       status.setAttribute("data-planned-world", plannedMarker.position.toArray().join(","));
+      status.setAttribute("data-obstacles", obstacleMeshes.map(function (m) { return m.name; }).join(","));
     }
     if (loadMarker) {
       projected.copy(loadMarker.position);

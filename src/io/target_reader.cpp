@@ -116,7 +116,7 @@ ControlLimits readDriveLimits(const YamlField& f, bool slewing) {
 }
 
 MinimumTimeSpec readMinimumTime(const YamlField& f) {
-  f.allowKeys({"intervals", "rise_time", "tolerance"});
+  f.allowKeys({"intervals", "rise_time", "tolerance", "clearance_allowance"});
   MinimumTimeSpec m;
   m.where = f.where();
   if (const auto n = f.find("intervals")) {
@@ -125,6 +125,7 @@ MinimumTimeSpec readMinimumTime(const YamlField& f) {
   }
   m.rise_time = f.positive("rise_time", m.rise_time);
   m.tolerance = f.positive("tolerance", m.tolerance);
+  if (const auto a = f.find("clearance_allowance")) m.clearance_allowance = a->nonNegative();
   return m;
 }
 

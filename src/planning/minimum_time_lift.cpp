@@ -125,11 +125,24 @@ void writeNode(const LiftNode& node, double* z) {
 
 using Gradient = Dual<double, kStateSize>;
 
-/// The node's evaluation with its gradient in the node's states.
-NodeEvaluation<Gradient> evaluateWithGradient(const LiftKinematics& k, const double* z) {
+/// A node's states seeded with their gradients.
+std::array<Gradient, kStateSize> gradientStates(const double* z) {
   std::array<Gradient, kStateSize> s;
   for (int c = 0; c < kStateSize; ++c) s[c] = seeded<double, kStateSize>(z[stateVariable(c)], c);
-  return evaluateNode(k, s);
+  return s;
+}
+
+/// The parts' clearances from every obstacle at a node with states s and load p, obstacle by
+/// obstacle, part by part (LiftPart).
+template <class G>
+std::vector<G> clearances(const LiftProblem& p, const LiftSampling& sampling, const std::array<G, kStateSize>& s,
+                          const std::array<G, 3>& load) {
+  std::vector<G> c;
+  for (const Obstacle& o : p.obstacles) {
+    const std::array<G, kLiftParts> parts = partClearances(p.crane.body, p.crane.plane, sampling, o.shape, s[0], s[2], load);
+    c.insert(c.end(), parts.begin(), parts.end());
+  }
+  return c;
 }
 
 /// A drive's speed or acceleration limited at every node: one ranged constraint each.
@@ -142,7 +155,11 @@ struct DriveRow {
 class MinimumTimeLiftNlp final : public FinalTimeTnlp {
  public:
   MinimumTimeLiftNlp(const LiftProblem& problem, std::vector<double> start)
-      : FinalTimeTnlp(std::move(start)), p_(problem), N_(problem.intervals) {
+      : FinalTimeTnlp(std::move(start)),
+        p_(problem),
+        N_(problem.intervals),
+        sampling_(problem.crane.body, problem.clearance_margin),
+        clearance_rows_(static_cast<int>(problem.obstacles.size()) * kLiftParts) {
     for (int d = 0; d < 3; ++d) {
       if (std::isfinite(p_.drives[d].speed)) rows_.push_back({d, false, p_.drives[d].speed});
       if (std::isfinite(p_.drives[d].acceleration)) rows_.push_back({d, true, p_.drives[d].acceleration});
@@ -152,8 +169,8 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
   bool get_nlp_info(Ipopt::Index& n, Ipopt::Index& m, Ipopt::Index& nnz_jac_g, Ipopt::Index& nnz_h_lag,
                     IndexStyleEnum& index_style) override {
     n = finalTimeIndex() + 1;
-    m = kStateSize * N_ + static_cast<int>(rows_.size()) * (N_ + 1);
-    nnz_jac_g = kStateSize * N_ * (2 * kNodeSize + 1) + static_cast<int>(rows_.size()) * (N_ + 1) * kStateSize;
+    m = firstClearanceRow() + clearance_rows_ * (N_ - 1);
+    nnz_jac_g = kStateSize * N_ * (2 * kNodeSize + 1) + (static_cast<int>(rows_.size()) * (N_ + 1) + clearance_rows_ * (N_ - 1)) * kStateSize;
     nnz_h_lag = 0;
     index_style = C_STYLE;
     return true;
@@ -181,10 +198,12 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
     x_l[n - 1] = 1e-3;
     std::fill(g_l, g_l + kStateSize * N_, 0.0);
     std::fill(g_u, g_u + kStateSize * N_, 0.0);
-    for (int r = kStateSize * N_; r < m; ++r) {
+    for (int r = kStateSize * N_; r < firstClearanceRow(); ++r) {
       const double limit = rows_[(r - kStateSize * N_) % rows_.size()].limit;
       g_l[r] = -limit, g_u[r] = limit;
     }
+    std::fill(g_l + firstClearanceRow(), g_l + m, p_.clearance_margin);
+    std::fill(g_u + firstClearanceRow(), g_u + m, 1e20);
     return true;
   }
 
@@ -207,6 +226,9 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
     int r = kStateSize * N_;
     for (int k = 0; k <= N_; ++k)
       for (const DriveRow& row : rows_) g[r++] = row.acceleration ? nodes[k].acceleration[row.drive] : nodes[k].speed[row.drive];
+    if (clearance_rows_ > 0)
+      for (int k = 1; k < N_; ++k)
+        for (double c : clearances(p_, sampling_, statesOf(nodeOf(z + kNodeSize * k)), nodes[k].load)) g[r++] = c;
     return true;
   }
 
@@ -223,15 +245,20 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
       for (int k = 0; k <= N_; ++k)
         for (std::size_t d = 0; d < rows_.size(); ++d, ++r)
           for (int c = 0; c < kStateSize; ++c) rows[e] = r, cols[e++] = kNodeSize * k + stateVariable(c);
+      for (int k = 1; k < N_; ++k)
+        for (int i = 0; i < clearance_rows_; ++i, ++r)
+          for (int c = 0; c < kStateSize; ++c) rows[e] = r, cols[e++] = kNodeSize * k + stateVariable(c);
       return true;
     }
     // ∂f_c/∂(node variables) and f_c at every node.
     std::vector<std::array<std::array<double, kNodeSize>, kStateSize>> rate_gradients(N_ + 1);
     std::vector<std::array<double, kStateSize>> rates(N_ + 1);
     std::vector<NodeEvaluation<Gradient>> nodes;
+    std::vector<std::array<Gradient, kStateSize>> states;
     for (int k = 0; k <= N_; ++k) {
       const double* node = z + kNodeSize * k;
-      nodes.push_back(evaluateWithGradient(p_.crane, node));
+      states.push_back(gradientStates(node));
+      nodes.push_back(evaluateNode(p_.crane, states.back()));
       for (int c = 0; c < kStateSize; ++c) {
         auto& gradient = rate_gradients[k][c];
         gradient.fill(0.0);
@@ -258,15 +285,22 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
         const Gradient& value = row.acceleration ? nodes[k].acceleration[row.drive] : nodes[k].speed[row.drive];
         for (int c = 0; c < kStateSize; ++c) values[e++] = value.derivatives()(c);
       }
+    if (clearance_rows_ > 0)
+      for (int k = 1; k < N_; ++k)
+        for (const Gradient& value : clearances(p_, sampling_, states[k], nodes[k].load))
+          for (int c = 0; c < kStateSize; ++c) values[e++] = value.derivatives()(c);
     return true;
   }
 
  private:
   int finalTimeIndex() const { return kNodeSize * (N_ + 1); }
+  int firstClearanceRow() const { return kStateSize * N_ + static_cast<int>(rows_.size()) * (N_ + 1); }
 
   const LiftProblem& p_;
   const int N_;
   std::vector<DriveRow> rows_;
+  const LiftSampling sampling_;
+  const int clearance_rows_;  // per node: obstacles × parts; the nodes between the ends have them
 };
 
 /// The guess at N + 1 equally spaced nodes (linear interpolation between its own), then t_f.
@@ -293,6 +327,17 @@ PendulumState pendulumAt(const LiftKinematics& crane, const LiftNode& node) {
   return {Vec3(e.load[0], e.load[1], e.load[2]), Eigen::Vector2d(e.swing_acceleration[0], e.swing_acceleration[1])};
 }
 
+NodeClearance clearanceAt(const LiftProblem& problem, const LiftNode& node) {
+  const std::array<double, kStateSize> s = statesOf(node);
+  const std::vector<double> c = clearances(problem, LiftSampling(problem.crane.body, problem.clearance_margin), s,
+                                           evaluateNode(problem.crane, s).load);
+  NodeClearance nearest;
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (c[i] < nearest.clearance)
+      nearest = {c[i], static_cast<int>(i) / kLiftParts, static_cast<LiftPart>(static_cast<int>(i) % kLiftParts)};
+  return nearest;
+}
+
 DriveState drivesAt(const LiftKinematics& crane, const LiftNode& node) {
   const NodeEvaluation<double> e = evaluateNode(crane, statesOf(node));
   DriveState d;
@@ -316,21 +361,88 @@ LiftGuess restToRestGuess(const LiftProblem& problem, double duration) {
   return guess;
 }
 
+LiftGuess waypointGuess(const LiftProblem& problem, const std::vector<Eigen::Vector3d>& waypoints) {
+  if (waypoints.size() < 2) throw std::invalid_argument("a waypoint guess needs a start and an end");
+  // Each move's least duration at its shape: its drives' speeds scale as 1/T, their accelerations
+  // as 1/T² and the coordinates' jerks as 1/T³; their peaks over the move at T = 1 set T.
+  std::vector<double> durations;
+  for (std::size_t i = 0; i + 1 < waypoints.size(); ++i) {
+    const Eigen::Vector3d travel = waypoints[i + 1] - waypoints[i];
+    double duration = 0.0;
+    for (int j = 1; j < 200; ++j) {
+      const double tau = j / 200.0;
+      LiftNode node;
+      node.q = waypoints[i] + travel * restToRest(tau, 0);
+      node.rate = travel * restToRest(tau, 1);
+      node.acceleration = travel * restToRest(tau, 2);
+      const DriveState d = drivesAt(problem.crane, node);
+      for (int drive = 0; drive < 3; ++drive)
+        duration = std::max({duration, std::abs(d.speed(drive)) / problem.drives[drive].speed,
+                             std::sqrt(std::abs(d.acceleration(drive)) / problem.drives[drive].acceleration),
+                             std::cbrt(std::abs(travel(drive) * restToRest(tau, 3)) / problem.jerk_limit(drive))});
+    }
+    durations.push_back(duration);
+  }
+  double total = 0.0;
+  for (double d : durations) total += d;
+  if (!(total > 0.0)) return restToRestGuess(problem, 1.0);
+
+  LiftGuess guess{total, {}};
+  const int N = problem.intervals;
+  std::size_t move = 0;
+  double begun = 0.0;  // when the move began
+  for (int k = 0; k <= N; ++k) {
+    const double t = total * k / N;
+    while (move + 1 < durations.size() && t >= begun + durations[move]) begun += durations[move++];
+    const double T = durations[move];
+    const double tau = T > 0.0 ? std::min((t - begun) / T, 1.0) : 1.0;
+    const Eigen::Vector3d travel = waypoints[move + 1] - waypoints[move];
+    LiftNode node;
+    node.q = waypoints[move] + travel * restToRest(tau, 0);
+    if (T > 0.0) {
+      node.rate = travel * restToRest(tau, 1) / T;
+      node.acceleration = travel * restToRest(tau, 2) / std::pow(T, 2);
+      node.jerk = travel * restToRest(tau, 3) / std::pow(T, 3);
+    }
+    guess.nodes.push_back(node);
+  }
+  return guess;
+}
+
 LiftTrajectory solveMinimumTimeLift(const LiftProblem& problem, const LiftGuess& guess) {
   if (problem.intervals < 2) throw std::invalid_argument("intervals must be ≥ 2");
   if (guess.nodes.empty() || !(guess.final_time > 0.0)) throw std::invalid_argument("the guess needs nodes and a positive duration");
   for (const DriveBounds& d : problem.drives)
     if (!(d.speed > 0.0) || !(d.acceleration > 0.0)) throw std::invalid_argument("drive limits must be > 0");
   if (!(problem.jerk_limit.array() > 0.0).all()) throw std::invalid_argument("jerk limits must be > 0");
+  if (!problem.obstacles.empty() && !(problem.crane.body.boom_length > 0.0))
+    throw std::invalid_argument("obstacles need the crane's body (a boom of positive length)");
 
   const auto started = std::chrono::steady_clock::now();
   Ipopt::SmartPtr<Ipopt::IpoptApplication> ipopt =
       ipoptApplication({problem.print_level, problem.tolerance, problem.max_iterations});
   ipopt->Options()->SetStringValue("hessian_approximation", "limited-memory");
+  // Around obstacles the soft minima's curvature leaves L-BFGS creeping at the last 1e-4 of the
+  // dual infeasibility (t_f changing by 1e-5 s an iteration): 10 iterations at 1e-3 are enough.
+  if (!problem.obstacles.empty()) {
+    ipopt->Options()->SetNumericValue("acceptable_tol", 1e-3);
+    ipopt->Options()->SetIntegerValue("acceptable_iter", 10);
+  }
   const Ipopt::SmartPtr<MinimumTimeLiftNlp> nlp = new MinimumTimeLiftNlp(problem, startingPoint(guess, problem.intervals));
   const Ipopt::ApplicationReturnStatus status = ipopt->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(nlp)));
-  if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level)
-    throw std::runtime_error("Ipopt: minimum-time lift ended with " + ipoptStatusInWords(status));
+  if (status != Ipopt::Solve_Succeeded && status != Ipopt::Solved_To_Acceptable_Level) {
+    const std::string what = "Ipopt: minimum-time lift ended with " + ipoptStatusInWords(status);
+    if (problem.obstacles.empty() || nlp->solution.empty()) throw std::runtime_error(what);
+    NodeClearance closest;
+    double when = 0.0;
+    for (int k = 1; k < problem.intervals; ++k) {
+      const NodeClearance c = clearanceAt(problem, nodeOf(nlp->solution.data() + kNodeSize * k));
+      if (c.clearance < closest.clearance) closest = c, when = nlp->solution.back() * k / problem.intervals;
+    }
+    // Ipopt's constraint tolerance is 1e-4 at most; a violation beyond it is one it could not mend.
+    if (closest.clearance < problem.clearance_margin - 1e-3) throw LiftBlocked(what, closest, when);
+    throw std::runtime_error(what);
+  }
 
   LiftTrajectory trajectory;
   trajectory.final_time = nlp->solution.back();
@@ -340,6 +452,7 @@ LiftTrajectory solveMinimumTimeLift(const LiftProblem& problem, const LiftGuess&
     trajectory.nodes.push_back(node);
     trajectory.load.push_back(pendulumAt(problem.crane, node).load);
     trajectory.drives.push_back(drivesAt(problem.crane, node));
+    if (!problem.obstacles.empty()) trajectory.clearance.push_back(clearanceAt(problem, node).clearance);
   }
   trajectory.iterations = ipopt->Statistics()->IterationCount();
   trajectory.solve_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -1,8 +1,12 @@
 #include "cranesim/planning/minimum_time_plan.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+
 
 namespace cranesim {
 namespace {
@@ -19,7 +23,81 @@ template <class V> std::vector<V> rates(const std::vector<double>& t, const std:
   return r;
 }
 
+/// The height of an obstacle's top, m.
+double topOf(const ObstacleShape& shape) {
+  struct Top {
+    double operator()(const BoxShape& b) const { return b.centre.z() + 0.5 * b.size.z(); }
+    double operator()(const CylinderShape& c) const { return c.base.z() + c.height; }
+    double operator()(const PrismShape& p) const { return p.top; }
+  };
+  return std::visit(Top{}, shape);
+}
+
+/// The node at rest at q.
+LiftNode restingAt(const Eigen::Vector3d& q) {
+  LiftNode node;
+  node.q = q;
+  return node;
+}
+
+/// The map's controls q of the load at (x, z) (map coordinates) and slewing angle φ; none outside the map.
+std::optional<Eigen::Vector3d> mapControlsAt(const QuasiStaticPlan& plan, double x, double z, double phi) {
+  try {
+    const ControlPoint c = controlsAt(plan.fit, plan.map, x, z);
+    return Eigen::Vector3d(c.boom_angle_deg, c.hoist_change, phi);
+  } catch (const std::domain_error&) {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
+
+LiftBody liftBody(const TargetSpec& target, const StaticMap& map, const Scene& scene, const Model& model, const VecX& q) {
+  const auto at = [&](int joint) { return model.jointFrame(q.data(), joint).r; };
+  LiftBody body;
+  body.boom_foot = at(model.findJoint(target.controls.boom_foot));
+  const Vec3 head = at(model.findJoint(target.controls.boom_head));
+  const Vec3 chord = head - body.boom_foot;
+  body.boom_length = chord.norm();
+  body.boom_out = Vec3(chord.x(), chord.y(), 0.0).normalized();
+  const Vec3 along = chord / body.boom_length;
+  const Vec3 up = (Vec3::UnitZ() - along.z() * along).normalized();
+  const auto offChord = [&](const Vec3& x) {
+    const double s = std::clamp((x - body.boom_foot).dot(along), 0.0, body.boom_length);
+    return (x - body.boom_foot - s * along).norm();
+  };
+  constexpr double kOnChord = 0.5;  // m: a lattice section's ends lie on the boom's chord (bent by centimetres)
+  for (const CranePart& part : craneParts(scene, model, target.controls.end_point, target.load_radius)) {
+    if (part.name == target.controls.hoist_rope) {
+      body.rope_radius = part.radius;
+      const Vec3 first = at(part.joints.front()), last = at(part.joints.back());
+      const Vec3 sheave = (first - head).norm() < (last - head).norm() ? first : last;
+      body.sheave_along = (sheave - head).dot(along);
+      body.sheave_up = (sheave - head).dot(up);
+      continue;
+    }
+    const auto member = std::find_if(scene.members.begin(), scene.members.end(), [&](const MemberSpec& m) { return m.name == part.name; });
+    if (member == scene.members.end() || member->type != MemberType::Truss) continue;
+    if (std::all_of(part.joints.begin(), part.joints.end(), [&](int j) { return offChord(at(j)) < kOnChord; }))
+      body.boom_radius = std::max(body.boom_radius, part.radius);
+  }
+  body.load_radius = target.load_radius;
+  body.rope_longest = 1.05 * (map.hoist_length - map.hoist_changes.front());
+  return body;
+}
+
+void checkLiftEndsClear(const TargetSpec& target, const LiftProblem& problem) {
+  for (const auto& [q, where, what] :
+       {std::tuple{problem.start, target.where_start, "start"}, std::tuple{problem.end, target.where_target, "target"}}) {
+    const NodeClearance c = clearanceAt(problem, restingAt(q));
+    if (c.clearance >= problem.clearance_margin) continue;
+    const Obstacle& o = problem.obstacles[c.obstacle];
+    throw SceneError(where, fmt::format("the {} at the {} is too close to obstacle '{}' (line {}) for the minimum-time lift: "
+                                        "{:.3g} m, where it needs {:.3g} m (the clearance margin {:.3g} m and its allowance {:.3g} m)",
+                                        liftPartName(c.part), what, o.name, o.where.line, c.clearance, problem.clearance_margin,
+                                        target.clearance_margin, target.minimum_time.clearance_allowance));
+  }
+}
 
 LiftProblem liftProblem(const TargetSpec& target, const QuasiStaticPlan& plan) {
   LiftProblem p;
@@ -43,8 +121,10 @@ LiftProblem liftProblem(const TargetSpec& target, const QuasiStaticPlan& plan) {
   p.start = Eigen::Vector3d(a.boom_angle_deg, a.hoist_change, 0.0);
   p.end = Eigen::Vector3d(b.boom_angle_deg, b.hoist_change, turn);
   const double slew_range = target.slewing ? 2.0 * std::numbers::pi : 0.0;
-  p.q_min = Eigen::Vector3d(plan.map.boom_angles_deg.front(), plan.map.hoist_changes.front(), std::min(0.0, turn) - slew_range);
-  p.q_max = Eigen::Vector3d(plan.map.boom_angles_deg.back(), plan.map.hoist_changes.back(), std::max(0.0, turn) + slew_range);
+  // The hoist rope between its lengths at the ends (liftStart widens this to its start's): the
+  // pendulum is measured there and affine in the hoist rope between them, not beyond.
+  p.q_min = Eigen::Vector3d(plan.map.boom_angles_deg.front(), std::min(p.start(1), p.end(1)), std::min(0.0, turn) - slew_range);
+  p.q_max = Eigen::Vector3d(plan.map.boom_angles_deg.back(), std::max(p.start(1), p.end(1)), std::max(0.0, turn) + slew_range);
 
   const ControlLimits& limits = target.drive_limits;
   const double rise = target.minimum_time.rise_time;
@@ -62,6 +142,11 @@ LiftProblem liftProblem(const TargetSpec& target, const QuasiStaticPlan& plan) {
   }
   p.intervals = target.minimum_time.intervals;
   p.tolerance = target.minimum_time.tolerance;
+  if (!target.obstacles.empty()) {
+    k.body = plan.lift_body;
+    p.obstacles = target.obstacles;
+    p.clearance_margin = target.clearance_margin + target.minimum_time.clearance_allowance;
+  }
   return p;
 }
 
@@ -96,6 +181,48 @@ LiftGuess flatnessGuess(const TargetSpec& target, const QuasiStaticPlan& plan, c
     guess.nodes.push_back(node);
   }
   return guess;
+}
+
+LiftStart liftStart(const TargetSpec& target, const QuasiStaticPlan& plan, LiftProblem& problem) {
+  const auto holdHoist = [&](const LiftGuess& guess) {
+    for (const LiftNode& node : guess.nodes) {
+      problem.q_min(1) = std::min(problem.q_min(1), node.q(1));
+      problem.q_max(1) = std::max(problem.q_max(1), node.q(1));
+    }
+  };
+  LiftGuess flat = flatnessGuess(target, plan, problem);
+  const auto clears = [&](const LiftGuess& guess) {
+    return std::all_of(guess.nodes.begin(), guess.nodes.end(),
+                       [&](const LiftNode& n) { return clearanceAt(problem, n).clearance >= problem.clearance_margin; });
+  };
+  if (problem.obstacles.empty() || clears(flat)) {
+    holdHoist(flat);
+    return {std::move(flat), "the flatness plan"};
+  }
+
+  const Eigen::Vector2d from = target.origin + target.trajectory.start.head<2>(), to = target.origin + target.trajectory.target.head<2>();
+  const double turn = problem.end(2);
+  const double axis = plan.plane.axisPoint().x();
+  const double in = std::abs(from.x() - axis) <= std::abs(to.x() - axis) ? from.x() : to.x();
+  const auto reachable = [&](double z) {
+    return mapControlsAt(plan, from.x(), z, 0.0) && mapControlsAt(plan, to.x(), z, 0.0) && mapControlsAt(plan, in, z, 0.0);
+  };
+  // Over the obstacles the load can clear by lifting it; around the others.
+  double over = std::max(from.y(), to.y());
+  for (const Obstacle& o : problem.obstacles) {
+    const double above = topOf(o.shape) + problem.clearance_margin + problem.crane.body.load_radius + 1.0;
+    if (above > over && reachable(above)) over = above;
+  }
+  std::vector<Eigen::Vector3d> waypoints = {problem.start};
+  for (const auto& [x, z, phi] : {std::tuple{from.x(), over, 0.0}, std::tuple{in, over, 0.0}, std::tuple{in, over, turn},
+                                  std::tuple{to.x(), over, turn}}) {
+    const std::optional<Eigen::Vector3d> q = mapControlsAt(plan, x, z, phi);
+    if (q && (*q - waypoints.back()).norm() > 1e-9) waypoints.push_back(*q);
+  }
+  waypoints.push_back(problem.end);
+  LiftGuess guess = waypointGuess(problem, waypoints);
+  holdHoist(guess);
+  return {std::move(guess), "a lift over and around the obstacles"};
 }
 
 }  // namespace cranesim

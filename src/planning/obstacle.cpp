@@ -10,52 +10,76 @@ namespace {
 
 double cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); }
 
+/// A signed distance and its gradient in the point.
+using Distance = DistanceWithGradient;
+
 /// The signed distance of a set extruded vertically, from the signed distance `across` of the
 /// point's x–y to the set's cross-section and its height above or below the slab, `along`
-/// (negative inside the slab): exact when `across` is.
-double extruded(double across, double along) {
-  const Eigen::Vector2d w(across, along);
-  return std::min(w.maxCoeff(), 0.0) + w.cwiseMax(0.0).norm();
+/// (negative inside the slab): exact when `across` is, and so is its gradient.
+Distance extruded(const Distance& across, const Distance& along) {
+  const double a = std::max(across.distance, 0.0), b = std::max(along.distance, 0.0);
+  if (a > 0.0 || b > 0.0) {
+    const double d = std::hypot(a, b);
+    return {d, (a * across.gradient + b * along.gradient) / d};
+  }
+  return across.distance >= along.distance ? across : along;
 }
 
 /// Height outside the slab bottom ≤ z ≤ top (negative inside: minus the distance to its nearer face).
-double outsideSlab(double z, double bottom, double top) { return std::max(bottom - z, z - top); }
+Distance outsideSlab(double z, double bottom, double top) {
+  return bottom - z > z - top ? Distance{bottom - z, -Vec3::UnitZ()} : Distance{z - top, Vec3::UnitZ()};
+}
 
-/// Signed distance in the plane from p to a convex counter-clockwise polygon.
-double polygonDistance(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
+/// Signed distance in the plane from p to a convex counter-clockwise polygon, with its gradient.
+Distance polygonDistance(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& p) {
   double nearest = std::numeric_limits<double>::infinity();
+  Eigen::Vector2d away = Eigen::Vector2d::Zero();  // from the nearest point of the boundary to p
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitX();  // the nearest edge's outward normal
   bool inside = true;
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const Eigen::Vector2d& a = polygon[i];
     const Eigen::Vector2d edge = polygon[(i + 1) % polygon.size()] - a;
     const double s = std::clamp((p - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
-    nearest = std::min(nearest, (p - a - s * edge).norm());
+    const Eigen::Vector2d offset = p - a - s * edge;
+    if (offset.norm() < nearest) nearest = offset.norm(), away = offset, normal = Eigen::Vector2d(edge.y(), -edge.x()).normalized();
     if (cross(edge, p - a) < 0.0) inside = false;
   }
-  return inside ? -nearest : nearest;
+  // The unit vector from the boundary towards p, outwards: the gradient of ±nearest.
+  const Eigen::Vector2d outwards = nearest > 0.0 ? Eigen::Vector2d((inside ? -1.0 : 1.0) * away / nearest) : normal;
+  return {inside ? -nearest : nearest, Vec3(outwards.x(), outwards.y(), 0.0)};
 }
 
 struct PointDistance {
   const Vec3& p;
-  double operator()(const BoxShape& box) const {
-    const double c = std::cos(box.yaw), s = std::sin(box.yaw);
-    const Vec3 d = p - box.centre;
-    const Vec3 local(c * d.x() + s * d.y(), -s * d.x() + c * d.y(), d.z());  // Rz(−yaw) d
+  Distance operator()(const BoxShape& box) const {
+    const Eigen::Matrix3d turn = Eigen::AngleAxisd(box.yaw, Vec3::UnitZ()).toRotationMatrix();
+    const Vec3 local = turn.transpose() * (p - box.centre);
+    const Vec3 side = local.unaryExpr([](double x) { return x < 0.0 ? -1.0 : 1.0; });
     const Vec3 q = local.cwiseAbs() - 0.5 * box.size;
-    return std::min(q.maxCoeff(), 0.0) + q.cwiseMax(0.0).norm();
+    const Vec3 out = q.cwiseMax(0.0);
+    if (out.norm() > 0.0) return {out.norm(), turn * side.cwiseProduct(out / out.norm())};
+    Eigen::Index face = 0;
+    const double d = q.maxCoeff(&face);
+    return {d, turn * (side(face) * Vec3::Unit(face))};
   }
-  double operator()(const CylinderShape& cylinder) const {
-    return extruded((p - cylinder.base).head<2>().norm() - cylinder.radius,
+  Distance operator()(const CylinderShape& cylinder) const {
+    const Eigen::Vector2d radial = (p - cylinder.base).head<2>();
+    const Eigen::Vector2d outwards = radial.norm() > 0.0 ? Eigen::Vector2d(radial.normalized()) : Eigen::Vector2d::UnitX();
+    return extruded({radial.norm() - cylinder.radius, Vec3(outwards.x(), outwards.y(), 0.0)},
                     outsideSlab(p.z(), cylinder.base.z(), cylinder.base.z() + cylinder.height));
   }
-  double operator()(const PrismShape& prism) const {
+  Distance operator()(const PrismShape& prism) const {
     return extruded(polygonDistance(prism.footprint, p.head<2>()), outsideSlab(p.z(), prism.bottom, prism.top));
   }
 };
 
 }  // namespace
 
-double signedDistance(const ObstacleShape& shape, const Vec3& p) { return std::visit(PointDistance{p}, shape); }
+DistanceWithGradient signedDistanceWithGradient(const ObstacleShape& shape, const Vec3& p) {
+  return std::visit(PointDistance{p}, shape);
+}
+
+double signedDistance(const ObstacleShape& shape, const Vec3& p) { return signedDistanceWithGradient(shape, p).distance; }
 
 double signedDistance(const ObstacleShape& shape, const Capsule& part) {
   const auto along = [&](double s) { return signedDistance(shape, Vec3(part.a + s * (part.b - part.a))); };

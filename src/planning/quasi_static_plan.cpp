@@ -413,6 +413,8 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
     check.error = (check.reached - check.planned).norm();
     plan.inversion_checks.push_back(check);
     if (k == 0) plan.plane = mapPlane(target, plan.map, model, eq.q);
+    if (k == 0 && target.method == PlanMethod::MinimumTime && !target.obstacles.empty())
+      plan.lift_body = liftBody(target, plan.map, scene, model, eq.q);
     if (k != 0 && k != n - 1) continue;
     (k == 0 ? plan.hanging_length_start : plan.hanging_length_end) = hangingLength(model, eq.q, target.controls);
     (k == 0 ? pendulum.hoist_start : pendulum.hoist_end) = c.hoist_length;
@@ -488,12 +490,29 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
 
   // 7. The minimum-time lift, started from the flatness plan.
   if (target.method == PlanMethod::MinimumTime) {
-    const LiftProblem problem = liftProblem(target, plan);
-    plan.lift = solveMinimumTimeLift(problem, flatnessGuess(target, plan, problem));
+    LiftProblem problem = liftProblem(target, plan);
+    checkLiftEndsClear(target, problem);
+    const LiftStart start = liftStart(target, plan, problem);
+    try {
+      plan.lift = solveMinimumTimeLift(problem, start.guess);
+    } catch (const LiftBlocked& e) {
+      const Obstacle& o = target.obstacles[e.closest.obstacle];
+      throw SceneError(o.where, fmt::format("no lift within the map and the drive limits found that clears obstacle '{}' by {:.3g} m "
+                                            "(the clearance margin {:.3g} m and the allowance {:.3g} m): the solver ({}) stopped "
+                                            "with the {} {:.3g} m from it at t = {:.3g} s",
+                                            o.name, problem.clearance_margin, target.clearance_margin,
+                                            target.minimum_time.clearance_allowance, e.what(), liftPartName(e.closest.part),
+                                            e.closest.clearance, e.t));
+    }
     const double flat = plan.load_path.duration();
     liftControls(target, plan);
-    say(fmt::format("minimum time: {:.4g} s instead of the flatness path's {:.4g} s ({} intervals, {} Ipopt iterations in {:.3g} s)",
-                    plan.lift->final_time, flat, target.minimum_time.intervals, plan.lift->iterations, plan.lift->solve_time_s));
+    say(fmt::format("minimum time: {:.4g} s instead of the flatness path's {:.4g} s ({} intervals, {} Ipopt iterations in {:.3g} s, "
+                    "started from {} of {:.4g} s)",
+                    plan.lift->final_time, flat, target.minimum_time.intervals, plan.lift->iterations, plan.lift->solve_time_s,
+                    start.from, start.guess.final_time));
+    if (!problem.obstacles.empty())
+      say(fmt::format("minimum time: the lift's parts clear the obstacles by ≥ {:.3g} m at its nodes (asked {:.3g} m)",
+                      *std::min_element(plan.lift->clearance.begin(), plan.lift->clearance.end()), problem.clearance_margin));
   }
   if (target.drive_limits.any())
     say(fmt::format("drive limits: {} (largest peak / limit, as duration factor: {:.3g})",

@@ -427,3 +427,34 @@ def test_a_file_that_is_not_a_results_file_is_refused(tmp_path):
         assert len(run.stderr.strip().splitlines()) == 1 and "Traceback" not in run.stderr
         assert path.name in run.stderr
         assert not (tmp_path / "x.html").exists()
+
+
+def test_plan_page_draws_the_obstacles_and_their_clearance(tmp_path):
+    """The luffing jib's plan over a wall and beside a silo: the page data holds each obstacle as
+    the target gives it (yaw in radians) with its smallest verified clearance from /clearance, and
+    the page draws a mesh for each."""
+    if not OPT_BINARY.is_file():
+        pytest.fail(f"{OPT_BINARY.name} not found at {OPT_BINARY}: build it first or set CRANEOPT_BIN")
+    jib = SOURCE_DIR / "configs" / "target_luffing_jib.yaml"
+    target = tmp_path / "target.yaml"
+    target.write_text(jib.read_text(encoding="utf-8").replace("scene: luffing_jib.yaml", f"scene: {jib.parent / 'luffing_jib.yaml'}")
+                      + "obstacles:\n  - {name: wall, shape: box, centre: [-12, 0, 2.5], size: [0.4, 10, 5], yaw: 30}\n"
+                        "  - {name: silo, shape: cylinder, base: [-12, 8, 0], radius: 2, height: 6}\n",
+                      encoding="utf-8")
+    plan_file = tmp_path / "plan.h5"
+    run = subprocess.run([str(OPT_BINARY), "plan", str(target), "-o", str(plan_file), "--quiet"], capture_output=True,
+                         text=True, timeout=120)
+    assert run.returncode == 0, run.stderr
+    page = make_page(tmp_path, plan_file)
+    plan = page_data(page)["plan"]
+    with h5py.File(plan_file, "r") as f:
+        minimum = f["clearance/minimum"][...]
+        assert list(f["clearance/obstacle"].asstr()[...]) == ["wall", "silo"]
+    wall, silo = plan["obstacles"]
+    assert wall["shape"] == "box" and wall["centre"] == [-12, 0, 2.5] and wall["yaw"] == pytest.approx(np.pi / 6)
+    assert silo["shape"] == "cylinder" and silo["radius"] == 2 and silo["height"] == 6
+    assert [wall["clearance"], silo["clearance"]] == pytest.approx(minimum.min(axis=1).tolist())
+    assert plan["clearance"]["closest_obstacle"] == ("wall" if minimum[0].min() < minimum[1].min() else "silo")
+    dom = parse_dom(run_browsers([browser_command(tmp_path / "profile", f"{page.as_uri()}#t=5", "--dump-dom")])[0])
+    assert dom.status.get("data-state") == "ready", dom.status.get("data-error")
+    assert dom.status["data-obstacles"] == "obstacle wall,obstacle silo"

@@ -22,7 +22,9 @@
 // Decision variables per node: q, q̇, q̈, the jerk q⃛ (the control), α, β, α̇, β̇; and t_f. The
 // collocation defects of the chain q → q̇ → q̈ → q⃛ and of the pendulum are the equality
 // constraints; the drives' speeds and accelerations (exact, through the map) per node are
-// ranged constraints. The Jacobian is exact (forward-mode dual numbers through the map's
+// ranged constraints; with obstacles, the clearance of the boom, the hoist rope and the load from
+// each of them (planning/lift_clearance.hpp) at every node between the ends is at least the
+// margin. The Jacobian is exact (forward-mode dual numbers through the map's
 // surfaces, nested for the time derivatives); the Hessian is Ipopt's limited-memory (L-BFGS)
 // approximation.
 
@@ -31,8 +33,12 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "cranesim/planning/lift_clearance.hpp"
+#include "cranesim/planning/obstacle.hpp"
 #include "cranesim/planning/slewing_plane.hpp"
 #include "cranesim/planning/surface_fit.hpp"
 
@@ -50,6 +56,7 @@ struct LiftKinematics {
   double hoist_start = 0.0, hoist_end = 0.0;
   double along_start = 1.0, along_end = 1.0, across_start = 1.0, across_end = 1.0;
   double gravity = 9.81;
+  LiftBody body;                 // the parts kept clear of obstacles
 
   /// ℓ_a and ℓ_c at a hoist rope length (any scalar type of math/autodiff.hpp).
   template <class S> S along(const S& hoist) const { return affineInHoist(hoist, along_start, along_end); }
@@ -77,6 +84,9 @@ struct LiftProblem {
   Eigen::Vector3d q_min = Eigen::Vector3d::Constant(-1e20), q_max = Eigen::Vector3d::Constant(1e20);
   std::array<DriveBounds, 3> drives;  // indexed by LiftDrive
   Eigen::Vector3d jerk_limit = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());  // |q⃛|
+  /// Obstacles every part (crane.body) clears by `clearance_margin` at every node.
+  std::vector<Obstacle> obstacles;
+  double clearance_margin = 0.0;
   int intervals = 100;
   double tolerance = 1e-8;
   int max_iterations = 3000;
@@ -107,6 +117,7 @@ struct LiftTrajectory {
   std::vector<LiftNode> nodes;
   std::vector<Vec3> load;          // the load's position p (world), per node
   std::vector<DriveState> drives;  // per node
+  std::vector<double> clearance;   // with obstacles: the smallest of clearanceAt per node, m
   int iterations = 0;
   double solve_time_s = 0.0;       // wall time of the solve
 };
@@ -119,13 +130,38 @@ struct PendulumState {
 PendulumState pendulumAt(const LiftKinematics& crane, const LiftNode& node);
 DriveState drivesAt(const LiftKinematics& crane, const LiftNode& node);
 
+/// The parts' smallest clearance at a node from the problem's obstacles, as the NLP constrains it
+/// (planning/lift_clearance.hpp: a lower bound of the exact one within 2 cm), and whose.
+struct NodeClearance {
+  double clearance = std::numeric_limits<double>::infinity();
+  int obstacle = -1;
+  LiftPart part = kLoadPart;
+};
+NodeClearance clearanceAt(const LiftProblem& problem, const LiftNode& node);
+
 /// A start that moves q from `start` to `end` by the rest-to-rest polynomial over `duration`
 /// with the pendulum hanging plumb.
 LiftGuess restToRestGuess(const LiftProblem& problem, double duration);
 
+/// A start that visits the waypoints (q; the first the start, the last the end) at rest, from
+/// each to the next by the rest-to-rest polynomial over the least time in which its drives keep
+/// their limits, the pendulum hanging plumb; N + 1 nodes equally spaced in time.
+LiftGuess waypointGuess(const LiftProblem& problem, const std::vector<Eigen::Vector3d>& waypoints);
+
+/// The solver failed with its last iterate closer to an obstacle than the margin: most likely
+/// no lift within the map and the drive limits clears it.
+struct LiftBlocked : std::runtime_error {
+  LiftBlocked(const std::string& what, const NodeClearance& closest, double t)
+      : std::runtime_error(what), closest(closest), t(t) {}
+  NodeClearance closest;
+  double t;  // at the node, in the last iterate's time, s
+};
+
 /// Solves the problem from `guess` (resampled to the problem's intervals by linear
 /// interpolation). Throws std::invalid_argument for fewer than 2 intervals, a guess without
-/// nodes or a non-positive limit, and std::runtime_error naming Ipopt's status when it fails.
+/// nodes, a non-positive limit or obstacles without a boom, LiftBlocked when Ipopt fails with its
+/// last iterate within the margin of an obstacle, and std::runtime_error naming Ipopt's status
+/// when it fails otherwise.
 LiftTrajectory solveMinimumTimeLift(const LiftProblem& problem, const LiftGuess& guess);
 
 }  // namespace cranesim

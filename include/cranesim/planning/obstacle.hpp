@@ -49,6 +49,17 @@ struct Capsule {
 /// Signed distance from a point to the shape (exact).
 double signedDistance(const ObstacleShape& shape, const Vec3& p);
 
+/// A signed distance and its gradient in the point.
+struct DistanceWithGradient {
+  double distance = 0.0;
+  Vec3 gradient = Vec3::Zero();
+};
+
+/// Signed distance from a point to the shape and its gradient (exact): outside, the unit vector
+/// from the shape's nearest point, continuous (the distance to a convex set is C¹ outside it);
+/// inside, the outward normal of the nearest face, which jumps where two faces are equally near.
+DistanceWithGradient signedDistanceWithGradient(const ObstacleShape& shape, const Vec3& p);
+
 /// How closely signedDistance(shape, capsule) finds the segment's closest point: the segment's
 /// parameter within this, so the distance within it times the segment's length.
 inline constexpr double kSegmentParameterTolerance = 1e-12;

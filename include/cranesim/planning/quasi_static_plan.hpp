@@ -85,6 +85,8 @@ struct QuasiStaticPlan {
   /// minimum_time only: the lift the controls follow (planning/minimum_time_lift.hpp), started
   /// from the flatness path of `load_path`'s duration.
   std::optional<LiftTrajectory> lift;
+  /// minimum_time: the crane's parts the lift keeps clear of obstacles, at the start's equilibrium.
+  LiftBody lift_body;
   /// minimum_time with slewing: the slewing angle that turns the map's plane onto the load at
   /// each path point (the load sways across the plane, so it differs from the drive's), rad.
   std::vector<double> path_turns;

@@ -62,11 +62,13 @@ struct ControlLimits {
 
 /// The minimum-time lift's collocation (planning/minimum_time_lift.hpp) and smoothness: a drive
 /// without an acceleration limit is held to speed / rise_time, a drive without a jerk limit to
-/// acceleration / rise_time.
+/// acceleration / rise_time. With obstacles the lift plans for the clearance margin plus
+/// `clearance_allowance`: what its rigid crane and pendulum miss of the verified flexible crane.
 struct MinimumTimeSpec {
   int intervals = 200;
   double rise_time = 2.0;   // s
   double tolerance = 1e-6;  // Ipopt's
+  double clearance_allowance = 0.2;  // m
   SourceLocation where;
 };
 
