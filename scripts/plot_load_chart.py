@@ -78,7 +78,7 @@ def load_chart(table: h5py.File, load_name: str, configuration_name: str, radius
         count = int(held.sum())
         if count < len(cases):
             beyond = cases[count]
-            violated = [c.attrs["figure"] for c in criteria if c[beyond] != 1.0]
+            violated = [c.attrs["figure"] for c in criteria if c[beyond] == 0.0]
             status = table["cases/status"].asstr()[beyond]
             row["limit"] = ", ".join(violated) if violated else f"case {beyond} {status}"
         elif held.any():

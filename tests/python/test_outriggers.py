@@ -1,8 +1,10 @@
-"""The thesis crane on outrigger pads (configs/crane_on_outriggers.yaml).
+"""The thesis crane on outrigger pads (configs/crane_on_outriggers.yaml) and its load chart with
+stability and ground pressure (configs/study_load_chart_outriggers.yaml).
 
 Statically the four pads share the weight as a rigid plate on equal springs; slewing the 390 t
 load over the front-left pad presses it harder than the quasi-static peak, and its swing lifts the
-rear-right pad, which the statics keep down.
+rear-right pad, which the statics keep down. At a radius where stability limits the chart, the
+load with 85 % of its tipping load agrees with a moment balance about the front edge.
 
 Environment: CRANESIM_BIN (default <repo>/build/crane-sim) and CRANESIM_SOURCE_DIR.
 """
@@ -75,3 +77,51 @@ def test_the_slew_presses_the_front_left_pad_past_its_quasi_static_peak(tmp_path
         assert f["supports/pads/rear_right/force"][...].min() == 0.0
         assert f["supports/margin"][...].min() > 0.0
 
+
+def test_stability_limited_capacity_agrees_with_a_moment_balance(tmp_path):
+    # The chart's luffing rope of 24 m (radius 43 m): stability limits it. The capacity is the load
+    # whose weight is 85 % of its tipping load, interpolated on a 2 t grid. By hand: the crane with
+    # a light 5 t load has the resultant W₁ at d₁ inside the front edge (x = −7 m), its restoring
+    # moment W₁ d₁; a load P hanging a beyond that edge tips it when P a = W₁ d₁ + P₁ a (the light
+    # load counted in P), so P_tip = P₁ + W₁ d₁ / a, with a the loaded crane's (its boom deflects
+    # under the load: the difference is the extrapolation's, within 2 %).
+    loads = [5000] + list(range(40000, 58000, 2000))
+    (tmp_path / "chart.yaml").write_text(f"""\
+scene: {SCENE}
+analysis: static
+keep_results: true
+parameters:
+  - {{path: members.luffing_rope.length, values: [24]}}
+  - {{path: bodies.load.mass, values: {loads}}}
+figures:
+  - {{name: stability, quantity: tipping_load_fraction, body: load}}
+criteria:
+  - {{figure: stability, max: 0.85, source: "ASME B30.5 on outriggers"}}
+""")
+    crane_sim(tmp_path, "study", "chart.yaml", "-o", "chart.h5")
+    with h5py.File(tmp_path / "chart.h5", "r") as table:
+        fraction = table["figures/stability"][...]
+        admissible = table["cases/admissible"][...]
+    grid = np.array(loads[1:], dtype=float)
+    above = int(np.flatnonzero(fraction[1:] > 0.85)[0])
+    assert 0 < above and np.all(admissible[1:above + 1] == 1.0) and admissible[above + 1] == 0.0
+    f0, f1 = fraction[above], fraction[above + 1]
+    capacity = grid[above - 1] + (0.85 - f0) / (f1 - f0) * (grid[above] - grid[above - 1])
+
+    def case(k):
+        return h5py.File(tmp_path / "chart_cases" / f"case_{k:05d}.h5", "r")
+
+    def front_edge_distance(f, point):  # > 0 inside the polygon, behind the front pads' line
+        front = [f[f"joints/carriage.{pad}/position"][0][:2] for pad in ("front_right", "front_left")]
+        edge = front[1] - front[0]  # front-right → front-left (−y): the polygon lies to its left
+        offset = np.asarray(point)[:2] - front[0]
+        return (edge[0] * offset[1] - edge[1] * offset[0]) / np.linalg.norm(edge)
+
+    with case(0) as light:
+        weight = light["supports/carried"][0]
+        restoring = weight * front_edge_distance(light, light["supports/resultant"][0])
+    with case(above) as loaded:  # the lighter load next to the capacity: where the load hangs
+        centroid = loaded["bodies/load/position"][0] + loaded["bodies/load/rotation"][0] @ np.array([1.0, 0.0, 0.0])
+        beyond = -front_edge_distance(loaded, centroid)
+    tipping = loads[0] * GRAVITY + restoring / beyond
+    assert capacity * GRAVITY == pytest.approx(0.85 * tipping, rel=0.02)
