@@ -4,7 +4,9 @@ stability and ground pressure (configs/study_load_chart_outriggers.yaml).
 Statically the four pads share the weight as a rigid plate on equal springs; slewing the 390 t
 load over the front-left pad presses it harder than the quasi-static peak, and its swing lifts the
 rear-right pad, which the statics keep down. At a radius where stability limits the chart, the
-load with 85 % of its tipping load agrees with a moment balance about the front edge.
+load with 85 % of its tipping load agrees with a moment balance about the front edge. Slewing
+into a gusting wind (configs/study_permitted_wind.yaml), the permitted wind speed is the largest
+mean speed that passes every criterion.
 
 Environment: CRANESIM_BIN (default <repo>/build/crane-sim) and CRANESIM_SOURCE_DIR.
 """
@@ -125,3 +127,33 @@ criteria:
         beyond = -front_edge_distance(loaded, centroid)
     tipping = loads[0] * GRAVITY + restoring / beyond
     assert capacity * GRAVITY == pytest.approx(0.85 * tipping, rel=0.02)
+
+
+def test_permitted_wind_speed_is_the_largest_passing_mean_speed(tmp_path):
+    # The slew into a gusting wind (crane_on_outriggers_wind.yaml) with 200 t at four mean speeds:
+    # the wind pushes the load and boom outwards (it blows where the slew ends), so from 12 m/s on
+    # the stability figure — the load's share of its tipping load at its worst — and the pendant's
+    # peak grow with the speed (below about 8 m/s the drag damps the slew's swing more than it
+    # pushes: the stability figure dips by 5 %); the permitted speed is the largest one that, with
+    # every lower one, meets every criterion, as plot_load_chart.py reports it with the speed as its
+    # "load".
+    (tmp_path / "wind.yaml").write_text(
+        (SOURCE_DIR / "configs" / "study_permitted_wind.yaml").read_text()
+        .replace("scene: crane_on_outriggers_wind.yaml", f"scene: {SOURCE_DIR / 'configs' / 'crane_on_outriggers_wind.yaml'}")
+        .replace("values: [100000, 200000, 250000]", "values: [200000]")
+        .replace("range: {from: 0, to: 30, count: 16}", "values: [0, 12, 24, 30]"))
+    crane_sim(tmp_path, "study", "wind.yaml", "-o", "wind.h5", "--jobs", "2")
+    with h5py.File(tmp_path / "wind.h5", "r") as table:
+        assert list(table["parameters/wind.speed"][...]) == [0, 12, 24, 30]
+        stability, pendant = table["figures/stability"][...], table["figures/sub_cable"][...]
+        admissible = table["cases/admissible"][...]
+    assert np.all(np.diff(stability[1:]) > 0) and np.all(np.diff(pendant[1:]) > 0)
+    passing = np.cumprod(admissible == 1.0).astype(bool)
+    assert passing[0] and not passing[-1], "the speeds should bracket the permitted one"
+    permitted = [0, 12, 24, 30][int(passing.sum()) - 1]
+    chart = subprocess.run(["python3", str(SOURCE_DIR / "scripts" / "plot_load_chart.py"), str(tmp_path / "wind.h5"),
+                            "--load", "wind.speed", "--configuration", "bodies.load.mass", "-o", str(tmp_path / "wind.png")],
+                           capture_output=True, text=True, timeout=120)
+    assert chart.returncode == 0, chart.stderr
+    row = chart.stdout.splitlines()[1].split()
+    assert float(row[0]) == 200000 and float(row[2]) == permitted
