@@ -165,6 +165,8 @@ TEST_CASE("the tipping force brings the resultant onto the edge it crosses first
   const Vector2d on_edge = (weight * start + over_corner * corner_load) / (weight + over_corner);
   CHECK(on_edge.y() == Approx(kHalfY).epsilon(1e-12));
   CHECK(on_edge.x() < kHalfX);
-  // A load inside the polygon never tips it.
+  // A load inside the polygon never tips it; a resultant outside it tips it already, even over
+  // an edge the load lies inside of.
   CHECK(std::isinf(tippingForce(corners, weight, resultant, {1.0, 1.0})));
+  CHECK(tippingForce(corners, weight, {-kHalfX - 0.5, 0.0}, {kLoadRadius, 0.0}) == 0.0);
 }

@@ -121,8 +121,9 @@ double tippingForce(const std::vector<Eigen::Vector2d>& supports, double weight,
   for (std::size_t i = 0; i < hull.size(); ++i) {
     const Eigen::Vector2d& a = hull[i];
     const Eigen::Vector2d& b = hull[(i + 1) % hull.size()];
-    const double load_inside = insideEdge(a, b, load);
-    if (load_inside < 0.0) force = std::min(force, weight * insideEdge(a, b, resultant) / -load_inside);
+    const double resultant_inside = insideEdge(a, b, resultant), load_inside = insideEdge(a, b, load);
+    if (resultant_inside < 0.0) return 0.0;  // it tips already
+    if (load_inside < 0.0) force = std::min(force, weight * resultant_inside / -load_inside);
   }
   return force;
 }

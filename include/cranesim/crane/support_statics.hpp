@@ -55,8 +55,9 @@ TippingLine tippingLine(const std::vector<Eigen::Vector2d>& supports, double wei
                         const Eigen::Vector2d& resultant);
 
 /// The vertical force (N) that, added at `load` to a vertical load `weight` acting at
-/// `resultant` (inside the polygon spanned by `supports`), brings the resultant onto the
-/// polygon's edge: the carriage is about to tip over it. Infinite when `load` lies inside.
+/// `resultant`, brings the resultant onto the edge of the polygon spanned by `supports`: the
+/// carriage is about to tip over it. Infinite when `load` lies inside the polygon; 0 when the
+/// resultant lies outside it (the carriage tips already).
 double tippingForce(const std::vector<Eigen::Vector2d>& supports, double weight,
                     const Eigen::Vector2d& resultant, const Eigen::Vector2d& load);
 
