@@ -9,6 +9,10 @@ Example:
 
     crane-sim study configs/study_load_chart.yaml -o chart.h5 --jobs 2
     python scripts/plot_load_chart.py chart.h5 -o chart.png
+
+The "load" may be any parameter whose larger values are harder on the crane: with
+`--load wind.speed --configuration bodies.load.mass` it gives, per load, the permitted wind speed
+of a lift (configs/study_permitted_wind.yaml).
 """
 
 import argparse
@@ -78,7 +82,7 @@ def load_chart(table: h5py.File, load_name: str, configuration_name: str, radius
         count = int(held.sum())
         if count < len(cases):
             beyond = cases[count]
-            violated = [c.attrs["figure"] for c in criteria if c[beyond] != 1.0]
+            violated = [c.attrs["figure"] for c in criteria if c[beyond] == 0.0]
             status = table["cases/status"].asstr()[beyond]
             row["limit"] = ", ".join(violated) if violated else f"case {beyond} {status}"
         elif held.any():
@@ -106,12 +110,13 @@ def main() -> None:
     radius = np.array([row["radius"] for row in chart])
     load = np.array([row["load"] for row in chart])
     order = np.argsort(radius)
-    axes.plot(radius[order], load[order] / 1e3, "-", color="0.6", zorder=1)
+    scale, unit = (1e3, "t") if args.load.endswith(".mass") else (1.0, "SI")  # a mass in tonnes
+    axes.plot(radius[order], load[order] / scale, "-", color="0.6", zorder=1)
     for limit in sorted({row["limit"] for row in chart}):
         mine = np.array([row["limit"] == limit for row in chart])
-        axes.plot(radius[mine], load[mine] / 1e3, "o", label=f"limited by {limit}", zorder=2)
+        axes.plot(radius[mine], load[mine] / scale, "o", label=f"limited by {limit}", zorder=2)
     axes.set_xlabel(f"{args.radius} [m]")
-    axes.set_ylabel(f"largest admissible {args.load} [t]")
+    axes.set_ylabel(f"largest admissible {args.load} [{unit}]")
     axes.grid(True, alpha=0.3)
     axes.legend()
     axes.set_title(f"{title}: load chart")

@@ -142,3 +142,31 @@ TEST_CASE("the tipping line is the polygon's edge nearest the resultant", "[supp
   const TippingLine outside = tippingLine(corners, weight, Vector2d(4.5, 0.0));
   CHECK(outside.margin == Approx(-weight * 0.5));
 }
+
+TEST_CASE("the tipping force brings the resultant onto the edge it crosses first", "[supports]") {
+  // The load at kLoadRadius straight ahead: with ΔF added there the resultant of W at x_c and ΔF
+  // at 8 m lies on the front edge x = 4 m when (W·x_c + ΔF·8) / (W + ΔF) = 4.
+  std::vector<Vector2d> corners;
+  for (const auto& pad : fourPads()) corners.push_back(pad.position);
+  const double weight = kCarriage + kCounterweight + kLoad;
+  const Vector2d resultant = resultantAt(0.0);
+  const double ahead = tippingForce(corners, weight, resultant, {kLoadRadius, 0.0});
+  CHECK(ahead == Approx(weight * (kHalfX - resultant.x()) / (kLoadRadius - kHalfX)).epsilon(1e-12));
+  CHECK((weight * resultant.x() + ahead * kLoadRadius) / (weight + ahead) == Approx(kHalfX).epsilon(1e-12));
+  // Over a corner two edges face the load: the resultant, moving straight towards it, leaves
+  // through the side edge y = 3 m (ΔF = 0.2 W: 1 m inside it, the load 5 m beyond) before it
+  // reaches the front edge x = 4 m (ΔF = W: 2 m inside it, the load 2 m beyond).
+  const Vector2d corner_load(6.0, 8.0), start(2.0, 2.0);
+  const double over_corner = tippingForce(corners, weight, start, corner_load);
+  const double side = weight * (kHalfY - start.y()) / (corner_load.y() - kHalfY);
+  const double front = weight * (kHalfX - start.x()) / (corner_load.x() - kHalfX);
+  REQUIRE(side < front);
+  CHECK(over_corner == Approx(side).epsilon(1e-12));
+  const Vector2d on_edge = (weight * start + over_corner * corner_load) / (weight + over_corner);
+  CHECK(on_edge.y() == Approx(kHalfY).epsilon(1e-12));
+  CHECK(on_edge.x() < kHalfX);
+  // A load inside the polygon never tips it; a resultant outside it tips it already, even over
+  // an edge the load lies inside of.
+  CHECK(std::isinf(tippingForce(corners, weight, resultant, {1.0, 1.0})));
+  CHECK(tippingForce(corners, weight, {-kHalfX - 0.5, 0.0}, {kLoadRadius, 0.0}) == 0.0);
+}

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "cranesim/model/support_elements.hpp"
 
 namespace cranesim {
@@ -22,7 +24,7 @@ SupportReading readSupports(const Model& model, const EnvelopeSupports& supports
   const auto forcesOf = [&](const EnvelopeSupport& s) { return dynamic_cast<const SupportElement&>(*model.elements[s.element]).pointForces(in); };
   SupportReading reading;
   Eigen::Vector2d moment = Eigen::Vector2d::Zero();
-  std::vector<Eigen::Vector2d> polygon;
+  std::vector<Eigen::Vector2d>& polygon = reading.polygon;
   for (const EnvelopeSupport& pad : supports.pads) {
     const double force = forcesOf(pad)[0];
     reading.pads.push_back({force, force / pad.bearing_area});
@@ -54,6 +56,13 @@ SupportReading readSupports(const Model& model, const EnvelopeSupports& supports
   }
   reading.tipping = tippingLine(polygon, reading.carried, reading.resultant);
   return reading;
+}
+
+double SupportReading::peakPressure() const {
+  double peak = 0.0;
+  for (const PadReading& p : pads) peak = std::max(peak, p.pressure);
+  for (const TrackReading& t : tracks) peak = std::max(peak, t.peak_pressure);
+  return peak;
 }
 
 std::string describeSupportReading(const EnvelopeSupports& supports, const SupportReading& reading) {

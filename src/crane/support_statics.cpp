@@ -31,6 +31,17 @@ std::vector<Eigen::Vector2d> convexHull(std::vector<Eigen::Vector2d> points) {
   return hull;
 }
 
+/// The distance of `point` inside the edge a → b of a counter-clockwise polygon (< 0 outside it).
+double insideEdge(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& point) {
+  return cross(b - a, point - a) / (b - a).norm();
+}
+
+std::vector<Eigen::Vector2d> supportPolygon(const std::vector<Eigen::Vector2d>& supports) {
+  std::vector<Eigen::Vector2d> hull = convexHull(supports);
+  if (hull.size() < 3) throw std::invalid_argument("the supports span no polygon");
+  return hull;
+}
+
 }  // namespace
 
 std::vector<double> rigidPlatePadForces(const std::vector<PadSpring>& pads, double weight,
@@ -88,20 +99,33 @@ double rigidTrackPressureAt(double force, double eccentricity, double length, do
 
 TippingLine tippingLine(const std::vector<Eigen::Vector2d>& supports, double weight,
                         const Eigen::Vector2d& resultant) {
-  const std::vector<Eigen::Vector2d> hull = convexHull(supports);
-  if (hull.size() < 3) throw std::invalid_argument("the supports span no polygon");
+  const std::vector<Eigen::Vector2d> hull = supportPolygon(supports);
   TippingLine nearest;
   double nearest_distance = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < hull.size(); ++i) {
     const Eigen::Vector2d& a = hull[i];
     const Eigen::Vector2d& b = hull[(i + 1) % hull.size()];
-    const double inside = cross(b - a, resultant - a) / (b - a).norm();  // > 0 left of a→b
+    const double inside = insideEdge(a, b, resultant);
     if (inside < nearest_distance) {
       nearest_distance = inside;
       nearest = {a, b, weight * inside};
     }
   }
   return nearest;
+}
+
+double tippingForce(const std::vector<Eigen::Vector2d>& supports, double weight,
+                    const Eigen::Vector2d& resultant, const Eigen::Vector2d& load) {
+  const std::vector<Eigen::Vector2d> hull = supportPolygon(supports);
+  double force = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Eigen::Vector2d& a = hull[i];
+    const Eigen::Vector2d& b = hull[(i + 1) % hull.size()];
+    const double resultant_inside = insideEdge(a, b, resultant), load_inside = insideEdge(a, b, load);
+    if (resultant_inside < 0.0) return 0.0;  // it tips already
+    if (load_inside < 0.0) force = std::min(force, weight * resultant_inside / -load_inside);
+  }
+  return force;
 }
 
 }  // namespace cranesim

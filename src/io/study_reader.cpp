@@ -124,6 +124,17 @@ std::string constraintAtRopeEnd(const YamlField& f, const Scene& scene, const Mo
   return held_by.front();
 }
 
+/// A rigid body of the scene named by `f`.
+std::string readBodyName(const YamlField& f, const Scene& scene) {
+  const std::string body = f.text();
+  std::string bodies;
+  for (const RigidBodySpec& b : scene.bodies) {
+    if (b.name == body) return body;
+    bodies += (bodies.empty() ? "" : ", ") + b.name;
+  }
+  f.fail(fmt::format("the scene has no body '{}' (bodies: {})", body, bodies));
+}
+
 /// A constraint of the scene named by `f`.
 const Constraint& readConstraintName(const YamlField& f, const Model& model) {
   const std::string name = f.text();
@@ -148,7 +159,12 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
   if (kReservedFigureNames.count(fig.name)) f.at("name").fail(fmt::format("'{}' is a column of every case table already", fig.name));
   const std::string quantity =
       f.at("quantity").choice({"rope_tension", "constraint_force", "constraint_moment", "position", "horizontal_distance",
-                               "horizontal_sway", "frequency", "tipping_moment", "dynamic_factor", "rope_slack"});
+                               "horizontal_sway", "frequency", "tipping_moment", "dynamic_factor", "rope_slack",
+                               "support_pressure", "stability_margin", "tipping_load", "tipping_load_fraction"});
+  const bool of_supports = quantity == "support_pressure" || quantity == "stability_margin" || quantity == "tipping_load" ||
+                           quantity == "tipping_load_fraction";
+  if (of_supports && !model.envelope.supports)
+    f.at("quantity").fail(fmt::format("{} needs a scene whose crane stands on ground.supports", quantity));
   if (quantity == "rope_tension") {
     f.allowKeys({"name", "quantity", "rope", "end", "statistic", "after"});
     fig.quantity = FigureQuantity::ConstraintForce;
@@ -181,6 +197,13 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
     const std::array<Vec3, 2> line = f.at("line").tippingLine();
     fig.line_from = line[0];
     fig.line_to = line[1];
+  } else if (quantity == "support_pressure" || quantity == "stability_margin") {
+    f.allowKeys({"name", "quantity", "statistic", "after"});
+    fig.quantity = quantity == "support_pressure" ? FigureQuantity::SupportPressure : FigureQuantity::StabilityMargin;
+  } else if (quantity == "tipping_load" || quantity == "tipping_load_fraction") {
+    f.allowKeys({"name", "quantity", "body", "statistic", "after"});
+    fig.quantity = quantity == "tipping_load" ? FigureQuantity::TippingLoad : FigureQuantity::TippingLoadFraction;
+    fig.body = readBodyName(f.at("body"), scene);
   } else if (quantity == "position") {
     f.allowKeys({"name", "quantity", "body", "joint", "component", "statistic", "after"});
     fig.quantity = FigureQuantity::Position;

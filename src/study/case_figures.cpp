@@ -6,6 +6,7 @@
 
 #include "cranesim/assembly/assembler.hpp"
 #include "cranesim/assembly/constraint_reaction.hpp"
+#include "cranesim/crane/support_reading.hpp"
 #include "cranesim/model/element.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
@@ -78,6 +79,42 @@ std::vector<double> tippingMoments(const FigureSpec& fig, const Model& model, co
   return moments;
 }
 
+/// At every sample, what the carriage's supports say (crane/support_reading.hpp): the largest
+/// bed pressure, or the stability margin about the active tipping line.
+std::vector<double> supportSeries(const FigureSpec& fig, const ResultsRecorder& recorder) {
+  std::vector<double> series;
+  for (const SupportReading& r : recorder.envelope().supports())
+    series.push_back(fig.quantity == FigureQuantity::SupportPressure ? r.peakPressure() : r.tipping.margin);
+  return series;
+}
+
+/// At every sample, the tipping load of the hook load `fig.body` (its weight W_L plus the force
+/// that, added where its centroid hangs, brings the supports' resultant onto the support
+/// polygon's edge: crane/support_statics.hpp, tippingForce), or W_L over it. The crane's
+/// geometry is the sample's: the extra load is assumed not to deflect it further.
+std::vector<double> tippingLoads(const FigureSpec& fig, const Scene& scene, const Model& model, const ResultsRecorder& recorder) {
+  const RigidBodySpec& body = *std::find_if(scene.bodies.begin(), scene.bodies.end(), [&](const RigidBodySpec& b) { return b.name == fig.body; });
+  const auto node = static_cast<int>(std::find_if(model.nodes.begin(), model.nodes.end(), [&](const Node& n) {
+                                       return n.member.empty() && n.name == fig.body;
+                                     }) - model.nodes.begin());
+  const double weight = body.mass * model.gravity.norm();
+  const auto [e1, e2] = groundPlaneAxes(model.envelope.up);
+  std::vector<std::vector<double>> columns(model.nq);
+  for (int k = 0; k < model.nq; ++k) columns[k] = recorder.stateColumn(k);
+  const std::vector<SupportReading>& readings = recorder.envelope().supports();
+  std::vector<double> loads(readings.size());
+  VecX q(model.nq);
+  for (std::size_t s = 0; s < loads.size(); ++s) {
+    for (int k = 0; k < model.nq; ++k) q(k) = columns[k][s];
+    const Frame frame = model.nodeFrame(q.data(), node);
+    const Vec3 centroid = frame.r + frame.R * body.centroid;
+    const SupportReading& r = readings[s];
+    const double tipping = weight + tippingForce(r.polygon, r.carried, r.resultant, {e1.dot(centroid), e2.dot(centroid)});
+    loads[s] = fig.quantity == FigureQuantity::TippingLoad ? tipping : weight / tipping;
+  }
+  return loads;
+}
+
 /// The time within the window during which some point of the rope carries no tension (its
 /// elements' tensions at kTensionPoints points each, element.hpp), every sample standing for the
 /// interval to the next (the window's last sample for none).
@@ -119,7 +156,7 @@ double reduce(const std::vector<double>& series, const std::vector<std::size_t>&
 
 }  // namespace
 
-std::vector<double> caseFigures(const Study& study, const Model& model, const ResultsRecorder& recorder,
+std::vector<double> caseFigures(const Study& study, const Scene& scene, const Model& model, const ResultsRecorder& recorder,
                                 const ModalResult* modes) {
   std::vector<double> figures;
   for (const FigureSpec& fig : study.figures) {
@@ -159,6 +196,14 @@ std::vector<double> caseFigures(const Study& study, const Model& model, const Re
       }
       case FigureQuantity::RopeSlack:
         figures.push_back(slackTime(fig, model, recorder, window));
+        break;
+      case FigureQuantity::SupportPressure:
+      case FigureQuantity::StabilityMargin:
+        figures.push_back(reduce(supportSeries(fig, recorder), window, fig.statistic));
+        break;
+      case FigureQuantity::TippingLoad:
+      case FigureQuantity::TippingLoadFraction:
+        figures.push_back(reduce(tippingLoads(fig, scene, model, recorder), window, fig.statistic));
         break;
       case FigureQuantity::Frequency:
         break;

@@ -63,7 +63,7 @@ void analyse(const Study& study, long index, const CaseOptions& options, CaseRow
   }
   if (!complete) return;
   row.status = kCaseComplete;
-  row.figures = caseFigures(study, model, session ? *session->recorder() : recorder, modal ? &*modal : nullptr);
+  row.figures = caseFigures(study, scene, model, session ? *session->recorder() : recorder, modal ? &*modal : nullptr);
 }
 
 }  // namespace

@@ -61,3 +61,33 @@ def test_the_slew_presses_past_the_allowable_pressure(tmp_path):
         assert over[0]["peak"] == pytest.approx(peak.max(), rel=1e-12)
         assert over[0]["peak"] > 400e3 > peak[0]
         assert f["envelope"].attrs["left_envelope"] == 1
+
+
+def test_study_figures_are_the_static_cases_supports(tmp_path):
+    # One static case of the crawler crane, its results kept: the study's support figures are
+    # /supports of the same equilibrium — the larger track peak, the margin — and the tipping
+    # load is the load's weight plus the force at its centroid whose moment about the active
+    # (front) tipping line cancels the margin.
+    (tmp_path / "study.yaml").write_text(
+        f"scene: {SCENE}\nanalysis: static\nkeep_results: true\nfigures:\n"
+        "  - {name: pressure, quantity: support_pressure}\n"
+        "  - {name: margin, quantity: stability_margin}\n"
+        "  - {name: tipping, quantity: tipping_load, body: load}\n"
+        "  - {name: fraction, quantity: tipping_load_fraction, body: load}\n")
+    crane_sim(tmp_path, "study", "study.yaml", "-o", "study.h5")
+    with h5py.File(tmp_path / "study.h5", "r") as table, h5py.File(tmp_path / "study_cases" / "case_00000.h5", "r") as f:
+        figures = {name: table[f"figures/{name}"][0] for name in ("pressure", "margin", "tipping", "fraction")}
+        supports = f["supports"]
+        peak = max(supports[f"tracks/{name}/peak_pressure"][0] for name in ("left", "right"))
+        assert figures["pressure"] == pytest.approx(peak, rel=1e-12)
+        assert figures["margin"] == pytest.approx(supports["margin"][0], rel=1e-12)
+        x0, y0, x1, y1 = supports["tipping_line"][0]
+        assert x0 == pytest.approx(-6.0, abs=0.05) and x1 == pytest.approx(-6.0, abs=0.05)  # the front ends
+        centroid = f["bodies/load/position"][0] + f["bodies/load/rotation"][0] @ np.array([1.0, 0.0, 0.0])
+        edge = np.array([x1 - x0, y1 - y0])
+        inside = lambda p: (edge[0] * (p[1] - y0) - edge[1] * (p[0] - x0)) / np.linalg.norm(edge)
+        load_weight = 390000.6 * 9.8
+        assert inside(centroid[:2]) < 0.0
+        tipping = load_weight + supports["margin"][0] / -inside(centroid[:2])
+        assert figures["tipping"] == pytest.approx(tipping, rel=1e-9)
+        assert figures["fraction"] == pytest.approx(load_weight / tipping, rel=1e-9)

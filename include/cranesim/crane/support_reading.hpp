@@ -32,6 +32,9 @@ struct SupportReading {
   /// the support polygon with the margin W·d about it (negative: the resultant lies outside).
   Eigen::Vector2d resultant = Eigen::Vector2d::Zero();
   TippingLine tipping;
+  std::vector<Eigen::Vector2d> polygon;  // the pads' centres and the tracks' ends, in those axes
+  /// The largest bed pressure under any pad or track, Pa (0 without supports carrying).
+  double peakPressure() const;
 };
 
 /// Two unit vectors spanning the ground plane normal to `up`, with up: right-handed; the inertial

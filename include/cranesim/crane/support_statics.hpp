@@ -12,6 +12,10 @@
 //   the resultant's point; the stability margin is the restoring minus the overturning moment of
 //   the vertical resultant about that edge, W·d with d the resultant's distance inside the
 //   polygon (negative outside: the crane tips).
+// - the tipping force: the vertical force that, added at a point outside the polygon (the hook
+//   load), moves the resultant onto the polygon's edge: about each edge e the margin
+//   W·d_e + ΔF·d_e(load) vanishes at ΔF = W·d_e / (−d_e(load)); the resultant, moving towards
+//   the load, crosses the edge of the smallest such ΔF first.
 
 #include <Eigen/Core>
 #include <vector>
@@ -49,5 +53,12 @@ struct TippingLine {
 /// polygon spanned by `supports` (at least three points not on one line).
 TippingLine tippingLine(const std::vector<Eigen::Vector2d>& supports, double weight,
                         const Eigen::Vector2d& resultant);
+
+/// The vertical force (N) that, added at `load` to a vertical load `weight` acting at
+/// `resultant`, brings the resultant onto the edge of the polygon spanned by `supports`: the
+/// carriage is about to tip over it. Infinite when `load` lies inside the polygon; 0 when the
+/// resultant lies outside it (the carriage tips already).
+double tippingForce(const std::vector<Eigen::Vector2d>& supports, double weight,
+                    const Eigen::Vector2d& resultant, const Eigen::Vector2d& load);
 
 }  // namespace cranesim

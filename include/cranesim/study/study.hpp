@@ -49,6 +49,10 @@ enum class FigureQuantity {
   TippingMoment,       // moment of ground supports' reactions about a directed line, N·m
   DynamicFactor,       // a constraint's peak force over its force at the first sample (φ2)
   RopeSlack,           // time a rope is slack somewhere (a point without tension), s
+  SupportPressure,     // the largest bed pressure under the carriage's pads and tracks, Pa
+  StabilityMargin,     // restoring − overturning moment about the active tipping line, N·m
+  TippingLoad,         // the hook load that tips the carriage, N (crane/support_statics.hpp)
+  TippingLoadFraction, // the load's weight over that tipping load, 1
 };
 enum class FigureStatistic { Final, Max, Min };
 
@@ -66,6 +70,7 @@ struct FigureSpec {
   std::string rope;         // RopeSlack
   std::vector<std::string> supports;  // TippingMoment: constraints joining the structure to the ground
   Vec3 line_from = Vec3::Zero(), line_to = Vec3::Zero();  // TippingMoment: the tipping line, directed
+  std::string body;         // TippingLoad, TippingLoadFraction: the hook load's body
 };
 
 /// A bound on a figure: a case is admissible when every criterion holds (a load chart's limits).
