@@ -19,6 +19,7 @@
 
 #include "cranesim/control/closed_loop.hpp"
 #include "cranesim/crane/crane_figures.hpp"
+#include "cranesim/crane/stated_equilibrium_search.hpp"
 #include "cranesim/crane/mode_labels.hpp"
 #include "cranesim/crane/support_reading.hpp"
 #include "cranesim/io/command_line.hpp"
@@ -145,7 +146,7 @@ bool balanceOff(const ResultsRecorder& recorder, double rtol) {
 
 int run(const std::string& scene_path, std::string out, bool quiet) {
   stopOnSignals();
-  const Scene scene = readScene(scene_path);
+  const Scene scene = sceneAtStatedEquilibrium(readScene(scene_path), quiet);
   out = outputPath(scene_path, out, ".h5");
   const Model model = compileModel(scene);
   requireResultsFit(scene, model);
@@ -233,7 +234,7 @@ StaticResult reportedEquilibrium(const Scene& scene, const Model& model, const A
 }
 
 int statics(const std::string& scene_path, std::string out) {
-  const Scene scene = readScene(scene_path);
+  const Scene scene = sceneAtStatedEquilibrium(readScene(scene_path), false);
   out = outputPath(scene_path, out, "_static.h5");
   const Model model = compileModel(scene);
   const Assembler assembler(model);
@@ -250,7 +251,7 @@ int statics(const std::string& scene_path, std::string out) {
 /// Small-vibration modes about the static equilibrium: a table on stdout, frequencies and
 /// shapes in the HDF5 file.
 int modes(const std::string& scene_path, std::string out, int count) {
-  const Scene scene = readScene(scene_path);
+  const Scene scene = sceneAtStatedEquilibrium(readScene(scene_path), false);
   out = outputPath(scene_path, out, "_modes.h5");
   const Model model = compileModel(scene);
   const Assembler assembler(model);

@@ -1,14 +1,18 @@
 """A load chart from a crane-sim study's case table: per crane configuration (e.g. luffing rope
-length), the largest load such that it and every lighter load of the grid are admissible (every
-criterion of the study holds: /cases/admissible), with the radius of that case. Prints the chart
-as a table, with each criterion's utilisation at that load (figure / max, or min / figure for a
-lower bound: 100 % is the limit) and the criterion that the next heavier load violates, and
-plots load over radius.
+length, or a stated radius), the largest load such that it and every lighter load of the grid are
+admissible (every criterion of the study holds: /cases/admissible), with the radius of that case.
+Prints the chart as a table, with each criterion's utilisation at that load (figure / max, or
+min / figure for a lower bound: 100 % is the limit), the criterion that the next heavier load
+violates, and the load at which that criterion's figure, interpolated linearly between the two
+grid loads, reaches its limit; plots load over radius. A study over several scenes (`scenes:`)
+gives one chart per scene (--group, default: the scene parameter when the table has it).
 
-Example:
+Examples:
 
     crane-sim study configs/study_load_chart.yaml -o chart.h5 --jobs 2
     python scripts/plot_load_chart.py chart.h5 -o chart.png
+    crane-sim study configs/study_load_chart_by_radius.yaml -o by_radius.h5 --jobs 2
+    python scripts/plot_load_chart.py by_radius.h5 --configuration booms.boom.equilibrium.hook_radius
 
 The "load" may be any parameter whose larger values are harder on the crane: with
 `--load wind.speed --configuration bodies.load.mass` it gives, per load, the permitted wind speed
@@ -36,6 +40,7 @@ def parse_arguments() -> argparse.Namespace:
     parser.add_argument("--configuration", default="members.luffing_rope.length",
                         help="the parameter that sets the crane's configuration (default: %(default)s)")
     parser.add_argument("--radius", default="radius", help="the figure that is the radius (default: %(default)s)")
+    parser.add_argument("--group", help="a parameter with one chart per value (default: scene, when the table has it)")
     parser.add_argument("-o", "--output", help="output image (default: <table>_chart.png)")
     return parser.parse_args()
 
@@ -59,21 +64,36 @@ def utilisation(table: h5py.File, criterion: h5py.Dataset, case: int) -> float:
     return np.nan
 
 
-def load_chart(table: h5py.File, load_name: str, configuration_name: str, radius_name: str) -> list[dict]:
-    """One row per configuration: its largest admissible load, the radius there and what limits it."""
+def load_at_limit(table: h5py.File, criterion: h5py.Dataset, load: np.ndarray, last: int, beyond: int) -> float:
+    """The load at which the criterion's figure, linear in the load between the cases `last`
+    (admissible) and `beyond` (violating it), reaches its bound."""
+    value = table[f"figures/{criterion.attrs['figure']}"]
+    v0, v1 = value[last], value[beyond]
+    bound = criterion.attrs["max"] if v1 > criterion.attrs["max"] else criterion.attrs["min"]
+    if not (np.isfinite(bound) and np.isfinite(v0) and np.isfinite(v1)) or v1 == v0:
+        return np.nan
+    return load[last] + (bound - v0) / (v1 - v0) * (load[beyond] - load[last])
+
+
+def load_chart(table: h5py.File, load_name: str, configuration_name: str, radius_name: str,
+               group_name: str | None = None) -> list[dict]:
+    """One row per group and configuration: its largest admissible load, the radius there and
+    what limits it."""
     if table.attrs.get("contents") != "study":
         raise ResultsError(f"{table.filename} is not a study's case table")
     load = dataset(table, f"parameters/{load_name}")
     configuration = dataset(table, f"parameters/{configuration_name}")
+    group = dataset(table, f"parameters/{group_name}") if group_name else np.zeros_like(load)
     radius = dataset(table, f"figures/{radius_name}")
     admissible = dataset(table, "cases/admissible") == 1.0  # NaN (not computed) is not admissible
     criteria = [table[f"criteria/{k}"] for k in sorted(table["criteria"], key=int)]
     chart = []
-    for value in np.unique(configuration):
-        cases = np.flatnonzero(configuration == value)
+    for group_value, value in sorted({(g, c) for g, c in zip(group, configuration)}):
+        cases = np.flatnonzero((configuration == value) & (group == group_value))
         cases = cases[np.argsort(load[cases], kind="stable")]
         held = np.cumprod(admissible[cases]).astype(bool)  # every lighter load admissible too
-        row = {"configuration": value, "load": np.nan, "radius": np.nan, "limit": "none in the grid",
+        row = {"group": group_value, "configuration": value, "load": np.nan, "radius": np.nan,
+               "limit": "none in the grid", "at_limit": np.nan,
                "utilisation": {c.attrs["figure"]: np.nan for c in criteria}}
         if held.any():
             last = cases[np.flatnonzero(held)[-1]]
@@ -82,53 +102,87 @@ def load_chart(table: h5py.File, load_name: str, configuration_name: str, radius
         count = int(held.sum())
         if count < len(cases):
             beyond = cases[count]
-            violated = [c.attrs["figure"] for c in criteria if c[beyond] == 0.0]
+            violated = [c for c in criteria if c[beyond] == 0.0]
             status = table["cases/status"].asstr()[beyond]
-            row["limit"] = ", ".join(violated) if violated else f"case {beyond} {status}"
+            row["limit"] = ", ".join(c.attrs["figure"] for c in violated) if violated else f"case {beyond} {status}"
+            if held.any() and violated:
+                row["at_limit"] = min(load_at_limit(table, c, load, last, beyond) for c in violated)
         elif held.any():
             row["limit"] = "the grid's heaviest load"
         chart.append(row)
     return chart
 
 
+def group_labels(table: h5py.File, group_name: str | None) -> dict:
+    """A name for each value of the group parameter: a scene's file stem, or the value."""
+    if not group_name:
+        return {0.0: ""}
+    values = np.unique(table[f"parameters/{group_name}"][...])
+    description = table[f"parameters/{group_name}"].attrs.get("values", "")
+    description = description.decode() if isinstance(description, bytes) else str(description)
+    named = {}
+    if group_name == "scene":
+        words = description.split(":", 1)[-1].split()
+        named = {float(words[k]): Path(words[k + 2]).stem for k in range(0, len(words) - 2, 3) if words[k + 1] == "="}
+    return {value: named.get(value, f"{group_name} = {value:g}") for value in values}
+
+
 def main() -> None:
     args = parse_arguments()
     path = Path(args.table)
     with h5py.File(path, "r") as table:
-        chart = load_chart(table, args.load, args.configuration, args.radius)
+        group_name = args.group if args.group else ("scene" if "parameters/scene" in table else None)
+        chart = load_chart(table, args.load, args.configuration, args.radius, group_name)
+        labels = group_labels(table, group_name)
         title = table.attrs.get("study_path", path.name)
         title = Path(title.decode() if isinstance(title, bytes) else str(title)).name
     names = list(chart[0]["utilisation"]) if chart else []
     width = max([len(name) for name in names] + [5])
-    print(f"{args.configuration:>28} {args.radius + ' [m]':>12} {args.load:>20} "
-          + "".join(f" {name:>{width}}" for name in names) + "   limited by")
+    group_width = max([len(label) for label in labels.values()] + [0])
+    print((f"{'':<{group_width}} " if group_width else "") + f"{args.configuration:>28} {args.radius + ' [m]':>12} "
+          f"{args.load:>20} " + "".join(f" {name:>{width}}" for name in names) + "   limited by (at its limit)")
     for row in chart:
         used = "".join(f" {row['utilisation'][name]:>{width}.0%}" if np.isfinite(row['utilisation'][name])
                        else f" {'-':>{width}}" for name in names)
-        print(f"{row['configuration']:>28.6g} {row['radius']:>12.2f} {row['load']:>20.6g} {used}   {row['limit']}")
+        at_limit = f" ({row['at_limit']:.6g})" if np.isfinite(row["at_limit"]) else ""
+        print((f"{labels[row['group']]:<{group_width}} " if group_width else "")
+              + f"{row['configuration']:>28.6g} {row['radius']:>12.2f} {row['load']:>20.6g} {used}   {row['limit']}{at_limit}")
     figure, (axes, used_axes) = plt.subplots(1, 2, figsize=(13, 5))
     radius = np.array([row["radius"] for row in chart])
     load = np.array([row["load"] for row in chart])
+    groups = np.array([row["group"] for row in chart])
     order = np.argsort(radius)
     scale, unit = (1e3, "t") if args.load.endswith(".mass") else (1.0, "SI")  # a mass in tonnes
-    axes.plot(radius[order], load[order] / scale, "-", color="0.6", zorder=1)
-    for limit in sorted({row["limit"] for row in chart}):
-        mine = np.array([row["limit"] == limit for row in chart])
-        axes.plot(radius[mine], load[mine] / scale, "o", label=f"limited by {limit}", zorder=2)
+    markers = iter("osD^v<>")
+    at_limit = np.array([row["at_limit"] for row in chart])
+    for value, label in labels.items():
+        mine = order[groups[order] == value]
+        axes.plot(radius[mine], load[mine] / scale, "-", color="0.6", zorder=1)
+        reached = mine[np.isfinite(at_limit[mine])]
+        if len(reached):
+            axes.plot(radius[reached], at_limit[reached] / scale, "--", zorder=1,
+                      label=f"{label}{': ' if label else ''}where the limit is reached (interpolated)")
+        marker = next(markers, "o")
+        for limit in sorted({chart[k]["limit"] for k in mine}):
+            limited = [k for k in mine if chart[k]["limit"] == limit]
+            axes.plot(radius[limited], load[limited] / scale, marker, label=f"{label}{': ' if label else ''}limited by {limit}",
+                      zorder=2)
     axes.set_xlabel(f"{args.radius} [m]")
     axes.set_ylabel(f"largest admissible {args.load} [{unit}]")
     axes.grid(True, alpha=0.3)
-    axes.legend()
+    axes.legend(fontsize="x-small" if len(labels) > 1 else None)
     axes.set_title(f"{title}: load chart")
     for name in names:
         used = np.array([row["utilisation"][name] for row in chart])
-        used_axes.plot(radius[order], 100 * used[order], "o-", label=name)
+        for value, label in labels.items():
+            mine = order[groups[order] == value]
+            used_axes.plot(radius[mine], 100 * used[mine], "o-", label=f"{label}{': ' if label else ''}{name}")
     used_axes.axhline(100, color="k", linewidth=1)
     used_axes.set_xlabel(f"{args.radius} [m]")
     used_axes.set_ylabel("utilisation at the chart's load [% of the limit]")
     used_axes.set_ylim(0, 130)
     used_axes.grid(True, alpha=0.3)
-    used_axes.legend(loc="upper center", ncol=2)
+    used_axes.legend(loc="upper center", ncol=2, fontsize="x-small" if len(labels) > 1 else None)
     used_axes.set_title("each criterion at the chart's load")
     figure.tight_layout()
     output = Path(args.output) if args.output else path.with_name(f"{path.stem}_chart.png")

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "cranesim/crane/crane_figures.hpp"
+#include "cranesim/crane/stated_equilibrium_search.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 #include "scene_fixtures.hpp"
 
@@ -37,11 +38,11 @@ const RigidBodySpec& body(const Scene& scene, const std::string& name) {
 }
 
 /// The thesis crane's drawing by hand from its tables (Appendix D), in the x–z plane: the foot
-/// pin at the origin, the main boom of `boom_length` at 85° towards −x, its head frame x along
-/// the boom and z = x × y; the derrick's 26 m at 65° towards +x.
+/// pin at the origin, the main boom of `boom_length` at `angle_deg` (85°) towards −x, its head
+/// frame x along the boom and z = x × y; the derrick's 26 m at 65° towards +x.
 struct ThesisGeometry {
-  explicit ThesisGeometry(double boom_length) {
-    x = Vec3(-std::cos(85.0 * kDeg), 0.0, std::sin(85.0 * kDeg));
+  explicit ThesisGeometry(double boom_length, double angle_deg = 85.0) {
+    x = Vec3(-std::cos(angle_deg * kDeg), 0.0, std::sin(angle_deg * kDeg));
     z = x.cross(Vec3::UnitY());
     head = boom_length * x;
     tie_joint = head + 1.75 * x - 1.4 * z;   // head joint 3 (Table D-5)
@@ -171,6 +172,37 @@ template <class F> double root(const F& f, double lo, double hi) {
 Eigen::Vector2d turned(const Eigen::Vector2d& p, double angle) { return Eigen::Rotation2Dd(angle) * p; }
 Eigen::Vector2d xz(const Vec3& p) { return {p.x(), p.z()}; }
 
+/// The configured crane's equilibrium by hand from its drawing `hand` (ties reaching `reach` m
+/// down the luffing line) and the forces of the equilibrium `eq`: the luffing line and the
+/// sub-cable stretch by T L / EA and the booms' four chords shorten by N L / EA; the derrick
+/// turns until its top hangs on the stretched sub-cable, then the boom until its tie joint
+/// reaches the stretched line (as the hand calculation of tests/test_crane_figures.cpp for
+/// crane.yaml). Left out: the booms' bending and the lacing's share of the axial force, the
+/// ropes' sag and the ties' weight.
+struct HandStretch {
+  HandStretch(const ThesisGeometry& hand, double reach, const Model& model, const StaticResult& eq, const CraneFigures& f) {
+    const auto force = [&](const char* constraint) {
+      return constraintLoad(model.constraints[static_cast<std::size_t>(model.findConstraint(constraint))], eq.lambda.data()).force;
+    };
+    const auto meanTension = [&](const char* r) { return 0.5 * (tensionOf(f, r).at_start + tensionOf(f, r).at_end); };
+    const double rope_EA = 1.0e11 * std::numbers::pi * 0.05 * 0.05, tie_EA = 2.06e11 * std::numbers::pi * 0.05 * 0.05;
+    const double chords_EA = 4.0 * 2.06e11 * std::numbers::pi * (0.1 * 0.1 - 0.08 * 0.08);
+    const double rope = (hand.derrick_top - hand.tie_joint).norm() - reach;  // as the tool sizes it
+    const double sub_cable = 23.5640 * (1.0 + meanTension("sub_cable") / rope_EA);
+    const double line = reach * (1.0 + force("tie1_start") / tie_EA) + rope * (1.0 + meanTension("luffing_rope") / rope_EA);
+    const double derrick_scale = 1.0 - force("derrick_foot") / chords_EA;
+    boom_scale = 1.0 - force("boom_foot") / chords_EA;
+    const Eigen::Vector2d A(11.0, 0.0), D0 = derrick_scale * xz(hand.derrick_top), H0 = boom_scale * xz(hand.tie_joint);
+    const double derrick_turn = root([&](double a) { return (turned(D0, a) - A).norm() - sub_cable; }, -0.1, 0.1);
+    const Eigen::Vector2d D = turned(D0, derrick_turn);
+    boom_turn = root([&](double b) { return (turned(H0, b) - D).norm() - line; }, -0.1, 0.1);
+  }
+  /// Where a point of the boom drawn at `drawn` stands in equilibrium (x, z).
+  Eigen::Vector2d placed(const Vec3& drawn) const { return turned(boom_scale * xz(drawn), boom_turn); }
+
+  double boom_scale = 1.0, boom_turn = 0.0;  // rad about y: negative lowers the boom
+};
+
 }  // namespace
 
 TEST_CASE("One 15 m insert more or fewer: drawn by the tool, standing as the hand calculation says",
@@ -202,29 +234,11 @@ TEST_CASE("One 15 m insert more or fewer: drawn by the tool, standing as the han
   const double rope = (hand.derrick_top - hand.tie_joint).norm() - reach;
   CHECK((*member(scene, "luffing_rope").length)(0.0) == Approx(rope).margin(1e-12));
 
-  // In equilibrium: the luffing line and the sub-cable stretch by T L / EA and the booms' four
-  // chords shorten by N L / EA; the derrick turns until its top hangs on the stretched sub-cable,
-  // then the boom until its tie joint reaches the stretched line (as the hand calculation of
-  // tests/test_crane_figures.cpp for crane.yaml). Left out: the booms' bending and the lacing's
-  // share of the axial force, the ropes' sag and the ties' weight.
+  // In equilibrium: stretched and shortened as the hand calculation HandStretch says.
   const StaticResult eq = solveEquilibrium(scene, model, 0.0);
   REQUIRE(eq.converged);
   const CraneFigures f = craneFigures(scene, model, eq.q.data(), eq.t);
-  const auto force = [&](const char* constraint) {
-    return constraintLoad(model.constraints[static_cast<std::size_t>(model.findConstraint(constraint))], eq.lambda.data()).force;
-  };
-  const auto meanTension = [&](const char* r) { return 0.5 * (tensionOf(f, r).at_start + tensionOf(f, r).at_end); };
-  const double rope_EA = 1.0e11 * std::numbers::pi * 0.05 * 0.05, tie_EA = 2.06e11 * std::numbers::pi * 0.05 * 0.05;
-  const double chords_EA = 4.0 * 2.06e11 * std::numbers::pi * (0.1 * 0.1 - 0.08 * 0.08);
-  const double sub_cable = 23.5640 * (1.0 + meanTension("sub_cable") / rope_EA);
-  const double line = reach * (1.0 + force("tie1_start") / tie_EA) + rope * (1.0 + meanTension("luffing_rope") / rope_EA);
-  const double derrick_scale = 1.0 - force("derrick_foot") / chords_EA, boom_scale = 1.0 - force("boom_foot") / chords_EA;
-  const Eigen::Vector2d A(11.0, 0.0), D0 = derrick_scale * xz(hand.derrick_top);
-  const Eigen::Vector2d H0 = boom_scale * xz(hand.tie_joint), head0 = boom_scale * xz(hand.head);
-  const double derrick_turn = root([&](double a) { return (turned(D0, a) - A).norm() - sub_cable; }, -0.1, 0.1);
-  const Eigen::Vector2d D = turned(D0, derrick_turn);
-  const double boom_turn = root([&](double b) { return (turned(H0, b) - D).norm() - line; }, -0.1, 0.1);
-  const Eigen::Vector2d head = turned(head0, boom_turn);
+  const Eigen::Vector2d head = HandStretch(hand, reach, model, eq, f).placed(hand.head);
   const double hand_angle = std::atan2(head.y(), -head.x()) / kDeg;
   CHECK(f.boom->boom_angle_deg == Approx(hand_angle).margin(0.05));
   CHECK(f.boom->head_height == Approx(head.y()).margin(0.01));
@@ -308,4 +322,65 @@ add:
     return c.name == "jib_foot" && c.type == ConstraintType::Revolute && c.joint1 == "head.j5" && c.joint2 == "jib1.start";
   }));
   CHECK_NOTHROW(compileModel(scene));  // its pin lines up with the head's: the drawing closes (the jib hangs free)
+}
+
+TEST_CASE("A boom drawn where its equilibrium holds the hook at a stated radius", "[scene][boom_assembly][crane]") {
+  // crane_configured.yaml (55 m boom, two ties) with the hook stated 30 m from the slewing axis,
+  // for a light and a heavy load. Rigid, the hook hangs under the sheave, 57.2 m up the boom and
+  // 1.7 m off its axis: radius 57.2 cos a + 1.7 sin a. Loaded, the ropes and ties stretch and the
+  // chords shorten (HandStretch), so the boom is drawn steeper than that rigid angle.
+  const double stated = 30.0;
+  const double mass = GENERATE(50000.0, 200000.0);
+  INFO(mass << " kg");
+  const Scene scene = parseScene(fmt::format(R"(
+base: crane_configured.yaml
+modify:
+  booms.boom.angle_deg: from_equilibrium
+  booms.boom.equilibrium: {{hook_radius: {}}}
+  bodies.load.mass: {}
+)", stated, mass), test::configPath("at_radius.yaml"));
+  REQUIRE(scene.stated_equilibrium);
+  const StatedEquilibriumSearch search = searchStatedEquilibrium(scene);
+  CHECK(search.equilibria <= 6);
+  const Scene drawn = sceneAtStatedEquilibrium(scene, true);
+  CHECK_FALSE(drawn.stated_equilibrium);
+  const Model model = compileModel(drawn);
+  const StaticResult eq = solveEquilibrium(drawn, model, 0.0);
+  REQUIRE(eq.converged);
+  const CraneFigures f = craneFigures(drawn, model, eq.q.data(), eq.t);
+  CHECK(f.boom->hook_radius == Approx(stated).margin(kStatedRadiusTolerance));
+  CHECK(model.jointFrame(model.q0.data(), model.findJoint("boom5.end")).r.normalized().dot(ThesisGeometry(1.0, search.angle_deg).x) ==
+        Approx(1.0).margin(1e-12));  // drawn at the angle found
+
+  const auto rigidRadius = [](double a) { return 57.2 * std::cos(a * kDeg) + 1.7 * std::sin(a * kDeg); };
+  const double rigid_angle = root([&](double a) { return rigidRadius(a) - stated; }, 10.0, 89.0);
+  const ThesisGeometry at_found(55.0, search.angle_deg);
+  const HandStretch stretch(at_found, 30.0, model, eq, f);
+  const auto handRadius = [&](double a) { return -stretch.placed(ThesisGeometry(55.0, a).sheave).x(); };
+  const double hand_angle = root([&](double a) { return handRadius(a) - stated; }, 10.0, 89.0);
+  CHECK(search.angle_deg == Approx(hand_angle).margin(0.05));
+  CHECK(search.angle_deg - rigid_angle > (mass > 1e5 ? 0.4 : 0.1));  // the stretch counts
+  UNSCOPED_INFO("rigid " << rigid_angle << "°, hand with stretch " << hand_angle << "°, found " << search.angle_deg << "°");
+}
+
+TEST_CASE("A boom drawn where its equilibrium stands at a stated boom angle", "[scene][boom_assembly][crane]") {
+  const Scene scene = parseScene(R"(
+base: crane_configured.yaml
+modify:
+  booms.boom.angle_deg: from_equilibrium
+  booms.boom.equilibrium: {boom_angle_deg: 60}
+)", test::configPath("at_angle.yaml"));
+  const StatedEquilibriumSearch search = searchStatedEquilibrium(scene);
+  CHECK(search.figure == Approx(60.0).margin(kStatedBoomAngleTolerance));
+  const Scene drawn = sceneAtStatedEquilibrium(scene, true);
+  const Model model = compileModel(drawn);
+  const StaticResult eq = solveEquilibrium(drawn, model, 0.0);
+  REQUIRE(eq.converged);
+  const CraneFigures f = craneFigures(drawn, model, eq.q.data(), eq.t);
+  CHECK(f.boom->boom_angle_deg == Approx(60.0).margin(kStatedBoomAngleTolerance));
+  // Drawn steeper by the stretch, as the hand calculation at the angle found says.
+  const HandStretch stretch(ThesisGeometry(55.0, search.angle_deg), 30.0, model, eq, f);
+  const Eigen::Vector2d head = stretch.placed(ThesisGeometry(55.0, search.angle_deg).head);
+  CHECK(std::atan2(head.y(), -head.x()) / kDeg == Approx(60.0).margin(0.05));
+  CHECK(search.angle_deg - 60.0 > 0.2);
 }

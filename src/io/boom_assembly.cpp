@@ -103,7 +103,8 @@ class BoomAssembler {
   }
 
   void assemble(const YamlField& boom) {
-    boom.allowKeys({"name", "foot", "pin", "towards", "angle_deg", "fidelity", "damping", "sections", "head", "luffing", "hoist"});
+    boom.allowKeys({"name", "foot", "pin", "towards", "angle_deg", "equilibrium", "fidelity", "damping", "sections", "head",
+                    "luffing", "hoist"});
     const std::string name = boom.at("name").identifier();
     const YamlField sections = boom.at("sections");
     const std::vector<YamlField> items = sections.items();
@@ -184,6 +185,9 @@ class BoomAssembler {
     return out;
   }
 
+  /// The figure a boom's equilibrium is to meet (angle_deg: from_equilibrium), if one states it.
+  const std::optional<StatedEquilibrium>& stated() const { return stated_; }
+
  private:
   /// The boom's frame at its foot at the boom angle `angle` (deg) above the horizontal
   /// `towards`: x along the boom axis, y the foot pin, z = x × y (the sections' z axis).
@@ -208,10 +212,16 @@ class BoomAssembler {
     return axes;
   }
 
-  /// `angle_deg`: the boom angle in degrees, or `from_luffing_rope`: the angle at which the
-  /// luffing line closes with a rope of `luffing.rope_length` (the boom `boom_length` long).
-  double boomAngle(const YamlField& boom, double boom_length) const {
+  /// `angle_deg`: the boom angle in degrees, `from_luffing_rope`: the angle at which the
+  /// luffing line closes with a rope of `luffing.rope_length` (the boom `boom_length` long), or
+  /// `from_equilibrium`: a first angle for the figure `equilibrium` states.
+  double boomAngle(const YamlField& boom, double boom_length) {
     const YamlField field = boom.at("angle_deg");
+    const bool from_equilibrium = field.isScalar() && field.text() == "from_equilibrium";
+    if (boom.has("equilibrium") != from_equilibrium)
+      (from_equilibrium ? field : boom.at("equilibrium"))
+          .fail("a stated equilibrium sets the boom angle: give both equilibrium and angle_deg: from_equilibrium, or neither");
+    if (from_equilibrium) return stateEquilibrium(boom, boom_length);
     const std::optional<YamlField> luffing = boom.find("luffing");
     const bool from_rope = field.isScalar() && field.text() == "from_luffing_rope";
     if (luffing && luffing->has("rope_length") != from_rope)
@@ -225,6 +235,57 @@ class BoomAssembler {
     if (!(angle > -90.0 && angle <= 90.0))
       field.fail(fmt::format("a boom angle lies in (−90°, 90°] above the horizontal 'towards', found {}°", angle));
     return angle;
+  }
+
+  /// `equilibrium: {hook_radius: R}` (m, from the slewing axis) or `{boom_angle_deg: A}`: the
+  /// figure the boom's equilibrium is to meet, recorded for the search (one boom per scene); the
+  /// first angle is A, or the one hanging the hook, straight below the sheave, R from the foot.
+  double stateEquilibrium(const YamlField& boom, double boom_length) {
+    const YamlField field = boom.at("equilibrium");
+    if (!field.isMap() || field.keys().size() != 1)
+      field.fail("expected one stated figure: {hook_radius: <m>} or {boom_angle_deg: <deg>}");
+    field.allowKeys({"hook_radius", "boom_angle_deg"});
+    if (stated_) field.fail(fmt::format("boom '{}' states its equilibrium already: one boom per scene may", stated_->boom));
+    StatedEquilibrium stated;
+    stated.boom = boom.at("name").text();
+    if (const auto angle = field.find("boom_angle_deg")) {
+      stated.figure = StatedEquilibrium::Figure::BoomAngle;
+      stated.value = angle->within(0.5, 89.5, "°");
+      stated.where = angle->where();
+      stated.drawn_angle_deg = stated.value;
+    } else {
+      const YamlField radius = field.at("hook_radius");
+      stated.figure = StatedEquilibrium::Figure::HookRadius;
+      stated.value = radius.positive();
+      stated.where = radius.where();
+      stated.drawn_angle_deg = angleHangingHookAt(boom, radius, stated.value, boom_length);
+    }
+    stated_ = stated;
+    return stated.drawn_angle_deg;
+  }
+
+  /// The boom angle in [0°, 89.5°] at which the hoist's sheave, on the boom drawn rigid, stands
+  /// `radius` m horizontally from the boom's foot (bisection: the reach falls as the boom rises).
+  double angleHangingHookAt(const YamlField& boom, const YamlField& field, double radius, double boom_length) const {
+    const std::optional<YamlField> hoist = boom.find("hoist");
+    if (!hoist || !boom.has("head")) field.fail("a stated hook radius needs the boom's head and hoist");
+    const std::optional<Frame> sheave = namedJoint(Frame{}, boom.at("head").find("joints"), hoist->at("sheave").text());
+    if (!sheave) hoist->at("sheave").fail(fmt::format("the head has no joint '{}'", hoist->at("sheave").text()));
+    const Vec3 in_boom = boom_length * Vec3::UnitX() + sheave->origin;
+    const auto reach = [&](double angle) {
+      const Frame axes = boomAxes(boom, angle);
+      const Vec3 offset = axes.axes * in_boom;
+      return (offset - offset.dot(kUp) * kUp).norm();
+    };
+    double low = 0.0, high = 89.5;
+    if (radius > reach(low) || radius < reach(high))
+      field.fail(fmt::format("the boom reaches {:.6g} … {:.6g} m from its foot between 0° and 89.5°: no angle hangs the "
+                             "hook at {:g} m", reach(high), reach(low), radius));
+    for (int k = 0; k < 60; ++k) {
+      const double mid = 0.5 * (low + high);
+      (reach(mid) > radius ? low : high) = mid;
+    }
+    return 0.5 * (low + high);
   }
 
   /// A rope length: a number, or a profile (a reeling drive) drawn at its value at solver.t_start.
@@ -516,6 +577,7 @@ class BoomAssembler {
   }
 
   const YAML::Node root_;
+  std::optional<StatedEquilibrium> stated_;
   std::vector<TrussType> types_;
   std::set<std::string> constraint_names_;
   bool has_default_fidelity_ = false;
@@ -528,13 +590,13 @@ class BoomAssembler {
 
 }  // namespace
 
-YAML::Node expandBooms(const YAML::Node& root) {
-  if (!root.IsMap() || !root["booms"]) return root;
+ExpandedBooms expandBooms(const YAML::Node& root) {
+  if (!root.IsMap() || !root["booms"]) return {root, std::nullopt};
   const YamlField booms(root["booms"], "booms");
   if (!booms.isSequence()) booms.fail("expected a list of booms");
   BoomAssembler assembler(root);
   for (const YamlField& boom : booms.items()) assembler.assemble(boom);
-  return assembler.expanded();
+  return {assembler.expanded(), assembler.stated()};
 }
 
 }  // namespace cranesim

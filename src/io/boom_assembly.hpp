@@ -8,7 +8,18 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <optional>
+
+#include "cranesim/model/stated_equilibrium.hpp"
+
 namespace cranesim {
+
+/// The scene's booms expanded, and the figure a boom with `angle_deg: from_equilibrium` states
+/// (its `drawn_at` left to the scene reader, which knows how to read the scene again).
+struct ExpandedBooms {
+  YAML::Node root;
+  std::optional<StatedEquilibrium> stated;
+};
 
 /// `root` with every boom under `booms:` expanded into `members` (one truss member per section,
 /// the ties and ropes), `bodies` (its head; the load placed at the hook), `constraints` (the foot
@@ -16,7 +27,9 @@ namespace cranesim {
 /// than its own). `root` is left as it is, so a scene composed on this
 /// one still edits its `booms:`; without `booms:` the result is `root`. The expanded items keep
 /// the nodes the scene wrote (names, types, the head's fields), so errors found in them later
-/// name their lines. Throws SceneError naming the boom's field.
-YAML::Node expandBooms(const YAML::Node& root);
+/// name their lines. A boom with `angle_deg: from_equilibrium` is drawn at a first angle from its
+/// rigid geometry: its stated boom angle, or the angle that hangs the hook at the stated radius
+/// from the boom's foot. Throws SceneError naming the boom's field.
+ExpandedBooms expandBooms(const YAML::Node& root);
 
 }  // namespace cranesim

@@ -618,10 +618,35 @@ FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
   return spec;
 }
 
+/// The figure a boom's equilibrium is to meet, with the way to draw the scene at another boom
+/// angle: the composed scene read again with that angle in place of `from_equilibrium`.
+StatedEquilibrium statedEquilibrium(StatedEquilibrium stated, const ComposedScene& composed, const Scene& scene) {
+  const std::string boom_foot = stated.boom + "_foot";
+  if (!scene.crane)
+    throw SceneError(stated.where, "a stated equilibrium is measured on the crane: give the scene a crane: block (its "
+                                   "slewing, boom_foot, boom_head and hook)");
+  if (scene.crane->boom_foot != boom_foot)
+    throw SceneError(stated.where, fmt::format("the crane: block measures the boom whose foot is '{}': state the "
+                                               "equilibrium of that boom, not of '{}' (foot '{}')",
+                                               scene.crane->boom_foot, stated.boom, boom_foot));
+  const YAML::Node root = YAML::Clone(composed.root);
+  stated.drawn_at = [root, text = composed.text, path = scene.path, boom = stated.boom](double angle_deg) {
+    const YAML::Node redrawn = YAML::Clone(root);
+    for (YAML::Node b : redrawn["booms"])
+      if (b["name"].as<std::string>() == boom) {
+        b["angle_deg"] = fmt::format("{:.17g}", angle_deg);
+        b.remove("equilibrium");
+      }
+    return sceneFromComposed({redrawn, text}, path);
+  };
+  return stated;
+}
+
 }  // namespace
 
 Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) {
-  const YAML::Node root = expandBooms(composed.root);
+  const ExpandedBooms expanded = expandBooms(composed.root);
+  const YAML::Node& root = expanded.root;
   const YamlField f(root, "");
   if (!root.IsMap()) throw SceneError({"<document>", 1, 1}, "a scene must be a YAML mapping");
   f.allowKeys({"name", "gravity", "ground", "bodies", "trusses", "members", "constraints", "loads", "wind", "solver",
@@ -687,6 +712,7 @@ Scene sceneFromComposed(const ComposedScene& composed, const std::string& path) 
   }
   if (const auto fb = f.find("feedback")) s.feedback = readFeedback(*fb, s);
   if (const auto crane = f.find("crane")) s.crane = readCrane(*crane, s);
+  if (expanded.stated) s.stated_equilibrium = statedEquilibrium(*expanded.stated, composed, s);
   return s;
 }
 

@@ -19,7 +19,7 @@ namespace cranesim {
 /// yaml-cpp's nodes are not safe to read from several threads at once (reading a node may
 /// change its reference counts and zombie children), so case scenes are built one at a time.
 struct StudySceneSource {
-  ComposedScene base;
+  std::vector<ComposedScene> bases;        // `scene`, or each of `scenes`, with the study's `modify`
   std::vector<YamlField> parameter_paths;  // where each parameter is named in the study file
   mutable std::mutex lock;
 };
@@ -160,7 +160,7 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
   const std::string quantity =
       f.at("quantity").choice({"rope_tension", "constraint_force", "constraint_moment", "position", "horizontal_distance",
                                "horizontal_sway", "frequency", "tipping_moment", "dynamic_factor", "rope_slack",
-                               "support_pressure", "stability_margin", "tipping_load", "tipping_load_fraction"});
+                               "support_pressure", "stability_margin", "tipping_load", "tipping_load_fraction", "boom_angle"});
   const bool of_supports = quantity == "support_pressure" || quantity == "stability_margin" || quantity == "tipping_load" ||
                            quantity == "tipping_load_fraction";
   if (of_supports && !model.envelope.supports)
@@ -215,6 +215,14 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
     fig.quantity = FigureQuantity::HorizontalDistance;
     fig.joint = readJointOf(f, model);
     fig.relative_to = readReferenceJoint(f.at("relative_to"), model);
+  } else if (quantity == "boom_angle") {
+    f.allowKeys({"name", "quantity", "statistic", "after"});
+    fig.quantity = FigureQuantity::BoomAngle;
+    if (!scene.crane) f.at("quantity").fail("a boom angle is the crane's: give the scene a crane: block (its boom_foot and boom_head)");
+    const auto foot = std::find_if(scene.constraints.begin(), scene.constraints.end(),
+                                   [&](const ConstraintSpec& c) { return c.name == scene.crane->boom_foot; });
+    fig.relative_to = foot->joint1;
+    fig.joint = scene.crane->boom_head;
   } else if (quantity == "horizontal_sway") {
     f.allowKeys({"name", "quantity", "body", "joint", "relative_to", "about_mean", "after"});
     fig.quantity = FigureQuantity::HorizontalSway;
@@ -278,7 +286,7 @@ YAML::Node scaled(const YAML::Node& node, double factor) {
 /// the base scene, which must be a non-zero number.
 void readLeader(StudyParameter& p, const YamlField& path, const YamlField& leader_field,
                 const std::vector<StudyParameter>& earlier, const std::vector<YamlField>& earlier_paths,
-                YAML::Node scene_root) {
+                const std::vector<ComposedScene>& scenes) {
   const std::string leader = leader_field.text();
   std::vector<std::string> names;
   for (const StudyParameter& e : earlier) names.push_back(e.path);
@@ -290,21 +298,26 @@ void readLeader(StudyParameter& p, const YamlField& path, const YamlField& leade
   }
   const std::size_t k = static_cast<std::size_t>(found - names.begin());
   if (earlier[k].scales_with) leader_field.fail(fmt::format("'{}' follows another parameter itself: follow that one", leader));
-  double base = 0.0;
-  const YAML::Node base_node = sceneField(scene_root, earlier_paths[k], leader);
-  if (!base_node.IsScalar() || !YAML::convert<double>::decode(base_node, base) || !std::isfinite(base) || base == 0.0)
-    leader_field.fail(fmt::format("the base scene's '{}' must be a non-zero number to scale by", leader));
-  try {
-    scaled(sceneField(scene_root, path, p.path), 1.0);
-  } catch (const std::invalid_argument&) {
-    path.fail(fmt::format("the base scene's '{}' must be a number or a list of numbers to scale", p.path));
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    double base = 0.0;
+    const YAML::Node base_node = sceneField(scenes[i].root, earlier_paths[k], leader);
+    if (!base_node.IsScalar() || !YAML::convert<double>::decode(base_node, base) || !std::isfinite(base) || base == 0.0)
+      leader_field.fail(fmt::format("the base scene's '{}' must be a non-zero number to scale by", leader));
+    if (i > 0 && base != p.leader_base)
+      leader_field.fail(fmt::format("the scenes give '{}' different values ({:g} and {:g}): a parameter scales with one "
+                                    "base value", leader, p.leader_base, base));
+    p.leader_base = base;
+    try {
+      scaled(sceneField(scenes[i].root, path, p.path), 1.0);
+    } catch (const std::invalid_argument&) {
+      path.fail(fmt::format("the base scene's '{}' must be a number or a list of numbers to scale", p.path));
+    }
   }
   p.scales_with = k;
-  p.leader_base = base;
 }
 
-StudyParameter readParameter(const YamlField& f, YAML::Node scene_root, const std::vector<StudyParameter>& earlier,
-                             std::vector<YamlField>& paths) {
+StudyParameter readParameter(const YamlField& f, const std::vector<ComposedScene>& scenes,
+                             const std::vector<StudyParameter>& earlier, std::vector<YamlField>& paths) {
   f.allowKeys({"path", "values", "range", "random", "scales_with"});
   StudyParameter p;
   const YamlField path = f.at("path");
@@ -312,7 +325,7 @@ StudyParameter readParameter(const YamlField& f, YAML::Node scene_root, const st
   if (f.has("values") + f.has("range") + f.has("random") + f.has("scales_with") != 1)
     f.fail("give exactly one of values, range, random or scales_with");
   if (const auto leader = f.find("scales_with")) {
-    readLeader(p, path, *leader, earlier, paths, scene_root);
+    readLeader(p, path, *leader, earlier, paths, scenes);
   } else if (const auto values = f.find("values")) {
     if (!values->isSequence()) values->fail("expected a list of numbers");
     p.values = values->numbers();
@@ -324,10 +337,46 @@ StudyParameter readParameter(const YamlField& f, YAML::Node scene_root, const st
   } else {
     p.random = readDistribution(f.at("random"));
   }
-  // The path must name a field the scene gives (a study varies what the scene says).
-  modifyScene(YAML::Clone(scene_root), path, p.path, YAML::Node(0.0), /*require_field=*/true);
+  // The path must name a field every scene gives (a study varies what the scene says).
+  for (const ComposedScene& scene : scenes) modifyScene(YAML::Clone(scene.root), path, p.path, YAML::Node(0.0), /*require_field=*/true);
   paths.push_back(path);
   return p;
+}
+
+/// The study's scenes: `scene`, or each of `scenes`, composed as scene files are, with the
+/// study's `modify` set in each, and read; their paths and texts go into `study`.
+std::vector<Scene> readStudyScenes(const YamlField& f, const std::string& path, Study& study, std::vector<ComposedScene>& bases) {
+  if (f.has("scene") == f.has("scenes")) f.fail("give the base scene, or a list of them under scenes: one of scene and scenes");
+  const std::vector<YamlField> fields = f.has("scene") ? std::vector<YamlField>{f.at("scene")} : f.at("scenes").items();
+  if (fields.empty()) f.at("scenes").fail("an empty list: give at least one scene");
+  const std::optional<YamlField> modify = f.find("modify");
+  if (modify) {
+    if (!modify->isMap()) modify->fail("expected a mapping of <path>: <value>, set in every scene");
+    modify->rejectDuplicateKeys();
+  }
+  std::vector<Scene> scenes;
+  for (const YamlField& field : fields) {
+    const std::string scene_path = (std::filesystem::path(path).parent_path() / field.text()).string();
+    ComposedScene composed;
+    try {
+      const auto validate = [](const ComposedScene& base, const std::string& base_path) { sceneFromComposed(base, base_path); };
+      composed = composeScene(readInputFile(scene_path, "scene file", {}), scene_path, validate);
+    } catch (const SceneError& e) {
+      field.fail(fmt::format("in the scene '{}': {}", scene_path, e.what()));
+    }
+    if (modify)
+      for (const std::string& key : modify->keys()) modifyScene(composed.root, modify->at(key), key, modify->at(key).node());
+    try {
+      scenes.push_back(sceneFromComposed(composed, scene_path));
+    } catch (const SceneError& e) {
+      field.fail(fmt::format("in the scene '{}'{}: {}", scene_path, modify ? " with the study's modify" : "", e.what()));
+    }
+    study.scene_paths.push_back(scene_path);
+    study.scene_path += (study.scene_path.empty() ? "" : "\n") + scene_path;
+    study.scene_text += fields.size() == 1 ? composed.text : fmt::format("# ---- scene: {} ----\n{}\n", scene_path, composed.text);
+    bases.push_back(std::move(composed));
+  }
+  return scenes;
 }
 
 }  // namespace
@@ -363,21 +412,15 @@ Study readStudy(const std::string& path) {
   const YAML::Node root = loadBoundedYaml(study.text);
   const YamlField f(root, "");
   if (!f.isMap()) f.fail("a study file is a mapping (scene, analysis, parameters, figures, …)");
-  f.allowKeys({"name", "scene", "analysis", "modes", "parameters", "samples", "seed", "figures", "criteria", "keep_results"});
+  f.allowKeys({"name", "scene", "scenes", "modify", "analysis", "modes", "parameters", "samples", "seed", "figures",
+               "criteria", "keep_results"});
 
   auto source = std::make_shared<StudySceneSource>();
-  const YamlField scene_field = f.at("scene");
-  study.scene_path = (std::filesystem::path(path).parent_path() / scene_field.text()).string();
-  Scene scene;
-  try {
-    const auto validate = [](const ComposedScene& base, const std::string& base_path) { sceneFromComposed(base, base_path); };
-    source->base = composeScene(readInputFile(study.scene_path, "scene file", {}), study.scene_path, validate);
-    scene = sceneFromComposed(source->base, study.scene_path);
-  } catch (const SceneError& e) {
-    scene_field.fail(fmt::format("in the scene '{}': {}", study.scene_path, e.what()));
-  }
-  study.scene_text = source->base.text;
-  const Model model = compileModel(scene);
+  const std::vector<Scene> scenes = readStudyScenes(f, path, study, source->bases);
+  const Scene& scene = scenes.front();
+  std::vector<Model> models;
+  for (const Scene& s : scenes) models.push_back(compileModel(s));
+  const Model& model = models.front();
 
   const std::string analysis = f.at("analysis").choice({"static", "run", "modes"});
   study.analysis = analysis == "static" ? StudyAnalysis::Static : analysis == "run" ? StudyAnalysis::Run : StudyAnalysis::Modes;
@@ -390,10 +433,19 @@ Study readStudy(const std::string& path) {
 
   double cases = 1.0;
   bool random = false;
+  if (scenes.size() > 1) {
+    StudyParameter choice;
+    choice.path = kSceneParameter;
+    for (std::size_t k = 0; k < scenes.size(); ++k) choice.values.push_back(static_cast<double>(k));
+    choice.scene_index = true;
+    study.parameters.push_back(choice);
+    source->parameter_paths.push_back(f.at("scenes"));
+    cases = static_cast<double>(scenes.size());
+  }
   if (const auto parameters = f.find("parameters")) {
     std::set<std::string> seen;
     for (const YamlField& p : parameters->items()) {
-      study.parameters.push_back(readParameter(p, source->base.root, study.parameters, source->parameter_paths));
+      study.parameters.push_back(readParameter(p, source->bases, study.parameters, source->parameter_paths));
       if (!seen.insert(study.parameters.back().path).second) p.at("path").fail("this path is varied twice");
       random = random || study.parameters.back().random.has_value();
       cases *= static_cast<double>(std::max<std::size_t>(1, study.parameters.back().values.size()));
@@ -426,6 +478,11 @@ Study readStudy(const std::string& path) {
     for (const YamlField& fig : figures->items()) {
       study.figures.push_back(readFigure(fig, study, scene, model));
       if (!names.insert(study.figures.back().name).second) fig.at("name").fail("duplicate figure name");
+      for (std::size_t k = 1; k < scenes.size(); ++k)
+        if (const FigureSpec other = readFigure(fig, study, scenes[k], models[k]); other.constraint != study.figures.back().constraint)
+          fig.fail(fmt::format("this figure is the constraint '{}' in the scene '{}' but '{}' in '{}': a figure measures the "
+                               "same in every scene", study.figures.back().constraint, scenes.front().path,
+                               other.constraint, scenes[k].path));
     }
   }
   if (const auto criteria = f.find("criteria"))
@@ -437,19 +494,25 @@ Study readStudy(const std::string& path) {
 
 Scene caseScene(const Study& study, long index) {
   const std::vector<double> values = study.parameterValues(index);
-  std::string header = fmt::format("# study {}, case {}:", study.path, index);
-  for (std::size_t k = 0; k < values.size(); ++k) header += fmt::format(" {} = {}", study.parameters[k].path, values[k]);
   const StudySceneSource& source = *study.source;
+  std::size_t scene = 0;
+  std::string header = fmt::format("# study {}, case {}:", study.path, index);
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    header += fmt::format(" {} = {}", study.parameters[k].path, values[k]);
+    if (study.parameters[k].scene_index) scene = static_cast<std::size_t>(values[k]);
+  }
   const std::lock_guard<std::mutex> lock(source.lock);
-  ComposedScene composed{YAML::Clone(source.base.root), header + "\n" + source.base.text};
+  const ComposedScene& base = source.bases[scene];
+  ComposedScene composed{YAML::Clone(base.root), header + "\n" + base.text};
   for (std::size_t k = 0; k < values.size(); ++k) {
     const StudyParameter& p = study.parameters[k];
+    if (p.scene_index) continue;
     const YamlField& where = source.parameter_paths[k];
-    const YAML::Node value = p.scales_with ? scaled(sceneField(source.base.root, where, p.path), values[k])
+    const YAML::Node value = p.scales_with ? scaled(sceneField(base.root, where, p.path), values[k])
                                            : YAML::Node(fmt::format("{}", values[k]));
     modifyScene(composed.root, where, p.path, value);
   }
-  return sceneFromComposed(composed, study.scene_path);
+  return sceneFromComposed(composed, study.scene_paths[scene]);
 }
 
 }  // namespace cranesim

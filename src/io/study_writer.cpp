@@ -21,6 +21,11 @@ const char* analysisName(StudyAnalysis analysis) {
 }
 
 std::string describe(const Study& study, const StudyParameter& p) {
+  if (p.scene_index) {
+    std::string scenes = "the scene, its index in scenes:";
+    for (std::size_t k = 0; k < study.scene_paths.size(); ++k) scenes += fmt::format(" {} = {}", k, study.scene_paths[k]);
+    return scenes;
+  }
   if (p.scales_with)
     return fmt::format("scales with {}: the factor on the base scene's value", study.parameters[*p.scales_with].path);
   if (!p.random) return "grid";

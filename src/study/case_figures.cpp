@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "cranesim/assembly/assembler.hpp"
 #include "cranesim/assembly/constraint_reaction.hpp"
@@ -145,6 +146,20 @@ double slackTime(const FigureSpec& fig, const Model& model, const ResultsRecorde
   return slack;
 }
 
+/// The angle, deg, above the horizontal (normal to gravity) of the line from `relative_to` (the
+/// boom's foot hinge) to `joint` (its head) at every sample.
+std::vector<double> elevations(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder) {
+  const Vec3 up = model.gravity.norm() > 0.0 ? Vec3(-model.gravity.normalized()) : Vec3::UnitZ();
+  const std::vector<double>& head = recorder.jointPositions(model.findJoint(fig.joint));
+  const std::vector<double>& foot = recorder.jointPositions(model.findJoint(fig.relative_to));
+  std::vector<double> out(recorder.samples());
+  for (std::size_t s = 0; s < out.size(); ++s) {
+    const Vec3 line = Vec3(head[3 * s], head[3 * s + 1], head[3 * s + 2]) - Vec3(foot[3 * s], foot[3 * s + 1], foot[3 * s + 2]);
+    out[s] = std::atan2(line.dot(up), (line - line.dot(up) * up).norm()) * 180.0 / std::numbers::pi;
+  }
+  return out;
+}
+
 double reduce(const std::vector<double>& series, const std::vector<std::size_t>& window, FigureStatistic statistic) {
   double out = series[window.front()];
   for (const std::size_t s : window)
@@ -204,6 +219,9 @@ std::vector<double> caseFigures(const Study& study, const Scene& scene, const Mo
       case FigureQuantity::TippingLoad:
       case FigureQuantity::TippingLoadFraction:
         figures.push_back(reduce(tippingLoads(fig, scene, model, recorder), window, fig.statistic));
+        break;
+      case FigureQuantity::BoomAngle:
+        figures.push_back(reduce(elevations(fig, model, recorder), window, fig.statistic));
         break;
       case FigureQuantity::Frequency:
         break;

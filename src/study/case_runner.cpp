@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cranesim/control/closed_loop.hpp"
+#include "cranesim/crane/stated_equilibrium_search.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/model/compile.hpp"
@@ -18,7 +19,7 @@ namespace {
 /// The analysis of one case; fills the row's status, message and steps and, when complete, its
 /// figures.
 void analyse(const Study& study, long index, const CaseOptions& options, CaseRow& row) {
-  const Scene scene = caseScene(study, index);
+  const Scene scene = sceneAtStatedEquilibrium(caseScene(study, index), true);
   const Model model = compileModel(scene);
   if (study.analysis == StudyAnalysis::Run) requireResultsFit(scene, model);
   const Assembler assembler(model);

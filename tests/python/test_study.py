@@ -372,7 +372,8 @@ figures:
 def test_criteria_and_load_chart(tmp_path: Path):
     """A case is admissible when its figures are within the study's criteria; the load chart of
     scripts/plot_load_chart.py is, per configuration, the largest load whose lighter loads are all
-    admissible: a hook tension limit of 15 kN admits m g ≤ 15 kN, m ≤ 1529 kg, so 1500 kg."""
+    admissible: a hook tension limit of 15 kN admits m g ≤ 15 kN, m ≤ 1529 kg, so 1500 kg, and
+    the limit is reached at 1529 kg."""
     table = computed_study(tmp_path, "chart", f"""\
 scene: {ROPE_PENDULUM}
 analysis: static
@@ -399,7 +400,9 @@ criteria:
     assert chart.returncode == 0, chart.stderr
     rows = [line.split() for line in chart.stdout.splitlines()[1:3]]
     assert [row[0] for row in rows] == ["9.5", "10"]
-    assert all(row[2] == "1500" and row[-1] == "hook_tension" for row in rows), chart.stdout
+    assert all(row[2] == "1500" and row[-2] == "hook_tension" for row in rows), chart.stdout
+    # where the hook tension, linear in the mass between 1500 and 2000 kg, reaches 15 kN
+    assert all(float(row[-1].strip("()")) == pytest.approx(15000 / GRAVITY, rel=1e-5) for row in rows), chart.stdout
     # utilisation at the chart's load: hook tension 1500 kg g / 15 kN = 98 %, radius 0 / 1 m = 0 %
     assert all(row[3:5] == ["98%", "0%"] for row in rows), chart.stdout
     assert all(float(row[1]) < 1e-6 for row in rows)  # hanging under the suspension

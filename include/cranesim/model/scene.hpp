@@ -12,6 +12,7 @@
 #include "cranesim/model/crane_spec.hpp"
 #include "cranesim/model/feedback_spec.hpp"
 #include "cranesim/model/source_location.hpp"
+#include "cranesim/model/stated_equilibrium.hpp"
 #include "cranesim/model/truss_geometry.hpp"
 #include "cranesim/model/wind_field.hpp"
 
@@ -328,6 +329,7 @@ struct Scene {
   SourceLocation where_solver;
   std::optional<FeedbackSpec> feedback;
   std::optional<CraneSpec> crane;
+  std::optional<StatedEquilibrium> stated_equilibrium;  // a boom drawn where its equilibrium meets a figure
 };
 
 }  // namespace cranesim

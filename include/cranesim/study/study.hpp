@@ -35,7 +35,13 @@ struct StudyParameter {
   /// value over its base value, `leader_base`. Its value in a case is that factor.
   std::optional<std::size_t> scales_with;
   double leader_base = 1.0;
+  /// The study's scene (`scenes:`): the case's index into Study::scene_paths, the first
+  /// parameter, so the slowest to vary.
+  bool scene_index = false;
 };
+
+/// The path of the parameter that chooses a study's scene among its `scenes`.
+inline constexpr const char* kSceneParameter = "scene";
 
 /// What a figure measures. Time series (all but frequency) are reduced over the samples at
 /// t ≥ after by the figure's statistic; a static case has one sample.
@@ -53,6 +59,7 @@ enum class FigureQuantity {
   StabilityMargin,     // restoring − overturning moment about the active tipping line, N·m
   TippingLoad,         // the hook load that tips the carriage, N (crane/support_statics.hpp)
   TippingLoadFraction, // the load's weight over that tipping load, 1
+  BoomAngle,           // the crane's boom angle: its foot hinge to its head joint above the horizontal, deg
 };
 enum class FigureStatistic { Final, Max, Min };
 
@@ -87,8 +94,9 @@ struct StudySceneSource;
 
 struct Study {
   std::string path, text;  // the study file
-  std::string scene_path;  // the base scene
-  std::string scene_text;  // its text with its own bases
+  std::string scene_path;  // the base scene (`scenes`: their paths, one per line)
+  std::vector<std::string> scene_paths;  // the base scene, or each of `scenes`
+  std::string scene_text;  // its text with its own bases (`scenes`: theirs, each after a line naming it)
   StudyAnalysis analysis = StudyAnalysis::Static;
   int mode_count = 10;     // analysis: modes
   std::vector<StudyParameter> parameters;
