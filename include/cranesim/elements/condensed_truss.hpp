@@ -37,10 +37,10 @@
 #include <cmath>
 #include <vector>
 
-#include "cranesim/elements/objective_tangent.hpp"
-#include "cranesim/elements/section_inertia_coordinate_tangent.hpp"
-#include "cranesim/elements/section_inertia_forces.hpp"
-#include "cranesim/elements/section_mass_matrix.hpp"
+#include "cranesim/elements/parts/objective_tangent.hpp"
+#include "cranesim/elements/parts/section_inertia_coordinate_tangent.hpp"
+#include "cranesim/elements/parts/section_inertia_forces.hpp"
+#include "cranesim/elements/parts/section_mass_matrix.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/rotation.hpp"

@@ -29,7 +29,7 @@
 #include <array>
 #include <cmath>
 
-#include "cranesim/elements/reeled_length.hpp"
+#include "cranesim/elements/parts/reeled_length.hpp"
 #include "cranesim/elements/section.hpp"
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/gauss_legendre.hpp"

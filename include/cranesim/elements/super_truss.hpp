@@ -62,7 +62,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
-#include "cranesim/elements/objective_tangent.hpp"
+#include "cranesim/elements/parts/objective_tangent.hpp"
 #include "cranesim/elements/spline_beam.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/math/autodiff.hpp"

@@ -61,14 +61,14 @@
 #include <optional>
 #include <type_traits>
 
-#include "cranesim/elements/corotated_elastic_tangent.hpp"
-#include "cranesim/elements/corotation.hpp"
-#include "cranesim/elements/objective_tangent.hpp"
+#include "cranesim/elements/parts/corotated_elastic_tangent.hpp"
+#include "cranesim/elements/parts/corotation.hpp"
+#include "cranesim/elements/parts/objective_tangent.hpp"
 #include "cranesim/elements/section.hpp"
-#include "cranesim/elements/section_inertia_coordinate_tangent.hpp"
-#include "cranesim/elements/section_inertia_forces.hpp"
-#include "cranesim/elements/section_inertia_tangent.hpp"
-#include "cranesim/elements/section_mass_matrix.hpp"
+#include "cranesim/elements/parts/section_inertia_coordinate_tangent.hpp"
+#include "cranesim/elements/parts/section_inertia_forces.hpp"
+#include "cranesim/elements/parts/section_inertia_tangent.hpp"
+#include "cranesim/elements/parts/section_mass_matrix.hpp"
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/math/hermite.hpp"

@@ -1,5 +1,5 @@
 // The section inertia's velocity tangent (section_inertia_tangent.hpp), compiled here once.
-#include "cranesim/elements/section_inertia_tangent.hpp"
+#include "cranesim/elements/parts/section_inertia_tangent.hpp"
 
 namespace cranesim {
 

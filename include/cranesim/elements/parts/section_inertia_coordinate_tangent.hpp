@@ -20,7 +20,7 @@
 // as in section_inertia_forces.hpp, and the sums Σ Nᵢ f, Σ E_R τ, Σ ξ E_Tᵀ τ with their
 // derivatives, turned by the per-call maps in forward AD (SectionInertiaForces::forces).
 
-#include "cranesim/elements/section_inertia_forces.hpp"
+#include "cranesim/elements/parts/section_inertia_forces.hpp"
 
 namespace cranesim {
 

@@ -24,7 +24,7 @@
 
 #include <array>
 
-#include "cranesim/elements/corotation.hpp"
+#include "cranesim/elements/parts/corotation.hpp"
 
 namespace cranesim {
 

@@ -1,6 +1,6 @@
 // The objective tangent's functions that are not templates (objective_tangent.hpp), compiled
 // here once.
-#include "cranesim/elements/objective_tangent.hpp"
+#include "cranesim/elements/parts/objective_tangent.hpp"
 
 namespace cranesim {
 

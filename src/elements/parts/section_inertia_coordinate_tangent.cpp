@@ -1,6 +1,6 @@
 // The section inertia's coordinate tangent (section_inertia_coordinate_tangent.hpp), compiled
 // here once.
-#include "cranesim/elements/section_inertia_coordinate_tangent.hpp"
+#include "cranesim/elements/parts/section_inertia_coordinate_tangent.hpp"
 
 namespace cranesim {
 

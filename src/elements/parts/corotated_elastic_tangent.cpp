@@ -1,5 +1,5 @@
 // The co-rotated elastic tangent (corotated_elastic_tangent.hpp), compiled here once.
-#include "cranesim/elements/corotated_elastic_tangent.hpp"
+#include "cranesim/elements/parts/corotated_elastic_tangent.hpp"
 
 namespace cranesim {
 

@@ -47,7 +47,7 @@
 
 #include <Eigen/Dense>
 
-#include "cranesim/elements/section_mass_matrix.hpp"
+#include "cranesim/elements/parts/section_mass_matrix.hpp"
 #include "cranesim/math/hermite.hpp"
 #include "cranesim/math/rotation.hpp"
 
