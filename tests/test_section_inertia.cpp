@@ -6,7 +6,7 @@
 
 #include <cstdio>
 
-#include "cranesim/elements/section_inertia_coordinate_tangent.hpp"
+#include "cranesim/elements/parts/section_inertia_coordinate_tangent.hpp"
 #include "random_states.hpp"
 
 using namespace cranesim;

@@ -10,7 +10,7 @@
 #include <random>
 
 #include "cranesim/elements/cable.hpp"
-#include "cranesim/elements/quadratic_velocity.hpp"
+#include "cranesim/elements/parts/quadratic_velocity.hpp"
 #include "cranesim/elements/spline_rope.hpp"
 #include "cranesim/elements/strut_tie.hpp"
 #include "cranesim/model/kernel_elements.hpp"

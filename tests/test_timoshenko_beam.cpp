@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "cranesim/elements/corotated_elastic_tangent.hpp"
+#include "cranesim/elements/parts/corotated_elastic_tangent.hpp"
 #include "cranesim/elements/rotated_ends.hpp"
 #include "cranesim/elements/timoshenko_beam.hpp"
 #include "cranesim/model/kernel_elements.hpp"

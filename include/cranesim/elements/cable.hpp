@@ -21,7 +21,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cranesim/elements/reeled_length.hpp"
+#include "cranesim/elements/parts/reeled_length.hpp"
 #include "cranesim/elements/section.hpp"
 
 namespace cranesim {

@@ -27,7 +27,7 @@
 #include <array>
 #include <cmath>
 
-#include "cranesim/elements/reeled_length.hpp"
+#include "cranesim/elements/parts/reeled_length.hpp"
 #include "cranesim/elements/section.hpp"
 
 namespace cranesim {

@@ -85,32 +85,13 @@ struct RotatedEndsBeamKernel {
   }
 
   /// ∂(M a + F)/∂dq = Tᵀ C_b T in closed form (timoshenko_beam.hpp) and M = Tᵀ M_b T beside it.
-  Mat12 velocityTangent(const Q<double>& q, const V<double>& v, double, Mat12& M) const {
-    Mat12 Mb;
-    const Mat12 Cb = beam_.velocityTangent(q.segment<3>(0), sectionRotation<double>(q, 0), q.segment<3>(6),
-                                           sectionRotation<double>(q, 1), beamVelocities<double>(v), stiffness_, Mb);
-    M = toNodeAxes<double>(Mb);
-    return toNodeAxes<double>(Cb);
-  }
+  Mat12 velocityTangent(const Q<double>& q, const V<double>& v, double, Mat12& M) const;
 
   /// ∂(M a + F)/∂q (element.hpp) from M and the velocity tangent C (objective_tangent.hpp), as the
   /// beam's (end 2's elastic columns in closed form, corotated_elastic_tangent.hpp, turned into its
   /// node's axes; the inertia's columns of end 2's rotation, section_inertia_coordinate_tangent.hpp).
   Mat12 coordinateTangent(const Q<double>& q, const V<double>& v, const V<double>& a, double, const Vec3& gravity,
-                          const Mat12& M, const Mat12& C) const {
-    using D = SectionInertiaCoordinateTangent::D;
-    const V<double> vb = beamVelocities<double>(v);
-    const V<D> ab = beamVelocities<double>(a).cast<D>();
-    const Mat3 R1 = sectionRotation<double>(q, 0);
-    SectionInertiaCoordinateTangent inertia(R1.cast<D>(), Mat3T<D>(rotationMatrix<D>(seededSecondRotation(q)) * offset_[1].cast<D>()),
-                                            vb.cast<D>(), &ab, gravity, beam_.length);
-    beam_.addMassPoints(inertia);
-    CoRotatedElasticTangent elastic = coRotatedElasticTangent(beam_.length, beam_.damping, q.segment<3>(0), R1, q.segment<3>(6),
-                                                              sectionRotation<double>(q, 1), vb, stiffness_);
-    elastic.alongRotationVector(q.segment<3>(9), offset_[1]);
-    return objectiveCoordinateTangent({q, v, a, gravity, M, C}, nodeRows(elastic.force),
-                                      nodeRows(elastic.second_end), nodeRows(inertia.forces()));
-  }
+                          const Mat12& M, const Mat12& C) const;
 
   /// The beam's damping forces alone (timoshenko_beam.hpp).
   template <class S> V<S> dampingForce(const Q<S>& q, const V<S>& v) const {
@@ -119,21 +100,12 @@ struct RotatedEndsBeamKernel {
   }
 
   /// The beam's section forces in its own co-rotated frame (timoshenko_beam.hpp).
-  Eigen::Matrix<double, 12, 1> sectionForces(const Q<double>& q, const V<double>& v, const V<double>& a, const Vec3& gravity) const {
-    return beam_.sectionForces(q.segment<3>(0), sectionRotation<double>(q, 0), q.segment<3>(6), sectionRotation<double>(q, 1),
-                               beamVelocities<double>(v), beamVelocities<double>(a), gravity, stiffness_);
-  }
+  Eigen::Matrix<double, 12, 1> sectionForces(const Q<double>& q, const V<double>& v, const V<double>& a, const Vec3& gravity) const;
 
-  double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
-    return 0.5 * v.dot(massMatrix<double>(q) * v);
-  }
+  double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const;
 
   /// Gravity potential + strain energy ½ dᵀ K d.
-  double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const {
-    const Vec3 r1 = q.segment<3>(0), r2 = q.segment<3>(6);
-    const auto d = beam_.coRotate<double>(r1, sectionRotation<double>(q, 0), r2, sectionRotation<double>(q, 1)).d;
-    return beam_.gravityPotential(endFrames<double>(q), gravity) + 0.5 * d.dot(stiffness_ * d);
-  }
+  double potentialEnergy(const Q<double>& q, double, const Vec3& gravity) const;
 
  private:
   /// Tᵀ (M_b T a + F_ine,b + F_g,b): the inertial and gravity forces, M a among them.

@@ -430,23 +430,23 @@ struct SplineBeamKernel {
 
   /// F = F_ine (quadratic velocity) + F_int (elastic, damping) + F_g (gravity), left-hand side.
   template <class S> V<S> force(const Q<S>& q, const V<S>& v, double, const Vec3& gravity) const {
-    return forces(q, v, gravity, true, true, true);
+    return forces(q, v, gravity, Terms::All);
   }
 
   /// M a + F in one pass over the Gauss points (element.hpp: fused residual): G_r a and G_ω a
   /// join the section's accelerations, so M is never formed.
   template <class S> V<S> residual(const Q<S>& q, const V<S>& v, const V<S>& a, double, const Vec3& gravity) const {
-    return forces(q, v, gravity, true, true, true, &a);
+    return forces(q, v, gravity, Terms::All, &a);
   }
 
   /// Elastic and damping forces alone (zero for rigid placements and rigid velocities).
   template <class S> V<S> internalForce(const Q<S>& q, const V<S>& v) const {
-    return forces(q, v, Vec3::Zero(), false, true, false);
+    return forces(q, v, Vec3::Zero(), Terms::Internal);
   }
 
   /// Quadratic-velocity inertial forces alone.
   template <class S> V<S> inertialForce(const Q<S>& q, const V<S>& v) const {
-    return forces(q, v, Vec3::Zero(), true, false, false);
+    return forces(q, v, Vec3::Zero(), Terms::Inertial);
   }
 
   double kineticEnergy(const Q<double>& q, const V<double>& v, double = 0.0) const {
@@ -548,11 +548,15 @@ struct SplineBeamKernel {
     return y;
   }
 
-  /// With accelerations `acc` (and `inertia`), M a is added: the centre line's G_r a (translationJacobian)
+  /// Which forces `forces` sums: all of them; the elastic and damping forces alone; the
+  /// quadratic-velocity inertial forces alone.
+  enum class Terms { All, Internal, Inertial };
+
+  /// With accelerations `acc` (and inertial terms), M a is added: the centre line's G_r a (translationJacobian)
   /// to ρA r̈, the section's G_ω a = Cᵀ a_ω¹ + T_C(α) (∂α/∂δ_local) Λ a (rotationJacobian) to ω̇.
   template <class S>
-  [[gnu::flatten]] V<S> forces(const Q<S>& q, const V<S>& v, const Vec3& gravity, bool inertia, bool internal, bool weight,
-                               const V<S>* acc = nullptr) const {
+  [[gnu::flatten]] V<S> forces(const Q<S>& q, const V<S>& v, const Vec3& gravity, Terms terms, const V<S>* acc = nullptr) const {
+    const bool inertia = terms != Terms::Internal, internal = terms != Terms::Inertial, weight = terms == Terms::All;
     using Jet = spline_beam_detail::Jet2<S>;
     const Ends<S> e = ends(q);
     const Relative<S> rel = relative(e);
