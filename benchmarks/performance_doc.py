@@ -611,10 +611,12 @@ def setup_times(r: Results) -> str:
 
 The README's main command times its own phases into `out/main/main_command_times.csv`; copy them
 into `benchmarks/results/setup_times.csv` after a run on a fresh machine. The CI time is the
-clean-clone run's log. The build dominates, and within it the compiler's front end: the element
-kernels' exact Jacobians (forward-mode automatic differentiation on dual numbers inside Eigen
-fixed-size matrices) are inline member functions of the kernel headers, so every file that includes
-a kernel header instantiates its tangents again, whether it builds that kernel or not.
+clean-clone run's log. The fresh machine's phases were measured while the element kernels' exact
+Jacobians (forward-mode automatic differentiation on dual numbers inside Eigen fixed-size
+matrices) were still inline member functions of the kernel headers, instantiated again by every
+file that included a kernel header; they are now compiled once in the kernels' own files
+([architecture](architecture.md#keeping-compile-time-down)), and the build has not been timed on a
+fresh machine since. The install row on a minimal Debian is today's.
 
 {body}
 
@@ -630,8 +632,9 @@ def compile_times(r: Results) -> str:
                  [[f"`{x['file']}`" if x["file"].endswith(".cpp") else x["file"], seconds(x["cpu_s"]), f"{num(x['instantiation_share']):.0%}", x["detail"]]
                   for x in rows])
     return f"""Where a build's CPU time goes, file by file: the front end alone (`g++ -fsyntax-only
--ftime-report`, user CPU time, g++ 12 at `-O3`; the code generation comes on top). A file that
-only includes a kernel header pays most of what the kernel's own file pays.
+-ftime-report`, user CPU time, g++ 12 at `-O3`; the code generation comes on top; measured on the
+shared 2-core machine while other builds ran). A file that only includes a kernel header pays
+for parsing it, no longer for its tangents.
 
 {body}
 
