@@ -114,6 +114,20 @@ struct ReevedRopeKernel : ReeledLength {
     return power;
   }
 
+  /// The winch's pull while hoisting steadily (every sheave slipping towards the winch) the
+  /// load that parts 1 … m−1 (the falls) carry with the tensions `tension`: their sum over
+  /// Σ_k Π_{i≤k} e^(−λ_i), the falls keeping their directions. For n falls over sheaves of
+  /// efficiency η: W (1 − η) / (η (1 − ηⁿ)), DIN 15020-1's W / (n η_S η).
+  double hoistingLinePull(const double* tension) const {
+    double carried = 0.0, share = 0.0, ratio = 1.0;
+    for (int k = 1; k < parts(); ++k) {
+      carried += tension[k];
+      ratio *= std::exp(-friction_exponent[k - 1]);
+      share += ratio;
+    }
+    return carried / share;
+  }
+
   int parts() const { return points - 1; }
   double axialStiffness() const { return material.youngs_modulus * section.area; }
 

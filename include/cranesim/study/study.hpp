@@ -49,6 +49,8 @@ enum class FigureQuantity {
   TippingMoment,       // moment of ground supports' reactions about a directed line, N·m
   DynamicFactor,       // a constraint's peak force over its force at the first sample (φ2)
   RopeSlack,           // time a rope is slack somewhere (a point without tension), s
+  PartTension,         // the largest part tension of a reeved rope, N
+  LinePull,            // a reeved rope's winch pull hoisting steadily the load its falls carry, N
 };
 enum class FigureStatistic { Final, Max, Min };
 
@@ -63,7 +65,7 @@ struct FigureSpec {
   int component = 0;        // Position: 0, 1, 2 for x, y, z
   double after = -std::numeric_limits<double>::infinity();  // s
   int mode = 0;             // Frequency: 1-based, as `crane-sim modes` numbers them
-  std::string rope;         // RopeSlack
+  std::string rope;         // RopeSlack, PartTension, LinePull
   std::vector<std::string> supports;  // TippingMoment: constraints joining the structure to the ground
   Vec3 line_from = Vec3::Zero(), line_to = Vec3::Zero();  // TippingMoment: the tipping line, directed
 };
