@@ -161,8 +161,9 @@ TEST_CASE("Steady hoisting and lowering: the line pull of n falls over sheaves o
 namespace {
 
 /// A hook block on two spread falls under a free head block (both bodies, turned), the winch
-/// on the ground: every part's ends move and turn.
-Model spreadBlocks(double efficiency) {
+/// on the ground: every part's ends move and turn. With `capstan` the rope slides over the
+/// head's first sheave (friction 0.15, its wrap the drawn path's turn).
+Model spreadBlocks(double efficiency, bool capstan = false) {
   return test::loadYaml(fmt::format(R"(
 name: spread blocks
 ground:
@@ -183,7 +184,7 @@ members:
   - name: hoist
     type: rope
     element: reeved
-    path: [ground.winch, {{joint: head.a, radius: 0.3}}, {{joint: hook.a, radius: 0.3}}, {{joint: head.b, radius: 0.3}},
+    path: [ground.winch, {{joint: head.a, radius: 0.3{}}}, {{joint: hook.a, radius: 0.3}}, {{joint: head.b, radius: 0.3}},
            {{joint: hook.b, radius: 0.3}}, head.b]
     efficiency: {}
     speed_band: 0.05
@@ -193,15 +194,16 @@ members:
     length: {{type: ramp, value: 30, rate: -0.3}}
 solver: {{t_end: 1}}
 )",
-                                    efficiency));
+                                    capstan ? ", friction: 0.15" : "", efficiency));
 }
 
 }  // namespace
 
 TEST_CASE("Reeved rope: Jacobian equals central differences of the residual", "[reeving][jacobian]") {
   // η = 0.96 with a band of 5 cm/s and speeds of 0.1 m/s: the tension ratios turn with the
-  // velocities, so the velocity columns are not constant.
-  const Model model = spreadBlocks(0.96);
+  // velocities, so the velocity columns are not constant; so do a capstan's.
+  const bool capstan = GENERATE(false, true);
+  const Model model = spreadBlocks(0.96, capstan);
   const ReevedRopeElement& rope = reevedRope(model);
   test::Rng rng(11);
   for (int trial = 0; trial < 5; ++trial) {
@@ -227,7 +229,7 @@ TEST_CASE("Reeved rope: Jacobian equals central differences of the residual", "[
       fd.col(c) = (residual(qp, vp) - residual(qm, vm)) / (2.0 * h);
     }
     const double error = (J - fd).cwiseAbs().maxCoeff() / fd.cwiseAbs().maxCoeff();
-    INFO("trial " << trial << ": max |J − J_fd| / max |J_fd| = " << error);
+    INFO((capstan ? "with a capstan, " : "") << "trial " << trial << ": max |J − J_fd| / max |J_fd| = " << error);
     CHECK(error < 1e-7);
     Eigen::MatrixXd Jq(n, n);
     rope.coordinateJacobian(in, Jq.data());
@@ -237,7 +239,8 @@ TEST_CASE("Reeved rope: Jacobian equals central differences of the residual", "[
 
 TEST_CASE("Reeved rope keeps the books: dqᵀF = dV/dt − P_winch + P_sheaves + P_damping", "[reeving][energy]") {
   const double efficiency = GENERATE(1.0, 0.96);
-  const Model model = spreadBlocks(efficiency);
+  const bool capstan = GENERATE(false, true);
+  const Model model = spreadBlocks(efficiency, capstan);
   const ReevedRopeElement& rope = reevedRope(model);
   test::Rng rng(5);
   for (int trial = 0; trial < 5; ++trial) {
@@ -260,7 +263,7 @@ TEST_CASE("Reeved rope keeps the books: dqᵀF = dV/dt − P_winch + P_sheaves +
     for (int k = 0; k < rope.size(); ++k) virtual_power += v(rope.velocityIndices()[k]) * r(k);
     const double winch = rope.explicitTimePower(in), dissipated = rope.dissipatedPower(in);
     const double scale = std::abs(virtual_power) + std::abs(rate) + std::abs(winch) + dissipated;
-    INFO("η = " << efficiency << ", trial " << trial << ": dqᵀF " << virtual_power << " W, dV/dt " << rate << " W, winch "
+    INFO("η = " << efficiency << (capstan ? " and a capstan" : "") << ", trial " << trial << ": dqᵀF " << virtual_power << " W, dV/dt " << rate << " W, winch "
                 << winch << " W, dissipated " << dissipated << " W");
     CHECK(std::abs(virtual_power - (rate - winch + dissipated)) < 1e-8 * scale);
     CHECK(dissipated >= 0.0);

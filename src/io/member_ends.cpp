@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <set>
@@ -78,6 +79,13 @@ class DrawnJoints {
                                                    "of a path must lie apart", m.name, k + 1, k, k + 1, chord,
                                                    radii[k] + radii[k + 1]));
       r.drawn_length += chord;
+    }
+    for (std::size_t i = 0; i < r.sheaves.size(); ++i) {
+      SheaveSpec& s = r.sheaves[i];
+      if (s.friction == 0.0 || s.wrap) continue;
+      // a capstan's wrap: the angle the drawn path turns at its centre, between its two parts
+      const Vec3 in = points[i + 1] - points[i], out = points[i + 2] - points[i + 1];
+      s.wrap = std::atan2(in.cross(out).norm(), in.dot(out));
     }
     m.start = points.front();
     m.end = points.back();

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <numbers>
+
 namespace cranesim {
 namespace {
 
@@ -13,12 +15,30 @@ double readEfficiency(const YamlField& f) {
   return eta;
 }
 
-/// `{joint: <body>.<joint>, radius: r, efficiency: η}`, η defaulting to the rope's.
+/// A capstan's friction coefficient μ of rope on steel: in [0, 1].
+double readFriction(const YamlField& f) {
+  const double mu = f.number();
+  if (!(mu >= 0.0 && mu <= 1.0))
+    f.fail(fmt::format("a capstan's friction coefficient μ (rope on a drum or saddle, about 0.1) lies in [0, 1]; "
+                       "found {:g}", mu));
+  return mu;
+}
+
+/// A capstan's wrap angle, degrees in (0, 3600] (up to ten turns on a drum), as radians.
+double readWrap(const YamlField& f) {
+  const double degrees = f.number();
+  if (!(degrees > 0.0 && degrees <= 3600.0))
+    f.fail(fmt::format("a capstan's wrap angle lies in (0, 3600] degrees (up to ten turns); found {:g}", degrees));
+  return degrees * std::numbers::pi / 180.0;
+}
+
+/// `{joint: <body>.<joint>, radius: r, efficiency: η}`, η defaulting to the rope's, or a capstan
+/// `{joint, radius, friction: μ, wrap_deg: θ}`, θ defaulting to the drawn path's turn.
 SheaveSpec readSheave(const YamlField& f, double efficiency) {
   if (!f.isMap())
-    f.fail("a sheave is {joint: <body>.<joint>, radius: r} (and optionally efficiency: η); only the path's first "
-           "point (the winch) and last (the dead end) are bare joints");
-  f.allowKeys({"joint", "radius", "efficiency"});
+    f.fail("a sheave is {joint: <body>.<joint>, radius: r} (and optionally efficiency: η, or friction: μ and wrap_deg: θ "
+           "for a capstan); only the path's first point (the winch) and last (the dead end) are bare joints");
+  f.allowKeys({"joint", "radius", "efficiency", "friction", "wrap_deg"});
   SheaveSpec s;
   s.joint = f.at("joint").text();
   s.where = f.at("joint").where();
@@ -26,6 +46,15 @@ SheaveSpec readSheave(const YamlField& f, double efficiency) {
   s.radius = radius.number();
   if (!(s.radius > 0.0)) radius.fail(fmt::format("a sheave's radius must be positive, found {:g}", s.radius));
   if (s.radius > YamlField::kMaxCoordinate) radius.fail(fmt::format("a radius of {:g} m is beyond any crane's sheave", s.radius));
+  if (const auto mu = f.find("friction")) {
+    if (f.has("efficiency"))
+      f.at("efficiency").fail("a capstan (a sheave with friction) does not turn: it has no bearing efficiency");
+    s.friction = readFriction(*mu);
+    if (const auto wrap = f.find("wrap_deg")) s.wrap = readWrap(*wrap);
+    return s;
+  }
+  if (f.has("wrap_deg"))
+    f.at("wrap_deg").fail("wrap_deg belongs to a capstan: give the rope's friction on it as friction: μ");
   s.efficiency = f.has("efficiency") ? readEfficiency(f.at("efficiency")) : efficiency;
   return s;
 }

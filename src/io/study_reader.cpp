@@ -109,10 +109,26 @@ std::string readRopeName(const YamlField& f, const Scene& scene) {
   return rope;
 }
 
+bool isReeved(const Scene& scene, const std::string& rope) {
+  return std::any_of(scene.members.begin(), scene.members.end(),
+                     [&](const MemberSpec& m) { return m.name == rope && m.reeving; });
+}
+
+/// A reeved rope of the scene named by `f`.
+std::string readReevedRopeName(const YamlField& f, const Scene& scene) {
+  const std::string rope = readRopeName(f, scene);
+  if (!isReeved(scene, rope))
+    f.fail(fmt::format("rope '{}' is not reeved (element: reeved): its tension is quantity: rope_tension", rope));
+  return rope;
+}
+
 /// The constraint holding a rope's end: its force is the rope's tension there.
 std::string constraintAtRopeEnd(const YamlField& f, const Scene& scene, const Model& model) {
   const YamlField rope_field = f.at("rope");
   const std::string rope = readRopeName(rope_field, scene);
+  if (isReeved(scene, rope))
+    rope_field.fail(fmt::format("rope '{}' is reeved: its ends are joints of other parts; use quantity: part_tension or "
+                                "line_pull", rope));
   const std::string end = f.has("end") ? f.at("end").choice({"start", "end"}) : "end";
   const int node = model.joints[model.findJoint(rope + "." + end)].node;
   std::vector<std::string> held_by;
@@ -160,7 +176,8 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
   const std::string quantity =
       f.at("quantity").choice({"rope_tension", "constraint_force", "constraint_moment", "position", "horizontal_distance",
                                "horizontal_sway", "frequency", "tipping_moment", "dynamic_factor", "rope_slack",
-                               "support_pressure", "stability_margin", "tipping_load", "tipping_load_fraction", "boom_angle"});
+                               "support_pressure", "stability_margin", "tipping_load", "tipping_load_fraction", "boom_angle",
+                               "part_tension", "line_pull"});
   const bool of_supports = quantity == "support_pressure" || quantity == "stability_margin" || quantity == "tipping_load" ||
                            quantity == "tipping_load_fraction";
   if (of_supports && !model.envelope.supports)
@@ -179,6 +196,10 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
       fig.quantity = quantity == "constraint_force" ? FigureQuantity::ConstraintForce : FigureQuantity::ConstraintMoment;
     }
     fig.constraint = readConstraintName(f.at("constraint"), model).name;
+  } else if (quantity == "part_tension" || quantity == "line_pull") {
+    f.allowKeys({"name", "quantity", "rope", "statistic", "after"});
+    fig.quantity = quantity == "part_tension" ? FigureQuantity::PartTension : FigureQuantity::LinePull;
+    fig.rope = readReevedRopeName(f.at("rope"), scene);
   } else if (quantity == "rope_slack") {
     f.allowKeys({"name", "quantity", "rope", "after"});
     fig.quantity = FigureQuantity::RopeSlack;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "cranesim/model/reeved_rope_element.hpp"
@@ -52,7 +53,10 @@ void compileReevedRope(Model& model, const MemberSpec& m) {
   k.damping = m.damping;
   k.speed_band = reeving.speed_band;
   k.points = static_cast<int>(path.size());
-  for (std::size_t i = 0; i < reeving.sheaves.size(); ++i) k.efficiency[i] = reeving.sheaves[i].efficiency;
+  for (std::size_t i = 0; i < reeving.sheaves.size(); ++i) {
+    const SheaveSpec& s = reeving.sheaves[i];
+    k.friction_exponent[i] = s.friction > 0.0 ? s.friction * s.wrap.value() : -std::log(s.efficiency);
+  }
   if (m.length) model.parameter_profiles.push_back(*m.length);
   for (std::size_t p = 0; p + 1 < points.size(); ++p)
     model.drawing_lines.push_back({model.findJoint(points[p].joint), model.findJoint(points[p + 1].joint)});

@@ -1,6 +1,7 @@
 #include "cranesim/model/reeved_rope_element.hpp"
 
 #include "cranesim/math/rotation.hpp"
+#include "cranesim/model/model.hpp"
 
 namespace cranesim {
 
@@ -115,6 +116,16 @@ std::vector<Vec3> ReevedRopeElement::pathPositions(const ElementInput& in) const
   const Local<double> q = gather(in.q, q_);
   const Path<double> p = path<double>(q, Local<double>::Zero(size()));
   return {p.x.begin(), p.x.begin() + kernel_.points};
+}
+
+int findReevedRope(const Model& model, const std::string& rope) {
+  for (std::size_t r = 0; r < model.reeved_ropes.size(); ++r)
+    if (reevedRope(model, static_cast<int>(r)).name() == rope) return static_cast<int>(r);
+  return -1;
+}
+
+const ReevedRopeElement& reevedRope(const Model& model, int index) {
+  return dynamic_cast<const ReevedRopeElement&>(*model.elements[model.reeved_ropes[static_cast<std::size_t>(index)]]);
 }
 
 }  // namespace cranesim

@@ -10,6 +10,7 @@
 
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/model/compile.hpp"
+#include "cranesim/model/reeved_rope_element.hpp"
 #include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/planning/flat_pendulum.hpp"
 #include "cranesim/planning/minimum_time_plan.hpp"
@@ -64,10 +65,16 @@ double halfHorizontalExtent(const std::vector<Eigen::Vector2d>& points) {
   return 0.5 * extent;
 }
 
-/// The pendulum the load hangs on: from the hoist rope's end farther from the end point (where
-/// the rope leaves the boom head) to the end point, at the configuration q.
+/// The pendulum the load hangs on: from where the hoist rope leaves the boom head to the end
+/// point, at the configuration q: the rope's end farther from the end point, or a reeved rope's
+/// first sheave (where its lead line turns into the falls).
 double hangingLength(const Model& model, const VecX& q, const CraneControls& controls) {
   const Vec3 end = model.jointFrame(q.data(), model.findJoint(controls.end_point)).r;
+  if (const int reeved = findReevedRope(model, controls.hoist_rope); reeved >= 0) {
+    const VecX at_rest = VecX::Zero(model.nv);
+    const ElementInput in{q.data(), at_rest.data(), nullptr, 0.0, model.gravity};
+    return (reevedRope(model, reeved).pathPositions(in)[1] - end).norm();
+  }
   double length = 0.0;
   for (const char* side : {".start", ".end"})
     length = std::max(length, (model.jointFrame(q.data(), model.findJoint(controls.hoist_rope + side)).r - end).norm());

@@ -42,7 +42,8 @@ template <class SceneT> auto& member(SceneT& scene, const std::string& name) {
 /// A control rope's unstretched length at solver.t_start (the chord when the scene gives none).
 double ropeLengthAtStart(const Scene& scene, const std::string& rope) {
   const MemberSpec& m = member(scene, rope);
-  return m.length ? (*m.length)(scene.solver.t_start) : (m.end - m.start).norm();
+  if (m.length) return (*m.length)(scene.solver.t_start);
+  return m.reeving ? m.reeving->drawn_length : (m.end - m.start).norm();
 }
 
 /// Boom angle and end point of a state, with the angle's gradient over the coordinates.

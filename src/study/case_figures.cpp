@@ -9,6 +9,7 @@
 #include "cranesim/assembly/constraint_reaction.hpp"
 #include "cranesim/crane/support_reading.hpp"
 #include "cranesim/model/element.hpp"
+#include "cranesim/model/reeved_rope_element.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
 namespace cranesim {
@@ -160,6 +161,21 @@ std::vector<double> elevations(const FigureSpec& fig, const Model& model, const 
   return out;
 }
 
+/// At every sample, reeved rope `fig.rope`'s largest part tension (PartTension) or the winch's
+/// pull hoisting steadily the load its falls carry (LinePull, reeved_rope.hpp).
+std::vector<double> reevedRopeFigures(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder) {
+  const int r = findReevedRope(model, fig.rope);
+  const ReevedRopeKernel& rope = reevedRope(model, r).kernel();
+  const std::vector<double>& tensions = recorder.partTensions(r);
+  std::vector<double> out(recorder.samples());
+  for (std::size_t s = 0; s < out.size(); ++s) {
+    const double* parts = tensions.data() + s * static_cast<std::size_t>(rope.parts());
+    out[s] = fig.quantity == FigureQuantity::PartTension ? *std::max_element(parts, parts + rope.parts())
+                                                         : rope.hoistingLinePull(parts);
+  }
+  return out;
+}
+
 double reduce(const std::vector<double>& series, const std::vector<std::size_t>& window, FigureStatistic statistic) {
   double out = series[window.front()];
   for (const std::size_t s : window)
@@ -222,6 +238,10 @@ std::vector<double> caseFigures(const Study& study, const Scene& scene, const Mo
         break;
       case FigureQuantity::BoomAngle:
         figures.push_back(reduce(elevations(fig, model, recorder), window, fig.statistic));
+        break;
+      case FigureQuantity::PartTension:
+      case FigureQuantity::LinePull:
+        figures.push_back(reduce(reevedRopeFigures(fig, model, recorder), window, fig.statistic));
         break;
       case FigureQuantity::Frequency:
         break;

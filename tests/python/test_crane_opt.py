@@ -192,6 +192,60 @@ def test_flatness_leaves_the_jib_still(jib_plan: Path, tmp_path: Path):
         assert flat["verification"].attrs["final_error"] < 0.01
 
 
+# configs/luffing_jib.yaml with its hoist rope reeved on 2 falls: the winch at the boom's foot
+# (its lead line along the boom, so luffing leaves it alone), over a sheave at the tip down to a
+# sheave at the load's hook and back to a dead end at the tip; its length the drawn path's 40 m.
+REEVED_JIB = """\
+name: luffing jib, hoist on two falls
+gravity: [0, 0, -9.81]
+ground:
+  joints: [{name: foot, position: [0, 0, 0]}, {name: mast_top, position: [4, 0, 12]}]
+bodies:
+  - {name: boom, mass: 2000, centroid: [10, 0, 0], inertia: [100, 66700, 66700], position: [0, 0, 0],
+     rotation: {axis: [0, 1, 0], angle_deg: -120}, joints: [{name: foot, position: [0, 0, 0]}, {name: tip, position: [20, 0, 0]}]}
+  - {name: load, mass: 1000, centroid: [0, 0, -0.5], inertia: [200, 200, 150], position: [-10, 0, 7.320508],
+     joints: [{name: hook, position: [0, 0, 0]}]}
+members:
+  - {name: luffing_rope, type: rope, start: [4, 0, 12], end: [-10, 0, 17.320508], length: 14.9769, section: {radius: 0.01},
+     damping: 1.0e-3, material: {density: 7800, youngs_modulus: 1.0e11, poisson_ratio: 0.25}}
+  - {name: hoist_rope, type: rope, element: reeved, falls: 2, winch: boom.foot, head: {joint: boom.tip, radius: 0.2},
+     hook: {joint: load.hook, radius: 0.2}, section: {radius: 0.01}, damping: 1.0e-3,
+     material: {density: 7800, youngs_modulus: 1.0e11, poisson_ratio: 0.25}}
+constraints:
+  - {name: foot_pin, type: revolute, joints: [ground.foot, boom.foot], axis: y}
+  - {name: luffing_on_mast, type: spherical, joints: [ground.mast_top, luffing_rope.start]}
+  - {name: luffing_on_boom, type: spherical, joints: [boom.tip, luffing_rope.end]}
+solver: {t_end: 10, rtol: 1.0e-6, atol: 1.0e-7, initial_state: equilibrium}
+output: {interval: 0.05}
+"""
+
+
+def test_flatness_on_a_reeved_hoist_reels_two_metres_per_metre(jib_plan: Path, tmp_path: Path):
+    """configs/target_luffing_jib.yaml by flatness on the jib whose hoist rope runs on 2 falls: the
+    map's hoist control is the winch's rope, so the plan reels 2 m of it for every metre the load
+    rises under the tip (to the falls' stretch, 1.6e-4), and the load arrives as still as on one
+    fall (measured ±0.0005 m there)."""
+    (tmp_path / "jib.yaml").write_text(REEVED_JIB)
+    text = JIB_TARGET.read_text().replace("scene: luffing_jib.yaml", "scene: jib.yaml")
+    text = text.replace("hoist_change: {from: 0, to: 8, step: 1}", "hoist_change: {from: 0, to: 16, step: 2}")
+    target = tmp_path / "target.yaml"
+    target.write_text("method: flatness\n" + text)
+    out = tmp_path / "plan.h5"
+    result = crane_opt("plan", target, "-o", out, "--quiet", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    with h5py.File(jib_plan, "r") as plain, h5py.File(out, "r") as f:
+        attrs = f["path"].attrs
+        assert f["map"].attrs["hoist_length_reference"] == pytest.approx(40.0, abs=1e-6)  # the drawn path, 20 m + 2 × 10 m (drawn to 1e-6 m)
+        hoist = f["controls/hoist_length"][...]
+        lifted = attrs["hanging_length_start"] - attrs["hanging_length_end"]
+        assert lifted == pytest.approx(plain["path"].attrs["hanging_length_start"] - plain["path"].attrs["hanging_length_end"],
+                                       abs=0.01)
+        assert (hoist[0] - hoist[-1]) / lifted == pytest.approx(2.0, rel=1e-3)
+        v = f["verification"].attrs
+        assert v["status"] == "complete"
+        assert v["residual_sway"] < 0.005 and v["max_error"] < 0.02 and v["final_error"] < 0.01
+
+
 def test_map_only(tmp_path: Path):
     out = tmp_path / "map.h5"
     result = crane_opt("map", JIB_TARGET, "-o", out, "--threads", "1", cwd=tmp_path)

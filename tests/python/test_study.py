@@ -161,6 +161,55 @@ def run_study(tmp_path_factory) -> dict:
     return {"tables": tables, "workers": who}
 
 
+# A hook block guided vertically 10 m under a fixed head sheave on 4 falls over sheaves of
+# efficiency 0.96 (tests/test_reeving.cpp's guided hook): its falls are vertical.
+REEVED_HOOK = """\
+name: guided hook block on four falls
+gravity: [0, 0, -9.81]
+ground:
+  joints: [{name: winch, position: [-8, 0, 20]}, {name: head, position: [0, 0, 20]}, {name: guide, position: [0, 0, 10]}]
+bodies:
+  - {name: hook, mass: 10000, inertia: [1000, 1000, 1000], position: [0, 0, 10], joints: [{name: sheaves, position: [0, 0, 0]}]}
+members:
+  - name: hoist
+    type: rope
+    element: reeved
+    falls: 4
+    winch: ground.winch
+    head: {joint: ground.head, radius: 0.3}
+    hook: {joint: hook.sheaves, radius: 0.3}
+    efficiency: 0.96
+    section: {radius: 0.01}
+    material: {density: 7800, youngs_modulus: 1.0e11, poisson_ratio: 0.3}
+    length: 47.9
+constraints:
+  - {name: guide, type: prismatic, joints: [ground.guide, hook.origin], axis: z}
+solver: {t_end: 1}
+"""
+
+REEVED_STUDY = """\
+scene: hook.yaml
+analysis: static
+parameters:
+  - {path: bodies.hook.mass, range: {from: 5000, to: 20000, count: 4}}
+figures:
+  - {name: part, quantity: part_tension, rope: hoist}
+  - {name: pull, quantity: line_pull, rope: hoist}
+"""
+
+
+def test_static_study_of_a_reeved_rope(tmp_path: Path):
+    """At rest every part of n falls carries W/n; the winch hoisting W over n sheaves of
+    efficiency η pulls W (1 − η) / (η (1 − ηⁿ)) (DIN 15020-1: W / (n η_S η))."""
+    (tmp_path / "hook.yaml").write_text(REEVED_HOOK)
+    with h5py.File(computed_study(tmp_path, "reeved", REEVED_STUDY), "r") as f:
+        weight = f["parameters/bodies.hook.mass"][...] * GRAVITY
+        assert list(f["cases/status"].asstr()[...]) == ["complete"] * 4
+        np.testing.assert_allclose(f["figures/part"][...], weight / 4, rtol=1e-9)
+        eta = 0.96
+        np.testing.assert_allclose(f["figures/pull"][...], weight * (1 - eta) / (eta * (1 - eta**4)), rtol=1e-9)
+
+
 def test_run_study_figures(run_study: dict):
     table = run_study["tables"]["jobs 1"]
     mass = table["parameters/bodies.ball.mass"]

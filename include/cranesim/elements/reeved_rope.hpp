@@ -10,10 +10,13 @@
 // - Strain of the whole path ε = Σℓ/L − 1, rate ε̇ = Σℓ̇/L − Σℓ L̇/L² (the material's, as the
 //   cable's); the lead part's tension T_0 = EA max(ε + η ε̇, 0) (Kelvin–Voigt η).
 // - Material speed over sheave i towards the dead end, for rigid parts: w_i = Σ_{k≥i} ℓ̇_k (the
-//   rope beyond the sheave lengthens). The sheave's bearing friction holds the rope back:
-//   T_i = T_{i−1} η_i^(−σ(w_i)), σ(w) = tanh(w / b), so hoisting (w < 0) drops the tension by
-//   η_i at each sheave away from the winch and lowering raises it by 1/η_i; at rest (|w| ≪ b)
-//   the ratio is 1, the middle of the friction band. b: `speed_band`.
+//   rope beyond the sheave lengthens). The sheave's friction holds the rope back:
+//   T_i = T_{i−1} e^(λ_i σ(w_i)), σ(w) = tanh(w / b), with λ_i = −ln η_i for a turning sheave
+//   of bearing efficiency η_i and λ_i = μ_i θ_i for a capstan (the rope sliding over a sheave
+//   that does not turn, wrap θ_i, Euler–Eytelwein T_tight/T_slack = e^(μθ)). Hoisting (w < 0)
+//   drops the tension by e^(−λ_i) at each sheave away from the winch and lowering raises it by
+//   e^(λ_i); at rest (|w| ≪ b) the ratio is 1, the middle of the friction band: no sticking,
+//   a tension ratio r is held while the rope creeps at w = b artanh(ln r / λ). b: `speed_band`.
 // - Forces: part k pulls its ends together, F = Σ T_k ∂ℓ_k/∂x (−T_k u_k on x_k, +T_k u_k on
 //   x_{k+1}); the rope has no mass and no weight.
 // - Energy books (model/element.hpp): V = ½ EA L max(ε, 0)². Summation by parts gives
@@ -41,12 +44,8 @@ struct ReevedRopeKernel : ReeledLength {
   double damping = 0.0;     // Kelvin–Voigt retardation time η, s
   double speed_band = 1e-3;  // b of the direction's smoothing σ = tanh(w/b), m/s
   int points = 2;           // path points, winch and dead end included
-  /// η_i of the sheave at inner point i (index i − 1), 1 for a frictionless sheave.
-  std::array<double, kMaxPoints> efficiency = [] {
-    std::array<double, kMaxPoints> frictionless;
-    frictionless.fill(1.0);
-    return frictionless;
-  }();
+  /// λ_i of the sheave at inner point i (index i − 1): −ln η_i or μ_i θ_i, 0 for a frictionless sheave.
+  std::array<double, kMaxPoints> friction_exponent{};
 
   template <class S> using Points = std::array<Vec3T<S>, kMaxPoints>;
 
@@ -115,6 +114,20 @@ struct ReevedRopeKernel : ReeledLength {
     return power;
   }
 
+  /// The winch's pull while hoisting steadily (every sheave slipping towards the winch) the
+  /// load that parts 1 … m−1 (the falls) carry with the tensions `tension`: their sum over
+  /// Σ_k Π_{i≤k} e^(−λ_i), the falls keeping their directions. For n falls over sheaves of
+  /// efficiency η: W (1 − η) / (η (1 − ηⁿ)), DIN 15020-1's W / (n η_S η).
+  double hoistingLinePull(const double* tension) const {
+    double carried = 0.0, share = 0.0, ratio = 1.0;
+    for (int k = 1; k < parts(); ++k) {
+      carried += tension[k];
+      ratio *= std::exp(-friction_exponent[k - 1]);
+      share += ratio;
+    }
+    return carried / share;
+  }
+
   int parts() const { return points - 1; }
   double axialStiffness() const { return material.youngs_modulus * section.area; }
 
@@ -138,13 +151,13 @@ struct ReevedRopeKernel : ReeledLength {
     return c;
   }
 
-  /// T_i / T_{i−1} = η_i^(−σ(w_i)) across the sheave at inner point i.
+  /// T_i / T_{i−1} = e^(λ_i σ(w_i)) across the sheave at inner point i.
   template <class S> S sheaveRatio(int i, const S& speed) const {
-    const double log_efficiency = std::log(efficiency[i - 1]);
-    if (log_efficiency == 0.0) return S(1.0);
+    const double exponent = friction_exponent[i - 1];
+    if (exponent == 0.0) return S(1.0);
     using std::exp;
     using std::tanh;
-    return exp(-log_efficiency * tanh(speed / speed_band));
+    return exp(exponent * tanh(speed / speed_band));
   }
 
   /// (σ − σ₀)/E: the damped law's stress less the elastic one.

@@ -15,6 +15,8 @@
 
 namespace cranesim {
 
+struct Model;
+
 class ReevedRopeElement final : public Element {
  public:
   /// Nodes one rope may run over; their coordinates sit on the stack in every call.
@@ -77,5 +79,10 @@ class ReevedRopeElement final : public Element {
   std::vector<Slot> slots_;
   std::vector<int> nodes_, q_, v_;
 };
+
+/// The index in Model::reeved_ropes of the reeved rope named `rope`, −1 for none.
+int findReevedRope(const Model& model, const std::string& rope);
+/// Model::reeved_ropes[index]'s element.
+const ReevedRopeElement& reevedRope(const Model& model, int index);
 
 }  // namespace cranesim

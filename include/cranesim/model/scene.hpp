@@ -50,11 +50,15 @@ enum class TrussFidelity { SuperTruss, Condensed, Beam, Members };
 enum class RopeElement { Spline, Cable, Reeved };
 
 /// A sheave a reeved rope runs over: a joint at its centre, on a body; its radius and the
-/// efficiency of its bearing (the tension ratio across it while the rope runs).
+/// efficiency of its bearing (the tension ratio across it while the rope runs), or, for a
+/// capstan (a sheave that does not turn, a drum or saddle), the rope's friction on it and the
+/// angle the rope wraps it.
 struct SheaveSpec {
   std::string joint;
   double radius = 0.0;      // m
   double efficiency = 1.0;  // η ∈ (0, 1]
+  double friction = 0.0;    // μ of a capstan; 0: a turning sheave
+  std::optional<double> wrap;  // θ of a capstan, rad; empty: the drawn path's turn at the sheave
   SourceLocation where;
 };
 

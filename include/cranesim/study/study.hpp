@@ -60,6 +60,8 @@ enum class FigureQuantity {
   TippingLoad,         // the hook load that tips the carriage, N (crane/support_statics.hpp)
   TippingLoadFraction, // the load's weight over that tipping load, 1
   BoomAngle,           // the crane's boom angle: its foot hinge to its head joint above the horizontal, deg
+  PartTension,         // the largest part tension of a reeved rope, N
+  LinePull,            // a reeved rope's winch pull hoisting steadily the load its falls carry, N
 };
 enum class FigureStatistic { Final, Max, Min };
 
@@ -74,7 +76,7 @@ struct FigureSpec {
   int component = 0;        // Position: 0, 1, 2 for x, y, z
   double after = -std::numeric_limits<double>::infinity();  // s
   int mode = 0;             // Frequency: 1-based, as `crane-sim modes` numbers them
-  std::string rope;         // RopeSlack
+  std::string rope;         // RopeSlack, PartTension, LinePull
   std::vector<std::string> supports;  // TippingMoment: constraints joining the structure to the ground
   Vec3 line_from = Vec3::Zero(), line_to = Vec3::Zero();  // TippingMoment: the tipping line, directed
   std::string body;         // TippingLoad, TippingLoadFraction: the hook load's body
