@@ -1,5 +1,5 @@
 // bench_element_bending: accuracy and cost of the Timoshenko and cubic spline beam elements
-// in the thesis' static bending test 8.1.1 (see benchmarks/README.md, tests/end_moment_arc.hpp).
+// in the thesis' static bending test 8.1.1 (see benchmarks/README.md, tests/fixtures/end_moment_arc.hpp).
 //
 // For every member type, segment count and moment ratio K the equilibrium of
 // configs/end_moment_<type>.yaml is solved with solveStatics in two ways:

@@ -1,4 +1,4 @@
-"""What every bad-input file (tests/bad_scenes, bad_targets, bad_studies) declares and what its
+"""What every bad-input file (tests/data/bad_scenes, bad_targets, bad_studies) declares and what its
 rejection must look like. Each file's first two lines say what the error must contain and which
 YAML path it must name:
 

@@ -2,7 +2,7 @@
 
 Exit codes: 0 success, 1 solver failure (results kept, marked incomplete), 2 bad input.
 
-Every tests/bad_scenes/*.yaml is a near-copy of a valid scene with one defect. Its first two
+Every tests/data/bad_scenes/*.yaml is a near-copy of a valid scene with one defect. Its first two
 lines say what the error must contain and which YAML path it must name:
 
     # expect: <substring of the error message>
@@ -26,7 +26,7 @@ from bad_input import EXIT_BAD_INPUT, assert_collection, assert_reported, expect
 
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
-BAD_SCENES = sorted((SOURCE_DIR / "tests" / "bad_scenes").glob("*.yaml"))
+BAD_SCENES = sorted((SOURCE_DIR / "tests" / "data" / "bad_scenes").glob("*.yaml"))
 PENDULUM = SOURCE_DIR / "configs" / "pendulum.yaml"
 
 EXIT_SOLVER_FAILURE = 1
@@ -106,7 +106,7 @@ def test_bad_scene_is_rejected(scene: Path, tmp_path: Path):
 
 
 def test_bad_scene_writes_no_default_output(tmp_path: Path):
-    scene = SOURCE_DIR / "tests" / "bad_scenes" / "negative_mass.yaml"
+    scene = SOURCE_DIR / "tests" / "data" / "bad_scenes" / "negative_mass.yaml"
     result = crane_sim("run", scene, cwd=tmp_path)
     assert result.returncode == EXIT_BAD_INPUT
     assert list(tmp_path.iterdir()) == []
@@ -277,7 +277,7 @@ def test_modes_rejects_bad_arguments(arguments: list, tmp_path: Path):
 
 
 def test_modes_bad_scene_and_missing_equilibrium(tmp_path: Path):
-    bad = SOURCE_DIR / "tests" / "bad_scenes" / "negative_mass.yaml"
+    bad = SOURCE_DIR / "tests" / "data" / "bad_scenes" / "negative_mass.yaml"
     assert_reported(crane_sim("modes", bad, cwd=tmp_path), bad, *expectations(bad))
     # A body without supports falls: there is no equilibrium to vibrate about.
     falling = tmp_path / "falling.yaml"

@@ -1,6 +1,6 @@
 """Command-line behaviour of crane-opt: bad targets, the plan file and the map-only file.
 
-Every tests/bad_targets/*.yaml is a near-copy of configs/target_luffing_jib.yaml with one
+Every tests/data/bad_targets/*.yaml is a near-copy of configs/target_luffing_jib.yaml with one
 defect. Its first two lines say what the error must contain and which YAML path it names:
 
     # expect: <substring of the error message>
@@ -27,7 +27,7 @@ from mpi_launch import mpirun
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANEOPT_BIN", SOURCE_DIR / "build" / "crane-opt")).resolve()
 CRANE_SIM = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
-BAD_TARGETS = sorted((SOURCE_DIR / "tests" / "bad_targets").glob("*.yaml"))
+BAD_TARGETS = sorted((SOURCE_DIR / "tests" / "data" / "bad_targets").glob("*.yaml"))
 JIB_TARGET = SOURCE_DIR / "configs" / "target_luffing_jib.yaml"
 
 

@@ -385,7 +385,7 @@ def test_a_study_writes_the_command_lines_table(tmp_path):
         for path in ("figures/ball_sway", "figures/hook_tension_max", "cases/steps", "parameters/bodies.ball.mass"):
             assert np.array_equal(table.get(path), cli[path][()]), path
     with pytest.raises(cranesim.SceneError) as error:
-        cranesim.study(ROOT / "tests" / "bad_studies" / "criterion_without_bound.yaml", tmp_path / "bad.h5")
+        cranesim.study(ROOT / "tests" / "data" / "bad_studies" / "criterion_without_bound.yaml", tmp_path / "bad.h5")
     assert error.value.line is not None and not (tmp_path / "bad.h5").exists()
 
 

@@ -48,7 +48,7 @@ def test_plot_of_the_jib_tubes(runs, tmp_path):
     pulled = re.search(r"largest tension: (\S+) N in (\S+) – (\S+) at", result.stdout)
     pressed = re.search(r"largest compression: (\S+) N in (\S+) – (\S+) at", result.stdout)
     # The root chords: about half the root moment (2.17 MN·m) over the 2.8 m between them, each
-    # of the two top ones pulled and the two bottom ones pressed (tests/test_section_forces.cpp).
+    # of the two top ones pulled and the two bottom ones pressed (tests/elements/test_section_forces.cpp).
     assert pulled and pressed, result.stdout
     assert 3.0e5 < float(pulled.group(1)) < 6.0e5 and pulled.group(2).startswith("jib.s1n")
     assert 3.0e5 < float(pressed.group(1)) < 6.0e5 and pressed.group(2).startswith("jib.s1n")

@@ -1,7 +1,7 @@
 """crane-sim study: the case table, its determinism over threads and MPI ranks, failed cases,
 interruption and --resume, and bad study files.
 
-Every tests/bad_studies/*.yaml is a study with one defect. Its first two lines say what the error
+Every tests/data/bad_studies/*.yaml is a study with one defect. Its first two lines say what the error
 must contain and which YAML path of the study file it names:
 
     # expect: <substring of the error message>
@@ -29,7 +29,7 @@ from mpi_launch import mpirun
 
 SOURCE_DIR = Path(os.environ.get("CRANESIM_SOURCE_DIR", Path(__file__).resolve().parents[2])).resolve()
 BINARY = Path(os.environ.get("CRANESIM_BIN", SOURCE_DIR / "build" / "crane-sim")).resolve()
-BAD_STUDIES = sorted((SOURCE_DIR / "tests" / "bad_studies").glob("*.yaml"))
+BAD_STUDIES = sorted((SOURCE_DIR / "tests" / "data" / "bad_studies").glob("*.yaml"))
 RUN_STUDY = SOURCE_DIR / "configs" / "study_rope_pendulum.yaml"
 ROPE_PENDULUM = SOURCE_DIR / "configs" / "rope_pendulum.yaml"
 
@@ -162,7 +162,7 @@ def run_study(tmp_path_factory) -> dict:
 
 
 # A hook block guided vertically 10 m under a fixed head sheave on 4 falls over sheaves of
-# efficiency 0.96 (tests/test_reeving.cpp's guided hook): its falls are vertical.
+# efficiency 0.96 (tests/elements/test_reeving.cpp's guided hook): its falls are vertical.
 REEVED_HOOK = """\
 name: guided hook block on four falls
 gravity: [0, 0, -9.81]

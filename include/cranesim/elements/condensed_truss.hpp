@@ -1,37 +1,9 @@
 #pragma once
-// Condensed truss element: a whole lattice section (truss_geometry.hpp) on its two end sections,
-// like the super truss element (super_truss.hpp, thesis 3.5), but with the stiffness of the
-// full-member model instead of the super truss' spline kinematics.
-//
-// Coordinates: q_e = [r¹, φ¹, r², φ²] of the two end-section frames, dq_e = [ṙ¹, ω¹, ṙ², ω²] with
-// ω in the section's body frame, exactly as the super truss element (12 DOF).
-//
-// Stiffness: static condensation (Guyan) of the linear full-member model onto the rigid end
-// sections. Every tube that does not lie in an end section is one Timoshenko beam
-// (timoshenko_beam.hpp, localStiffness) on the truss nodes; end-section nodes are rigid with
-// their section, u = u_s + θ_s × p (assumption 1), internal nodes keep their six DOF. With the
-// end-section DOF b = [u¹, θ¹, u², θ²] (truss axes, section origins) and the internal ones i,
-//     K_red = K_bb − K_bi K_ii⁻¹ K_ib,
-// the exact linear stiffness of the full-member model between its end sections, including the
-// lacing's shear compliance and the torsion–axial coupling of the lacing pattern, which the super
-// truss' tangent-tied chords lose. It is applied co-rotationally (timoshenko_beam.hpp, 3-29..3-34):
-// the local deformations d = [0, ψ¹, u², ψ²] of the end sections in the co-rotated frame give
-// U = ½ dᵀ K_red d and F = J_dᵀ K_red (d + η ḋ). K_red annihilates the six rigid modes, so rigid
-// placements carry no force and large rigid motion is exact; the deformation itself is linear
-// (small strains in the co-rotated frame, no buckling of single tubes).
-//
-// Inertia and gravity: the tubes' material rides on the sections of a beam interpolation between
-// the end frames (the Timoshenko kernel's: cubic Hermite centre line along the truss axis, geodesic
-// section rotation R_c(ξ)). A material point at station ξ and lateral offset o moves as
-// p = x(ξ) + R_c(ξ) o. The tubes are cut into mass stations: Gauss points per bay (every flexible
-// tube spans whole bays, its mass spread uniformly along the axis, its offset linear) and point
-// stations where a tube lies across the axis (the cross-section beams at ξ = 0 and 1). Each
-// station carries mass m, first moment s = Σ m o and inertia J = Σ m (|o|² I − o oᵀ) plus the
-// tubes' own rotary inertia, in the section frame. Per station, by d'Alembert on p:
-//     f = m ẍ + R_c (Ω̇ × s + Ω × (Ω × s)) − m g,
-//     τ = s × R_cᵀ (ẍ − g) + J Ω̇ + Ω × J Ω,
-// projected by H_xᵀ f + H_Ωᵀ τ. Rigid motions carry the exact mass, first moment and inertia of
-// the tubes, and the inertial forces do no work (the exact kinetic energy of this interpolation).
+// Condensed truss element: a whole lattice section on its two end sections (12 DOF, as
+// super_truss.hpp) with the full-member model's linear stiffness condensed statically onto
+// them, K_red = K_bb − K_bi K_ii⁻¹ K_ib, applied co-rotationally as the Timoshenko beam's
+// (3-29..3-34); the tubes' mass rides on the Timoshenko interpolation in mass stations per bay.
+// Derivation: docs/elements.md#condensed-truss.
 
 #include <algorithm>
 #include <cmath>

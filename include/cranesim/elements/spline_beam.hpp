@@ -1,70 +1,14 @@
 #pragma once
 // Cubic spline beam kernel (thesis 3.4, C.4): a geometrically exact Euler–Bernoulli beam
-// segment between two FrameStretch nodes.
-//
-// Coordinates (3-54, C-90)   q  = [r¹, φ¹, s¹, r², φ², s²]      (14)
-//             velocities      dq = [ṙ¹, ω¹, ṡ¹, ṙ², ω², ṡ²]      (14)
-// r inertial, φ the rotation vector of the end-section frame R (section x axis = tangent),
-// ω its body-frame angular velocity, s = ‖r'‖ the stretch at the end, so r' = s R e_x (3-61).
-//
-// Kinematics
-// - Centre line: cubic Hermite interpolation (3-60, A-9) of r and r' = s R e_x,
-//     r(ξ) = N₀¹ r¹ + N₁¹ s¹ R¹ e_x + N₀² r² + N₁² s² R² e_x,   ξ = x/L ∈ [0, 1].
-// - Everything the strains depend on is expressed in the frame of end section 1:
-//     d = R¹ᵀ (r² − r¹),  R₁₂ = R¹ᵀ R²,  s¹, s²                          (8 numbers)
-//   so that the strain energy is invariant under rigid motions by construction.
-// - Section frame at ξ: R(ξ) = R¹ C(α), C = R_z(θ) R_y(ψ) R_x(φ) the Cardan rotation of B-12/B-16
-//   (sequence z, y, x), α = [φ, ψ, θ]. The bending angles ψ, θ follow from the local tangent
-//   a = R¹ᵀ r' = ‖a‖ [cos ψ cos θ, cos ψ sin θ, −sin ψ] (3-64, C-107):
-//     θ = atan2(a_y, a_x),  ψ = atan2(−a_z, √(a_x² + a_y²)),
-//   equal to the thesis' ψ = −asin(a_z/‖a‖), θ = asin(a_y/(‖a‖ cos ψ)) (3-65) where those are
-//   defined, but smooth through 0, needing no normalisation, and accurate near ±90°.
-//   The torsion angle is interpolated linearly (3-66): φ(ξ) = ξ φ₁₂ with φ₁₂ the x Cardan angle
-//   of R₁₂ (3-55..3-57), φ₁₂ = atan2(R₁₂(2,1), R₁₂(2,2)) (B-16 row 3: [−sψ, sφ cψ, cφ cψ]).
-//   At ξ = 1 the section frame is exactly R² (the tangent there is R² e_x).
-//   Validity: |ψ| < 90° inside one segment, |θ|, |φ₁₂| < 180° — i.e. any bending a segment
-//   should carry; the rotation vectors of the nodes themselves are unrestricted (rotation.hpp).
-//
-// Strains (3-71, 3-72, C-122..C-124): ε = ‖r'‖ − 1 and the curvature in the section frame
-//   κ = T_C(α) α',  T_C(φ, ψ) = [[1, 0, −sψ], [0, cφ, sφ cψ], [0, −sφ, cφ cψ]]  (B-17),
-// α' = dα/ds with s the reference arc length: φ' = φ₁₂/L, θ' = (a_x a'_y − a_y a'_x)/(a_x² + a_y²),
-// ψ' = (a_z ρ' − ρ a'_z)/‖a‖², ρ = √(a_x² + a_y²), a' = R¹ᵀ r''.
-// Strain energy (3-77): U = ½ ∫₀ᴸ (EA ε² + GJ κ_x² + EI_y κ_y² + EI_z κ_z²) ds (Gauss–Legendre).
-// Optional Kelvin–Voigt material damping with retardation time η: σ = K (e + η ė), i.e. the
-// dissipation function ½ η ∫ ėᵀ K ė; it vanishes under rigid motions.
-//
-// Generalized forces are power-conjugate to dq: for the configuration perturbed along the
-// body-frame twists, r + δr, R (I + δθ̃), s + δs, F_int = ∂U/∂δ (NOT ∂U/∂φ). With the local
-// variables above, δ_local = Λ δ where (derivation: R¹ → R¹(I + δθ̃¹) gives R¹ᵀ → (I − δθ̃¹)R¹ᵀ)
-//   δd = R¹ᵀ (δr² − δr¹) + d̃ δθ¹,   δχ = δθ² − R₁₂ᵀ δθ¹  (R₁₂ → R₁₂ (I + δχ̃)),   δs¹, δs²,
-// so F_int = Λᵀ ∂U/∂δ_local, with ∂U/∂δ_local = Σ w L K e ∂e/∂δ_local in closed form
-// (sectionDerivatives; the tests check it against finite differences of U).
-//
-// Inertia (3-73..3-76). Velocities of the section at ξ are linear in dq:
-//   ṙ(ξ) = G_r dq,  G_r = [N₀¹ I, −N₁¹ s¹ R¹ ẽ_x, N₁¹ R¹ e_x, N₀² I, −N₁² s² R² ẽ_x, N₁² R² e_x]   (3-63)
-//   ω(ξ) = G_ω dq,  G_ω = Cᵀ [ω¹ selector] + T_C(α) (∂α/∂δ_local) Λ                      (3-69)
-// (ω = Cᵀ ω¹ + ω_rel with ω̃_rel = Cᵀ Ċ = T_C α̇). With quadrature, the element is a finite set
-// of mass points ρA w L and rigid slices ρ J_c w L (J_c = diag(I_y + I_z, I_y, I_z), the area
-// moments; the polar moment, not the torsion constant, carries rotary mass) moving with the
-// Gauss-point sections, and its kinetic energy is
-//   T(q, dq) = ½ dqᵀ M(q) dq,   M = Σ w L (ρA G_rᵀ G_r + ρ G_ωᵀ J_c G_ω).
-// Lagrange's equations of T, in the form for body-frame angular velocities (Hamel/Euler),
-//   d/dt(∂T/∂dq) + [ω^k × (∂T/∂ω^k)]_k − ∂T/∂δ|_dq = Q,
-// are for such a system identical to d'Alembert's principle of virtual power with the exact
-// section velocities (3-73, 3-75), which is how they are evaluated here:
-//   M d(dq)/dt + F_ine,  F_ine = Σ w L [ρA G_rᵀ r̈₀ + ρ G_ωᵀ (J_c ω̇₀ + ω × J_c ω)],
-// r̈₀, ω̇₀ the accelerations of the section at d(dq)/dt = 0, i.e. second derivatives along the
-// path q(τ) = (r + τ ṙ, R exp(τ ω̃), s + τ ṡ) (a second-order Taylor jet in τ). Then
-// dqᵀ F_ine = ½ dqᵀ Ṁ dq exactly (energy consistent); tests/test_spline_beam.cpp checks F_ine
-// against the Hamel form built from finite differences of M alone.
-// Gravity (3-78): F_g = −Σ w L ρA G_rᵀ g, the twist gradient of −ρA g·∫ r ds.
-//
+// segment between two FrameStretch nodes, q = [r¹, φ¹, s¹, r², φ², s²] (3-54), s = ‖r'‖ the
+// stretch at an end, so r' = s R e_x (3-61). Cubic Hermite centre line (3-60); section frame
+// R¹ C(α) with Cardan angles of the tangent (3-64) and torsion linear along the segment (3-66);
+// strain energy (3-77) from ε = ‖r'‖ − 1 and κ = T_C α' (3-71, 3-72), optional Kelvin–Voigt
+// damping; inertia by d'Alembert with the exact section velocities (3-73..3-76).
+// The bending angles use atan2 where the thesis' (3-65) uses asin: equal where those are defined,
+// smooth through 0 and accurate near ±90°.
+// Derivation, forces along body twists and cost: docs/elements.md#cubic-spline-beam.
 // All functions are templated on the scalar and use fixed-size types only (no allocation).
-// Cost: the kernel's own derivatives (∂e/∂δ, G_r, G_ω, the path accelerations) are closed-form
-// or second-order jets, so the forward AD of KernelElement (Dual<double, 14> over q) is the only
-// AD level. A first version with nested AD for ∂U/∂δ (Dual<Dual<double, 28>, 8>) and dual-scalar
-// matrix products for M made the Jacobian ~7× slower; the mass matrix is accumulated with
-// double GEMMs on values and derivative directions (spline_beam_detail::GramAccumulator).
 
 #include <cmath>
 

@@ -1,56 +1,14 @@
 #pragma once
 // Super truss element (thesis 3.5): a whole lattice section (chords, lacing, end-section cross
-// beams; include/cranesim/model/truss_geometry.hpp) described by its two end sections only.
-//
-// Coordinates (3-86): q_e = [r¹, φ¹, r², φ²] of the end-section frames (truss frame translated
-// to x = 0 and x = length in the reference configuration), dq_e = [ṙ¹, ω¹, ṙ², ω²] with ω in
-// the section's body frame. Twelve DOF, whatever the number of tubes.
-//
-// Kinematics of the truss nodes (all driven by the two section frames, R_i = R(φⁱ)):
-// - End-section nodes are rigid with their section (assumption 1, 3-87..3-89):
-//     r = rⁱ + R_i p,  node frame R_i,  ṙ = ṙⁱ − R_i p̃ ωⁱ,  ω_node = ωⁱ.
-// - Main beams (chords) are cubic Hermite splines (assumption 2, 3-92) between their end nodes k
-//   (section 1) and l (section 2), with unit end tangents R_1 t and R_2 t, t the chord's reference
-//   direction in the section frames, and no axial stretch degree of freedom of its own: both end
-//   stretches (s¹ = s² in the spline beam's terms) follow the chord, s = ‖rˡ − rᵏ‖ / L_c, where
-//   the thesis keeps s = 1 (which stretches a chord non-uniformly, 6ξ(1 − ξ), and stiffens it). The thesis says the tangents
-//   stay "parallel to the normal direction of the cross-section"; for chords parallel to the
-//   truss axis (type 2) that is R_i e_x, and for inclined chords (transition pieces) the rigid
-//   connection (assumption 3, 3-83) turns the chord's own reference direction with the section,
-//   which is what R_i t does in both cases.
-//     r(ξ) = N₀¹ rᵏ + N₁¹ s R_1 t + N₀² rˡ + N₁² s R_2 t   (A-9, hermite.hpp)
-//   The internal node at ξ takes the spline's section frame R(ξ) = Rᵏ C(α(ξ)) of the spline beam
-//   (3-64..3-67, spline_beam.hpp: Cardan angles of the tangent relative to the chord frame
-//   Rᵏ = R_1 R_c at node k, torsion interpolated linearly), R_c the chord's reference frame (the
-//   smallest rotation taking e_x onto t). Its velocity map follows from the spline beam's
-//   ∂α/∂δ_local and Λ (spline_beam.hpp: sectionDerivatives, localRates), with the chord end
-//   velocities ṙᵏ = ṙ¹ − R_1 p̃_k ω¹, ωᵏ = R_cᵀ ω¹ (and likewise for l):
-//     ω(ξ) = Cᵀ ωᵏ + T_C (∂α/∂δd) (Rᵏᵀ(ṙˡ − ṙᵏ) + d × ωᵏ) + T_C (∂α/∂δχ) (ωˡ − R₁₂ᵀ ωᵏ).
-// So every node n has a position, a frame and a velocity map [ṙₙ; ωₙ] = Tₙ(q_e) dq_e (6 × 12).
-//
-// Members. Every tube is one Timoshenko beam element (timoshenko_beam.hpp) between two truss
-// nodes, with node frames R_node R_rel, R_rel = R_node,refᵀ R_member,ref constant (rigid
-// connection, 3-83, 3-85). With T_k the 12 × 12 map from dq_e to the member's node velocities
-// (rows of T_a, T_b; angular rows turned by R_relᵀ), the virtual power of each member gives
-// (3-97, 3-99, 3-102)
-//     M_e = Σ T_kᵀ M_k T_k,   F_e = Σ T_kᵀ (F_k + M_k Ṫ_k dq_e),
-// F_k the member's inertial, elastic (and damping) and gravity forces at its node velocities
-// T_k dq_e, and Ṫ_k dq_e its node accelerations at d(dq_e)/dt = 0, obtained by one forward-AD
-// direction along the path r(τ) = r + τṙ, R(τ) = R(I + τω̃) of the section frames. This is the
-// exact kinetic energy of the members' own interpolations, so the inertial forces do no work
-// (dq_eᵀ F_ine = ½ dq_eᵀ Ṁ_e dq_e) and rigid motions carry the exact mass properties of the tubes.
-// Members whose two nodes lie on the same end section (the cross-section beams) move rigidly
-// with it: no elastic force; their mass is lumped once into a rigid body on that section
-// (mass m, first moment s, inertia J about the section origin, from the same Timoshenko mass
-// matrix), whose mass matrix is [[m I, −R s̃], [s̃ Rᵀ, J]] and whose forces are
-// [R(ω × (ω × s)) − m g; ω × Jω − s × Rᵀg].
-//
-// Scalars: templated on S; the coordinate tangent runs the forces on Dual<double, 6> (end 2's six
-// directions, objective_tangent.hpp), the node states along the motion on Dual<S, 1> within. The
-// node kinematics of a call, each chord's shared part first (chordState) and then the nodes, are
-// kept in the calling thread's scratch buffers (allocated on its first call, reused afterwards).
-// Forces evaluate the nodes and then the members in parallel (TBB, in an isolated task arena,
-// summed in a fixed order).
+// beams; model/truss_geometry.hpp) on its two end-section frames, q_e = [r¹, φ¹, r², φ²] (3-86),
+// twelve DOF whatever the number of tubes. End-section nodes are rigid with their section
+// (3-87..3-89); chords are cubic Hermite splines with tangents turned with the sections (3-92);
+// internal nodes take the spline beam's section frames; every tube is a Timoshenko beam whose
+// mass and forces are mapped by the node velocity maps, M_e = Σ T_kᵀ M_k T_k,
+// F_e = Σ T_kᵀ (F_k + M_k Ṫ_k dq_e) (3-97, 3-99, 3-102).
+// Thesis deviation kept here: the chord's stretch s = ‖rˡ − rᵏ‖ / L_c scales both tangents; the
+// thesis keeps s = 1, which stretches a chord as 6ξ(1 − ξ) and stiffens it.
+// Derivation and evaluation (thread scratch, parallel members): docs/elements.md#super-truss.
 
 #include <algorithm>
 #include <array>

@@ -1,59 +1,15 @@
 #pragma once
-// Spatial co-rotational Timoshenko beam (thesis 3.3, C.2): one segment between two frame nodes.
-//
-// Coordinates (3-28, C-7): q_e = [r¹, φ¹, r², φ²] (positions inertial, rotation vectors of the
-// end-section frames; section x axis along the beam, y and z its principal axes) and velocities
-// dq_e = [ṙ¹, ω¹, ṙ², ω²] with ω in each end section's body frame. Equations of motion
-// M(q) d(dq)/dt + F(q, dq) = applied and constraint forces (3-51); F = inertial quadratic-velocity
-// terms + elastic (and optional material damping) forces + gravity. All forces are generalized
-// forces along dq: derivatives with respect to the twist r + δr, R (I + δθ̃), not to φ.
-//
-// Elasticity (co-rotational, 3-29..3-34):
-// - Co-rotated frame R_B: the mid-frame R_m = R¹ exp(½ log(R¹ᵀR²)) turned by the smallest
-//   rotation that takes its x axis onto the chord r² − r¹. B.3/C.2.2 take the frame of node 1
-//   instead; the mid-frame treats both ends alike and keeps the twist symmetric. Origin r_B = r¹.
-// - Local deformations (3-34): u¹ = 0, u² = R_Bᵀ(r² − r¹) − L e_x = (ℓ − L, 0, 0),
-//   ψᵉ = log(R_Bᵀ Rᵉ). Rigid placements leave them exactly zero, so the element is objective.
-// - Strain energy U = ½ dᵀ K d with d = [u¹, ψ¹, u², ψ²] and K = ∫ Bᵀ D B ds built from the
-//   interdependent ("consistent") Timoshenko shape functions of C.2.6 (3-48, C-21..C-25), with
-//   strains ε = u', κ = (ψ_x', ψ_y', ψ_z'), γ_y = v' − ψ_z, γ_z = w' + ψ_y (C-16) and
-//   D = diag(EA, GJ, EI_y, EI_z, κGA, κGA). These shape functions solve the homogeneous beam
-//   equations (C-18), so the shear strain is constant and the curvature linear along the
-//   element: 2 Gauss points integrate U exactly, K is the exact Timoshenko stiffness and there
-//   is no shear locking. Φ = 12 EI/(κGA L²): the thesis' α = 48EI/(AGL²) in (C-20) comes from
-//   its shear stiffness GA/4 in (3-43), where the tensor strain ε_xy = γ/2 meets σ_xy = G ε_xy
-//   (3-41, should be 2G ε_xy) counted once instead of for xy and yx (C-28): a factor 4 too soft,
-//   and without κ. Likewise its torsion stiffness G(I_y + I_z)/4 is GJ here. Section axes as in
-//   section.hpp: I_y = ∫z² dA (bending about y, with ψ_y), I_z = ∫y² dA; the thesis pairs ψ with
-//   EI_z and writes the rotary inertia diag(I_y + I_z, I_z, I_y) (C-56), i.e. names them the
-//   other way round.
-// - Elastic forces F_int = J_dᵀ K d with J_d = ∂d/∂(twist) in closed form (corotation.hpp); the
-//   Kelvin–Voigt damping (σ = E(ε + η ε̇), τ = G(γ + η γ̇)) adds η J_dᵀ K ḋ with ḋ = J_d dq.
-//   Their coordinate columns are in closed form too (corotated_elastic_tangent.hpp).
-//
-// Inertia and gravity: the section motion is interpolated between the end frames independently
-// of the elastic model (the thesis uses the same shape functions for both, C.2.7, and then drops
-// terms by small-deformation assumptions C.2.12; here kinetic energy is exact for the chosen
-// interpolation, so the equations conserve energy exactly):
-// - centre line: cubic Hermite through r¹, r² with end slopes Rᵉ e_x (unit tangents);
-// - section rotation: geodesic R_c(ξ) = R¹ exp(ξ φ̃), φ = log(R¹ᵀR²).
-// Both reproduce rigid motions exactly. With the section velocity [ẋ; Ω] = H(q, ξ) dq,
-// kinetic energy T = ½ ∫ (ρA |ẋ|² + Ωᵀ ρJ Ω) ds with J = diag(I_y + I_z, I_y, I_z), so
-// M = ∫ (ρA H_xᵀH_x + H_Ωᵀ ρJ H_Ω) ds and, by d'Alembert (3-45, C-36),
-// F_ine = ∫ (ρA H_xᵀ Ḣ_x dq + H_Ωᵀ (ρJ Ḣ_Ω dq + Ω × ρJ Ω)) ds. Since Ṁ = ∫ (ḢᵀWH + HᵀWḢ) ds,
-// M d(dq)/dt = −F_ine gives dT/dt = dqᵀ M d(dq)/dt + ½ dqᵀ Ṁ dq = 0 exactly: the inertial terms
-// do no work. The mass matrix and the velocity tangent are sums over the Gauss points with H's
-// per-call factors taken out (section_mass_matrix.hpp, section_inertia_tangent.hpp; the rates
-// of T(φ)⁻¹ along the motion by one forward-AD direction per call), and the forces are evaluated
-// in the arrangement of section_inertia_forces.hpp, without H's blocks. Gravity (3-47):
-// F_g = −∫ ρA H_xᵀ g ds, the exact gradient of −∫ ρA g·x ds.
-// At the undeformed state M is the Euler–Bernoulli consistent mass plus rotary inertia with
-// linear rotations. Quadrature: `mass_points` = 4 (exact for the cubic centre line at rest),
-// `stiffness_points` = 2 (exact strain energy; no reduced integration is needed).
-//
-// Neither the elastic forces (J_d in closed form, applied through its factors) nor the inertial
-// forces (section_inertia_forces.hpp) use AD, so forward AD through them (S a dual number: the
-// super truss' tubes, the tests' references) is one level deep.
+// Spatial co-rotational Timoshenko beam (thesis 3.3, C.2): one segment between two frame nodes,
+// q_e = [r¹, φ¹, r², φ²] (3-28), forces along the body twists. Co-rotated mid-frame, local
+// deformations (3-34), exact Timoshenko stiffness from the consistent shape functions of C.2.6
+// (two Gauss points, no shear locking), optional Kelvin–Voigt damping; inertia and gravity of
+// material riding on a cubic Hermite centre line with geodesic section rotation, exact kinetic
+// energy (the inertial forces do no work).
+// Thesis errata kept here: its shear stiffness GA/4 (3-43, C-20) is a factor 4 too soft and
+// lacks κ (σ_xy = G ε_xy in (3-41) should be 2G ε_xy, counted once in C-28), so Φ = 12 EI/(κGA L²)
+// replaces its α = 48EI/(AGL²); its torsion stiffness G(I_y + I_z)/4 is GJ here; it names I_y
+// and I_z the other way round (C-56): here I_y = ∫z² dA pairs with ψ_y.
+// Derivation: docs/elements.md#co-rotational-timoshenko-beam.
 
 #include <array>
 #include <cmath>

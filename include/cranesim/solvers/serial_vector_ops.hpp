@@ -10,7 +10,7 @@
 // vectors by cloning the state vector). useCompiledSerialOps replaces the operations IDAS uses by
 // the same arithmetic in the same order, special cases included (N_VLinearSum's a = ±1, a = ±b,
 // in-place axpy; N_VScale in place, by ±1): the results are SUNDIALS' own, bit for bit
-// (tests/test_serial_vector_ops.cpp compares every one against the library's function).
+// (tests/math/test_serial_vector_ops.cpp compares every one against the library's function).
 
 #include <nvector/nvector_serial.h>
 
