@@ -610,13 +610,10 @@ def setup_times(r: Results) -> str:
     return f"""## Setting up and building
 
 The README's main command times its own phases into `out/main/main_command_times.csv`; copy them
-into `benchmarks/results/setup_times.csv` after a run on a fresh machine. The CI time is the
-clean-clone run's log. The fresh machine's phases were measured while the element kernels' exact
-Jacobians (forward-mode automatic differentiation on dual numbers inside Eigen fixed-size
-matrices) were still inline member functions of the kernel headers, instantiated again by every
-file that included a kernel header; they are now compiled once in the kernels' own files
-([architecture](architecture.md#keeping-compile-time-down)), and the build has not been timed on a
-fresh machine since. The install row on a minimal Debian is today's.
+into `benchmarks/results/setup_times.csv` after a run on a fresh machine. The fresh machine is a
+minimal Debian bookworm (debootstrap minbase, with git) in a chroot on the 2-core machine, the
+packages from this machine's mirror; while its build ran, another build shared the machine for
+about its last three minutes. The CI time is the clean-clone run's log.
 
 {body}
 
