@@ -476,11 +476,18 @@ LiftTrajectory solveMinimumTimeLift(const LiftProblem& problem, const LiftGuess&
   Ipopt::SmartPtr<Ipopt::IpoptApplication> ipopt =
       ipoptApplication({problem.print_level, problem.tolerance, problem.max_iterations});
   ipopt->Options()->SetStringValue("hessian_approximation", "limited-memory");
-  // Around obstacles the soft minima's curvature leaves L-BFGS creeping at the last 1e-4 of the
-  // dual infeasibility (t_f changing by 1e-5 s an iteration): 10 iterations at 1e-3 are enough.
+  // Around obstacles the soft minima's curvature leaves L-BFGS creeping: t_f settles while the
+  // dual infeasibility keeps jumping back above 1e-3. So the solve stops once t_f has changed by
+  // less than 1e-5 of itself over 10 iterations, the constraints met to 1e-6 and complementarity
+  // to 1e-4, whatever the dual infeasibility (measured on the shipped obstacle lifts: 53–109
+  // iterations instead of 64–122, the same t_f to 10 ms).
   if (!problem.obstacles.empty()) {
-    ipopt->Options()->SetNumericValue("acceptable_tol", 1e-3);
-    ipopt->Options()->SetIntegerValue("acceptable_iter", 10);
+    auto& options = *ipopt->Options();
+    options.SetNumericValue("acceptable_tol", 1e2);  // the overall error includes the dual infeasibility
+    options.SetNumericValue("acceptable_constr_viol_tol", 1e-6);
+    options.SetNumericValue("acceptable_compl_inf_tol", 1e-4);
+    options.SetNumericValue("acceptable_obj_change_tol", 1e-5);
+    options.SetIntegerValue("acceptable_iter", 10);
   }
   const Ipopt::SmartPtr<MinimumTimeLiftNlp> nlp = new MinimumTimeLiftNlp(problem, startingPoint(guess, problem.intervals));
   const Ipopt::ApplicationReturnStatus status = ipopt->OptimizeTNLP(Ipopt::SmartPtr<Ipopt::TNLP>(GetRawPtr(nlp)));

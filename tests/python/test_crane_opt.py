@@ -684,8 +684,8 @@ def test_minimum_time_lift_goes_over_and_around_the_shipped_obstacles(target: Pa
     """The shipped minimum-time targets with obstacles: the lift without them runs the load into
     the obstacle; with them the verified flexible crane clears it by the margin, every part, and
     takes longer, the load within 5 cm of the target from its arrival. Measured (condensed crane):
-    the wall 40.5 s against 38.5 s, 0.69 m (the load), ±1.8 cm in the 5 s after the arrival; the
-    building 58.4 s against 49.3 s, 0.66 m (the boom passing its corner), ±4.6 cm."""
+    the wall 40.5 s against 38.5 s, 0.69 m (the load), ±2.0 cm from the arrival; the building
+    58.4 s against 49.3 s, 0.66 m (the boom passing its corner), ±4.8 cm."""
     free = tmp_path / "free.h5"
     result = crane_opt("plan", without_obstacles(target, tmp_path), "-o", free, "--quiet", cwd=tmp_path, timeout=600)
     assert result.returncode == 0, result.stderr
