@@ -69,8 +69,8 @@ int plan(const std::string& target_path, const std::string& out_arg, int threads
     result.map = std::move(map);
     result.map_s = result.map.time_s;
     writePlan(out, *target, result, true);
-    fmt::print(stderr, "static map: {} × {} points, {} failed, rows {:.1f} s on {}; written to {}\n", result.map.rows(),
-               result.map.columns(), result.map.failures.size(), result.map.sweep_time_s, result.map.execution, out);
+    log(fmt::format("static map: {} × {} points, {} failed, rows {:.1f} s on {}; written to {}", result.map.rows(),
+                    result.map.columns(), result.map.failures.size(), result.map.sweep_time_s, result.map.execution, out));
     return result.map.failures.empty() ? 0 : kExitSolverFailure;
   }
   result = planQuasiStatic(*target, std::move(map), log);
@@ -95,7 +95,7 @@ int plan(const std::string& target_path, const std::string& out_arg, int threads
       return kExitClearanceFailure;
     }
   }
-  fmt::print(stderr, "plan written to {}; verification run in {}\n", out, simulation);
+  log(fmt::format("plan written to {}; verification run in {}", out, simulation));
   return 0;
 }
 

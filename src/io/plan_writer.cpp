@@ -149,6 +149,11 @@ void writePath(Hdf5File& file, const TargetSpec& target, const QuasiStaticPlan& 
     file.attribute("/path", "nlp_iterations", static_cast<long>(plan.lift->iterations));
     file.attribute("/path", "nlp_time_s", plan.lift->solve_time_s);
   }
+  if (const auto& m = plan.pendulum_map) {
+    file.attribute("/path", "pendulum_map_points", static_cast<long>(m->modal_analyses));
+    file.attribute("/path", "pendulum_map_s", m->time_s);
+    file.attribute("/path", "pendulum_fit_residual", std::max(m->along_fit.maxResidual(), m->across_fit.maxResidual()));
+  }
   if (plan.stretched_from > 0.0) file.attribute("/path", "stretched_from", plan.stretched_from);
   if (target.slewing) {
     file.attribute("/path", "slewing_constraint", target.slewing->constraint);

@@ -15,6 +15,10 @@ namespace {
 /// overshoot them between nodes by a fraction of h² (measured 0.16 % on Table 8-2 with 200
 /// intervals), so the nodes keep 99 % of them.
 constexpr double kNodeMargin = 0.99;
+/// A cubic spline's jerk is constant on each interval, the difference of its second derivatives
+/// at the ends: it meets the nodes' jerks only to O(h) (+3 % measured on Table 8-2's luffing rope
+/// at 200 intervals), so the nodes keep 95 % of a jerk limit.
+constexpr double kJerkNodeMargin = 0.95;
 
 /// Central differences of samples y at times t (one-sided zero at the ends: the plan is at rest there).
 template <class V> std::vector<V> rates(const std::vector<double>& t, const std::vector<V>& y) {
@@ -108,12 +112,8 @@ LiftProblem liftProblem(const TargetSpec& target, const QuasiStaticPlan& plan) {
   k.hoist_length = plan.map.hoist_length;
   k.slewing_start = target.slewing ? target.slewing->start : 0.0;
   k.plane = plan.plane;
-  k.hoist_start = plan.controls.front().hoist_length;
-  k.hoist_end = plan.controls.back().hoist_length;
-  k.along_start = plan.pendulum_length_start;
-  k.along_end = plan.pendulum_length_end;
-  k.across_start = plan.pendulum_across_start;
-  k.across_end = plan.pendulum_across_end;
+  k.along_length = plan.pendulum_map->along_fit;
+  k.across_length = plan.pendulum_map->across_fit;
   k.gravity = -target.scene.gravity.z();
 
   const double turn = target.slewing ? target.slewing->turn : 0.0;
@@ -128,17 +128,16 @@ LiftProblem liftProblem(const TargetSpec& target, const QuasiStaticPlan& plan) {
 
   const ControlLimits& limits = target.drive_limits;
   const double rise = target.minimum_time.rise_time;
-  // The luffing rope's jerk through the boom angle's: its steepest slope in u at the ends.
-  const double luffing_slope =
-      std::max(std::abs(k.luffing.gradient(a.boom_angle_deg, a.hoist_change)(0)), std::abs(k.luffing.gradient(b.boom_angle_deg, b.hoist_change)(0)));
-  const double slopes[3] = {luffing_slope, 1.0, 1.0};  // drive per coordinate: m/°, m/m, rad/rad
   for (const auto& [drive, d] :
        {std::pair{kLuffingDrive, &limits.luffing}, std::pair{kHoistDrive, &limits.hoist}, std::pair{kSlewingDrive, &limits.slewing}}) {
     if (!d->speed) continue;  // a drive the lift does not move (readTarget requires the others' speeds)
     DriveBounds& bounds = p.drives[drive];
     bounds.speed = kNodeMargin * *d->speed;
     bounds.acceleration = kNodeMargin * d->acceleration.value_or(*d->speed / rise);
-    p.jerk_limit(drive) = kNodeMargin * d->jerk.value_or(bounds.acceleration / rise) / slopes[drive];
+    const double jerk = d->jerk ? kJerkNodeMargin * *d->jerk : kNodeMargin * bounds.acceleration / rise;
+    // The hoist rope's and the slewing drive's jerks are their coordinates' (−v⃛, φ⃛); the luffing
+    // rope's is d³fl(u, v)/dt³ through the map, a constraint of its own at every node.
+    (drive == kLuffingDrive ? p.luffing_jerk_limit : p.jerk_limit(drive)) = jerk;
   }
   p.intervals = target.minimum_time.intervals;
   p.tolerance = target.minimum_time.tolerance;
@@ -163,9 +162,9 @@ LiftGuess flatnessGuess(const TargetSpec& target, const QuasiStaticPlan& plan, c
     const Eigen::Vector2d point = target.origin + plan.path.states[i].head<2>();
     const Vec3 load = k.plane.place(point.x(), point.y(), phi);
     const Vec3 resting = k.plane.place(k.end_x(c.boom_angle_deg, c.hoist_change), k.end_z(c.boom_angle_deg, c.hoist_change), phi);
-    const double hoist = k.hoist_length - c.hoist_change;
-    const Vec3 offset = Eigen::AngleAxisd(-phi, Vec3::UnitZ()) * (load - resting - k.along(hoist) * Vec3::UnitZ());
-    const Vec3 n = Vec3(offset.x() / k.along(hoist), offset.y() / k.across(hoist), offset.z() / k.along(hoist)).normalized();
+    const double along = k.along(c.boom_angle_deg, c.hoist_change), across = k.across(c.boom_angle_deg, c.hoist_change);
+    const Vec3 offset = Eigen::AngleAxisd(-phi, Vec3::UnitZ()) * (load - resting - along * Vec3::UnitZ());
+    const Vec3 n = Vec3(offset.x() / along, offset.y() / across, offset.z() / along).normalized();
     swing.emplace_back(std::atan2(n.x(), -n.z()), std::asin(n.y()));
   }
   const std::vector<Eigen::Vector3d> rate = rates(t, q), acceleration = rates(t, rate), jerk = rates(t, acceleration);

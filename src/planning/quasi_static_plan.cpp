@@ -14,6 +14,7 @@
 #include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/planning/flat_pendulum.hpp"
 #include "cranesim/planning/minimum_time_plan.hpp"
+#include "cranesim/planning/pendulum_map.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/modes.hpp"
 
@@ -100,33 +101,6 @@ SlewingPlane mapPlane(const TargetSpec& target, const StaticMap& map, const Mode
                               [&](const Constraint& k) { return k.name == slewing.constraint; });
   const Vec3 axis_point = model.jointFrame(q.data(), c->joint1).r;  // its axis is vertical (target_reader.cpp)
   return SlewingPlane(axis_point, end.y(), end.x() < axis_point.x() ? -1.0 : 1.0);
-}
-
-/// The periods of the load's sway about the equilibrium q: the crane's lowest elastic mode in
-/// which the end point's node moves mostly along x (in the crane's plane) and, for a slewing
-/// target, mostly along y (across it). They include what the simple pendulum misses: the load's
-/// own inertia below the hook, the rope's mass and stretch and the boom's compliance (across the
-/// plane the boom head gives sideways: at Table 8-2's start the thesis crane sways 16.8 s across
-/// against 15.5 s along).
-struct SwayPeriods {
-  double along = 0.0, across = 0.0;
-};
-
-SwayPeriods swayPeriods(const Model& model, const VecX& q, double t, const CraneControls& controls, bool across) {
-  const ModalResult modes = computeModes(model, q, t, 0);
-  const Node& node = model.nodes[model.joints[model.findJoint(controls.end_point)].node];
-  SwayPeriods periods;
-  for (Eigen::Index k = 0; k < modes.frequencies.size(); ++k) {
-    if (modes.rigid[k] || modes.omega_squared(k) <= 0.0) continue;
-    const Eigen::Vector3d v = modes.shapes.col(k).segment<3>(node.v).cwiseAbs();
-    if (v.x() > v.y() && v.x() > v.z() && periods.along == 0.0) periods.along = 1.0 / modes.frequencies(k);
-    if (v.y() > v.x() && v.y() > v.z() && periods.across == 0.0) periods.across = 1.0 / modes.frequencies(k);
-  }
-  if (periods.along == 0.0)
-    throw std::runtime_error(fmt::format("no mode of the crane sways '{}' in its plane", controls.end_point));
-  if (across && periods.across == 0.0)
-    throw std::runtime_error(fmt::format("no mode of the crane sways '{}' across its plane", controls.end_point));
-  return periods;
 }
 
 /// Refuses a start or target whose load (a sphere of the target's load radius) lies within the
@@ -449,7 +423,7 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
                                   std::pair{plan.sway_period_end, &pendulum.length_end},
                                   std::pair{plan.sway_period_across_start, &pendulum.across_start},
                                   std::pair{plan.sway_period_across_end, &pendulum.across_end}})
-      *length = gravity * std::pow(period / (2.0 * std::numbers::pi), 2);
+      *length = pendulumLength(period, gravity);
     plan.pendulum_length_start = pendulum.length_start;
     plan.pendulum_length_end = pendulum.length_end;
     plan.pendulum_across_start = pendulum.across_start;
@@ -497,6 +471,18 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
 
   // 7. The minimum-time lift, started from the flatness plan.
   if (target.method == PlanMethod::MinimumTime) {
+    plan.pendulum_map = measurePendulumMap(target.scene, target.controls, plan.map, target.slewing.has_value(),
+                                           -target.scene.gravity.z(), {}, plan.map.threads);
+    const PendulumMap& m = *plan.pendulum_map;
+    say(fmt::format("pendulum: {} modal analyses over {} × {} map points in {:.3g} s; ℓ along {:.4g} … {:.4g} m, across "
+                    "{:.4g} … {:.4g} m; fit residual ≤ {:.3g} m",
+                    m.modal_analyses, m.along.u.size(), m.along.v.size(), m.time_s, m.along.values.minCoeff(),
+                    m.along.values.maxCoeff(), m.across.values.minCoeff(), m.across.values.maxCoeff(),
+                    std::max(m.along_fit.maxResidual(), m.across_fit.maxResidual())));
+    const ControlPoint &first = plan.controls.front(), &last = plan.controls.back();
+    say(fmt::format("pendulum: ℓ along at the start {:.4g} m, at the target {:.4g} m (their own modal analyses {:.4g}, {:.4g} m)",
+                    m.along_fit(first.boom_angle_deg, first.hoist_change), m.along_fit(last.boom_angle_deg, last.hoist_change),
+                    plan.pendulum_length_start, plan.pendulum_length_end));
     LiftProblem problem = liftProblem(target, plan);
     checkLiftEndsClear(target, problem);
     const LiftStart start = liftStart(target, plan, problem);

@@ -544,6 +544,23 @@ def test_minimum_time_lift_beats_the_stretched_flatness_plan(tmp_path: Path):
         assert path["nlp_time_s"] < 5.0
 
 
+def test_minimum_time_lift_keeps_the_luffing_rope_s_jerk_limit(tmp_path: Path):
+    """Table 8-2's minimum-time lift with the luffing rope's jerk limited to 0.01 m/s³: the NLP
+    bounds the rope's third time derivative through the map at every node, and the verified
+    control spline's exact peak keeps the limit. Measured: 38.35 s instead of 36.51 s (the limit
+    binds), peak 0.0100 m/s³, ±2.7 cm after the arrival."""
+    text = MINIMUM_TIME_TARGET.read_text(encoding="utf-8")
+    limited = tmp_path / "limited.yaml"
+    limited.write_text(text.replace("luffing: {speed: 0.5}", "luffing: {speed: 0.5, jerk: 0.01}", 1), encoding="utf-8")
+    assert "jerk: 0.01" in limited.read_text(encoding="utf-8")
+    with h5py.File(plan_condensed_crane(tmp_path, (-35, 10), "minimum_time", limited), "r") as f:
+        path, controls, v = f["path"].attrs, f["controls"].attrs, f["verification"].attrs
+        assert controls["luffing_peak_jerk"] <= 0.01
+        assert controls["drive_limit_factor"] <= 1.0
+        assert 36.6 < path["motion_time"] <= 0.75 * path["flatness_duration"]
+        assert v["residual_sway"] < 0.05
+
+
 def test_minimum_time_lift_slews_within_the_slewing_drive_s_limits(tmp_path: Path):
     """configs/target_slewing.yaml by minimum_time on the condensed crane, the slewing drive
     limited to 1.5°/s and 0.1°/s² besides the ropes: the load sways across the turning plane, so
@@ -666,9 +683,9 @@ def without_obstacles(target: Path, tmp_path: Path) -> Path:
 def test_minimum_time_lift_goes_over_and_around_the_shipped_obstacles(target: Path, closest: str, tmp_path: Path):
     """The shipped minimum-time targets with obstacles: the lift without them runs the load into
     the obstacle; with them the verified flexible crane clears it by the margin, every part, and
-    takes longer. Measured (condensed crane): the wall 37.7 s against 36.5 s, 0.67 m (the load),
-    ±6.6 cm of sway; the building 58.4 s against 49.3 s, 0.60 m (the boom passing its corner),
-    ±11.0 cm."""
+    takes longer, the load within 5 cm of the target from its arrival. Measured (condensed crane):
+    the wall 40.5 s against 38.5 s, 0.69 m (the load), ±2.0 cm from the arrival; the building
+    58.4 s against 49.3 s, 0.66 m (the boom passing its corner), ±4.8 cm."""
     free = tmp_path / "free.h5"
     result = crane_opt("plan", without_obstacles(target, tmp_path), "-o", free, "--quiet", cwd=tmp_path, timeout=600)
     assert result.returncode == 0, result.stderr
@@ -690,5 +707,7 @@ def test_minimum_time_lift_goes_over_and_around_the_shipped_obstacles(target: Pa
         assert c["closest_part"].startswith(closest)
         assert np.all(f["clearance/minimum"][...] >= 0.5)  # every part
         assert free_motion < path["motion_time"] < 1.3 * free_motion
-        assert f["verification"].attrs["residual_sway"] < 0.15
-        assert path["nlp_time_s"] < 20.0  # measured 3.1–7.5 s; the machine is shared
+        arrival = f["controls"].attrs["lead_time"] + path["motion_time"]
+        t, simulated, goal = f["verification/t"][()], f["verification/simulated"][()], f["verification/planned"][-1]
+        assert np.max(np.linalg.norm((simulated - goal)[t >= arrival, :2], axis=1)) < 0.05
+        assert path["nlp_time_s"] < 30.0  # measured 1.7–8 s; the machine is shared

@@ -5,9 +5,9 @@
 //
 // The controls are the map's coordinates q = (u, v, φ): boom angle u (°), hoist rope taken in v
 // (m), slewing angle φ (rad). They place the point where the load would hang at rest,
-// r = plane.place(x(u, v), z(u, v), φ) (planning/slewing_plane.hpp), and set the pendulum's
-// lengths ℓ_a (along the crane's plane and vertically) and ℓ_c (across it), affine in the hoist
-// rope. The load hangs from the suspension c = r + ℓ_a ẑ on the rope direction n(α, β) =
+// r = plane.place(x(u, v), z(u, v), φ) (planning/slewing_plane.hpp), and the pendulum's lengths
+// ℓ_a(u, v) (along the crane's plane and vertically) and ℓ_c(u, v) (across it), fitted over the
+// map as its other surfaces (planning/pendulum_map.hpp). The load hangs from the suspension c = r + ℓ_a ẑ on the rope direction n(α, β) =
 // (sin α cos β, sin β, −cos α cos β) in the turning plane's axes (along, across, up):
 //   p = c + R_z(φ) D n,   D = diag(ℓ_a, ℓ_c, ℓ_a),
 // which at rest (n = −ẑ) is r, and is the spherical pendulum p = c + ℓ n when ℓ_a = ℓ_c. The
@@ -21,7 +21,8 @@
 //
 // Decision variables per node: q, q̇, q̈, the jerk q⃛ (the control), α, β, α̇, β̇; and t_f. The
 // collocation defects of the chain q → q̇ → q̈ → q⃛ and of the pendulum are the equality
-// constraints; the drives' speeds and accelerations (exact, through the map) per node are
+// constraints; the drives' speeds and accelerations (exact, through the map) per node, and the
+// luffing rope's jerk (its third time derivative through the map, linear in the jerk u⃛, v⃛), are
 // ranged constraints; with obstacles, the clearance of the boom, the hoist rope and the load from
 // each of them (planning/lift_clearance.hpp) at every node between the ends is at least the
 // margin. The Jacobian is exact (forward-mode dual numbers through the map's
@@ -51,22 +52,14 @@ struct LiftKinematics {
   double hoist_length = 0.0;     // H₀: the hoist rope at v = 0, m
   double slewing_start = 0.0;    // φ₀: the slewing drive at φ = 0, rad
   SlewingPlane plane;            // turns the map's plane by φ
-  /// The pendulum's lengths along and across the plane at two hoist rope lengths; affine in
-  /// the hoist rope in between (equal hoist lengths: the mean).
-  double hoist_start = 0.0, hoist_end = 0.0;
-  double along_start = 1.0, along_end = 1.0, across_start = 1.0, across_end = 1.0;
+  /// The pendulum's lengths along and across the plane over the map (planning/pendulum_map.hpp).
+  FittedSurface along_length, across_length;
   double gravity = 9.81;
   LiftBody body;                 // the parts kept clear of obstacles
 
-  /// ℓ_a and ℓ_c at a hoist rope length (any scalar type of math/autodiff.hpp).
-  template <class S> S along(const S& hoist) const { return affineInHoist(hoist, along_start, along_end); }
-  template <class S> S across(const S& hoist) const { return affineInHoist(hoist, across_start, across_end); }
-
- private:
-  template <class S> S affineInHoist(const S& hoist, double at_start, double at_end) const {
-    if (std::abs(hoist_end - hoist_start) < 1e-9) return S(0.5 * (at_start + at_end));
-    return at_start + (at_end - at_start) / (hoist_end - hoist_start) * (hoist - hoist_start);
-  }
+  /// ℓ_a and ℓ_c at (u, v) (any scalar type of math/autodiff.hpp).
+  template <class S> S along(const S& u, const S& v) const { return along_length.evaluate(u, v); }
+  template <class S> S across(const S& u, const S& v) const { return across_length.evaluate(u, v); }
 };
 
 /// What a drive (luffing rope, hoist rope, slewing) may be asked: |rate| ≤ speed, |rate'| ≤
@@ -84,6 +77,8 @@ struct LiftProblem {
   Eigen::Vector3d q_min = Eigen::Vector3d::Constant(-1e20), q_max = Eigen::Vector3d::Constant(1e20);
   std::array<DriveBounds, 3> drives;  // indexed by LiftDrive
   Eigen::Vector3d jerk_limit = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());  // |q⃛|
+  /// |d³fl/dt³|: the luffing rope's own jerk through the map, at every node.
+  double luffing_jerk_limit = std::numeric_limits<double>::infinity();
   /// Obstacles every part (crane.body) clears by `clearance_margin` at every node.
   std::vector<Obstacle> obstacles;
   double clearance_margin = 0.0;
@@ -106,9 +101,9 @@ struct LiftGuess {
   std::vector<LiftNode> nodes;
 };
 
-/// The drives' values, speeds and accelerations at a node.
+/// The drives' values, speeds, accelerations and jerks at a node.
 struct DriveState {
-  Eigen::Vector3d value, speed, acceleration;  // indexed by LiftDrive
+  Eigen::Vector3d value, speed, acceleration, jerk;  // indexed by LiftDrive
 };
 
 struct LiftTrajectory {

@@ -10,13 +10,12 @@
 namespace cranesim {
 
 /// The lift from the plan's start to its target on the plan's fitted map and plane, its pendulum
-/// the flatness plan's (plan.pendulum_length_*, plan.pendulum_across_*, between the hoist
-/// lengths of plan.controls' ends), within the target's drive limits: a drive without an
-/// acceleration limit is held to speed / rise_time, and every coordinate's jerk to its drive's
-/// acceleration / rise_time, or to the drive's jerk limit (the luffing rope's through the map's
-/// steepest slope in the boom angle at the lift's ends), the hoist rope between its lengths at
-/// the lift's ends (where the pendulum is measured). With obstacles, the crane's body (plan.lift_body) keeps clear of them by the clearance margin
-/// plus the minimum_time's clearance allowance.
+/// the one measured over the map (plan.pendulum_map, which must be set), within the target's
+/// drive limits: a drive without an acceleration limit is held to speed / rise_time, and every
+/// drive's jerk to its acceleration / rise_time, or to its jerk limit (the luffing rope's through
+/// the map at every node), the hoist rope between its lengths at the lift's ends. With obstacles, the crane's body
+/// (plan.lift_body) keeps clear of them by the clearance margin plus the minimum_time's clearance
+/// allowance.
 LiftProblem liftProblem(const TargetSpec& target, const QuasiStaticPlan& plan);
 
 /// The parts the lift keeps clear (planning/lift_clearance.hpp) as the crane stands at an

@@ -11,6 +11,7 @@
 #include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/planning/input_shaping.hpp"
 #include "cranesim/planning/minimum_time_lift.hpp"
+#include "cranesim/planning/pendulum_map.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
 #include "cranesim/planning/slewing_plane.hpp"
 #include "cranesim/planning/target.hpp"
@@ -82,6 +83,8 @@ struct QuasiStaticPlan {
   double pendulum_length_start = 0.0, pendulum_length_end = 0.0;
   /// The same across the plane (flatness and minimum_time).
   double pendulum_across_start = 0.0, pendulum_across_end = 0.0;
+  /// minimum_time only: the load's pendulum over the map, which the lift carries it on.
+  std::optional<PendulumMap> pendulum_map;
   /// minimum_time only: the lift the controls follow (planning/minimum_time_lift.hpp), started
   /// from the flatness path of `load_path`'s duration.
   std::optional<LiftTrajectory> lift;
