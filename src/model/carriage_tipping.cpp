@@ -13,9 +13,10 @@ namespace {
 /// line stay in one line as it turns, to 1e-15 of their span).
 constexpr double kInLine = 1e-9;
 
-/// Whether the points, seen along `up`, lie in one line (one point, or none, included).
-bool inOneLine(const std::vector<Vec3>& points, const Vec3& up) {
-  if (points.size() < 3) return true;
+/// What the points span seen along `up`: an area, a line, or one point.
+enum class Span { Area, Line, Point };
+
+Span spanSeenFromAbove(const std::vector<Vec3>& points, const Vec3& up) {
   std::vector<Vec3> seen;
   for (const Vec3& p : points) seen.push_back(p - up * up.dot(p));
   const auto farthest = [&](const auto& distance) {
@@ -24,10 +25,10 @@ bool inOneLine(const std::vector<Vec3>& points, const Vec3& up) {
   const Vec3 a = seen.front();
   const Vec3 b = farthest([&](const Vec3& p) { return (p - a).norm(); });
   const double span = (b - a).norm();
-  if (span == 0.0) return true;
+  if (span == 0.0) return Span::Point;
   const Vec3 along = (b - a) / span;
   const Vec3 c = farthest([&](const Vec3& p) { return (p - a).cross(along).norm(); });
-  return (c - a).cross(along).norm() <= kInLine * span;
+  return (c - a).cross(along).norm() <= kInLine * span ? Span::Line : Span::Area;
 }
 
 }  // namespace
@@ -54,10 +55,11 @@ std::string carriageTipped(const Model& model, const VecX& q, double t) {
                       : s.name;
     }
   if (carrying.empty()) return fmt::format("the carriage '{}' has lifted off: none of its supports carries", supports.body);
-  if (!inOneLine(carrying, model.envelope.up)) return {};
-  return fmt::format("the carriage '{}' has tipped: the supports that carry ({}) stand in one line seen from above, an edge "
-                     "it rests on with the supports' resultant on it or beyond",
-                     supports.body, carriers);
+  const Span span = spanSeenFromAbove(carrying, model.envelope.up);
+  if (span == Span::Area) return {};
+  return fmt::format("the carriage '{}' has tipped: the supports that carry ({}) stand {} seen from above, {} it rests on with "
+                     "the supports' resultant on it or beyond",
+                     supports.body, carriers, span == Span::Line ? "in one line" : "at one point", span == Span::Line ? "an edge" : "a corner");
 }
 
 }  // namespace cranesim
