@@ -172,8 +172,8 @@ void acceptEquilibrium(EquilibriumSystem& system, const VecX& x, StaticResult& r
   result.constraint_residual = model.m > 0 ? r.tail(model.m).cwiseAbs().maxCoeff() : 0.0;
   result.converged = result.force_residual <= kResidualAcceptance * forces;
   if (!result.converged)
-    result.message = fmt::format("static equilibrium not found: Newton's step ended below its tolerance after {} iterations with "
-                                 "a force residual of {:.3g} N, {:.2g} of the largest force present ({:.3g} N; accepted up to {:g})",
+    result.message = fmt::format("static equilibrium not found: after {} Newton iterations the force residual is {:.3g} N, {:.2g} "
+                                 "of the largest force present ({:.3g} N; accepted up to {:g})",
                                  result.iterations, result.force_residual, result.force_residual / forces, forces,
                                  kResidualAcceptance);
 }
