@@ -14,6 +14,11 @@ Examples:
     crane-sim study configs/study_load_chart_by_radius.yaml -o by_radius.h5 --jobs 2
     python scripts/plot_load_chart.py by_radius.h5 --configuration booms.boom.equilibrium.hook_radius
 
+A chart that must hold in every slewing direction takes the direction as a parameter of the
+study and names it with --direction: a load is then admissible only when it is in every
+direction, and the table names the direction in which the next heavier load fails first
+(configs/study_load_chart_outriggers.yaml, the slewing drive's angle).
+
 The "load" may be any parameter whose larger values are harder on the crane: with
 `--load wind.speed --configuration bodies.load.mass` it gives, per load, the permitted wind speed
 of a lift (configs/study_permitted_wind.yaml).
@@ -40,6 +45,8 @@ def parse_arguments() -> argparse.Namespace:
     parser.add_argument("--configuration", default="members.luffing_rope.length",
                         help="the parameter that sets the crane's configuration (default: %(default)s)")
     parser.add_argument("--radius", default="radius", help="the figure that is the radius (default: %(default)s)")
+    parser.add_argument("--direction", help="a parameter the chart must hold over, e.g. the slewing angle: a load counts "
+                        "only when admissible at every value of it")
     parser.add_argument("--group", help="a parameter with one chart per value (default: scene, when the table has it)")
     parser.add_argument("-o", "--output", help="output image (default: <table>_chart.png)")
     return parser.parse_args()
@@ -76,38 +83,44 @@ def load_at_limit(table: h5py.File, criterion: h5py.Dataset, load: np.ndarray, l
 
 
 def load_chart(table: h5py.File, load_name: str, configuration_name: str, radius_name: str,
-               group_name: str | None = None) -> list[dict]:
-    """One row per group and configuration: its largest admissible load, the radius there and
-    what limits it."""
+               group_name: str | None = None, direction_name: str | None = None) -> list[dict]:
+    """One row per group and configuration: its largest admissible load (in every direction when
+    `direction_name` names one), the radius there and what limits it (and in which direction)."""
     if table.attrs.get("contents") != "study":
         raise ResultsError(f"{table.filename} is not a study's case table")
     load = dataset(table, f"parameters/{load_name}")
     configuration = dataset(table, f"parameters/{configuration_name}")
     group = dataset(table, f"parameters/{group_name}") if group_name else np.zeros_like(load)
+    direction = dataset(table, f"parameters/{direction_name}") if direction_name else np.zeros_like(load)
     radius = dataset(table, f"figures/{radius_name}")
     admissible = dataset(table, "cases/admissible") == 1.0  # NaN (not computed) is not admissible
     criteria = [table[f"criteria/{k}"] for k in sorted(table["criteria"], key=int)]
     chart = []
     for group_value, value in sorted({(g, c) for g, c in zip(group, configuration)}):
-        cases = np.flatnonzero((configuration == value) & (group == group_value))
-        cases = cases[np.argsort(load[cases], kind="stable")]
-        held = np.cumprod(admissible[cases]).astype(bool)  # every lighter load admissible too
+        mine = (configuration == value) & (group == group_value)
+        loads = np.unique(load[mine])
+        at = [np.flatnonzero(mine & (load == w)) for w in loads]  # each load's cases: one per direction
+        held = np.cumprod([admissible[cases].all() for cases in at]).astype(bool)  # every lighter load too
         row = {"group": group_value, "configuration": value, "load": np.nan, "radius": np.nan,
-               "limit": "none in the grid", "at_limit": np.nan,
+               "limit": "none in the grid", "at_limit": np.nan, "direction": "",
                "utilisation": {c.attrs["figure"]: np.nan for c in criteria}}
-        if held.any():
-            last = cases[np.flatnonzero(held)[-1]]
-            row.update(load=load[last], radius=radius[last])
-            row["utilisation"] = {c.attrs["figure"]: utilisation(table, c, last) for c in criteria}
         count = int(held.sum())
-        if count < len(cases):
-            beyond = cases[count]
-            violated = [c for c in criteria if c[beyond] == 0.0]
-            status = table["cases/status"].asstr()[beyond]
-            row["limit"] = ", ".join(c.attrs["figure"] for c in violated) if violated else f"case {beyond} {status}"
-            if held.any() and violated:
-                row["at_limit"] = min(load_at_limit(table, c, load, last, beyond) for c in violated)
-        elif held.any():
+        if count:
+            last = at[count - 1]
+            row.update(load=loads[count - 1], radius=radius[last].max())
+            row["utilisation"] = {c.attrs["figure"]: max(utilisation(table, c, k) for k in last) for c in criteria}
+        if count < len(loads):
+            failing = [k for k in at[count] if not admissible[k]]
+            violated = [c for c in criteria if any(c[k] == 0.0 for k in failing)]
+            statuses = {table["cases/status"].asstr()[k] for k in failing}
+            row["limit"] = (", ".join(c.attrs["figure"] for c in violated) if violated
+                            else f"case {failing[0]} {', '.join(sorted(statuses))}")
+            row["direction"] = ", ".join(f"{d:g}" for d in sorted({direction[k] for k in failing}))
+            if count and violated:
+                same_direction = {direction[k]: k for k in at[count - 1]}
+                row["at_limit"] = min(load_at_limit(table, c, load, same_direction[direction[k]], k)
+                                      for c in violated for k in failing if c[k] == 0.0)
+        elif count:
             row["limit"] = "the grid's heaviest load"
         chart.append(row)
     return chart
@@ -132,7 +145,7 @@ def main() -> None:
     path = Path(args.table)
     with h5py.File(path, "r") as table:
         group_name = args.group if args.group else ("scene" if "parameters/scene" in table else None)
-        chart = load_chart(table, args.load, args.configuration, args.radius, group_name)
+        chart = load_chart(table, args.load, args.configuration, args.radius, group_name, args.direction)
         labels = group_labels(table, group_name)
         title = table.attrs.get("study_path", path.name)
         title = Path(title.decode() if isinstance(title, bytes) else str(title)).name
@@ -140,13 +153,15 @@ def main() -> None:
     width = max([len(name) for name in names] + [5])
     group_width = max([len(label) for label in labels.values()] + [0])
     print((f"{'':<{group_width}} " if group_width else "") + f"{args.configuration:>28} {args.radius + ' [m]':>12} "
-          f"{args.load:>20} " + "".join(f" {name:>{width}}" for name in names) + "   limited by (at its limit)")
+          f"{args.load:>20} " + "".join(f" {name:>{width}}" for name in names) + "   limited by (at its limit)"
+          + (f" in {args.direction}" if args.direction else ""))
     for row in chart:
         used = "".join(f" {row['utilisation'][name]:>{width}.0%}" if np.isfinite(row['utilisation'][name])
                        else f" {'-':>{width}}" for name in names)
         at_limit = f" ({row['at_limit']:.6g})" if np.isfinite(row["at_limit"]) else ""
         print((f"{labels[row['group']]:<{group_width}} " if group_width else "")
-              + f"{row['configuration']:>28.6g} {row['radius']:>12.2f} {row['load']:>20.6g} {used}   {row['limit']}{at_limit}")
+              + f"{row['configuration']:>28.6g} {row['radius']:>12.2f} {row['load']:>20.6g} {used}   {row['limit']}{at_limit}"
+              + (f" in {row['direction']}" if args.direction and row["direction"] else ""))
     figure, (axes, used_axes) = plt.subplots(1, 2, figsize=(13, 5))
     radius = np.array([row["radius"] for row in chart])
     load = np.array([row["load"] for row in chart])

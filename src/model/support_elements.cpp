@@ -56,6 +56,14 @@ std::vector<double> SupportElement::pointForces(const ElementInput& in) const {
   return out;
 }
 
+std::vector<Vec3> SupportElement::pointPositions(const ElementInput& in) const {
+  const Local ql = gather(in.q, coordinateIndices());
+  const Mat3 R = rotationMatrix<double>(Vec3(ql.segment<3>(3)));
+  std::vector<Vec3> out;
+  for (const SupportPoint& s : points_) out.push_back(Vec3(ql.head<3>()) + R * s.point);
+  return out;
+}
+
 void SupportElement::force(const Local& q, const Local& v, double* Q) const {
   Eigen::Map<Eigen::Matrix<double, 6, 1>> out(Q);
   out = generalizedForce<double>(q.head<6>(), v.head<6>());

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cranesim/model/carriage_tipping.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/modes.hpp"
 #include "cranesim/solvers/relaxation.hpp"
@@ -44,6 +45,7 @@ StaticResult sceneEquilibrium(const Scene& scene, const Model& model, const Asse
 }
 
 std::string equilibriumInstability(const Model& model, const StaticResult& eq, bool quiet) {
+  if (std::string tipped = carriageTipped(model, eq.q, eq.t); !tipped.empty()) return tipped;
   if (model.nv > kStabilityCheckLimit) {
     if (!quiet) fmt::print(stderr, "stability: not checked ({} velocity coordinates, more than {})\n", model.nv, kStabilityCheckLimit);
     return {};

@@ -16,6 +16,10 @@ namespace {
 /// (dampedNewton): converging Newton corrections shrink.
 constexpr double kMaxCorrectionGrowth = 2.0;
 
+/// A solution Newton declares converged is accepted only when its largest force residual
+/// max |F + Gᵀλ| is at most this fraction of the largest force present, max |F| (acceptEquilibrium).
+constexpr double kResidualAcceptance = 1e-6;
+
 /// The largest step fraction (≤ 1) that turns no node by more than π/2 and moves none by more
 /// than a tenth of the scene's size (1 + max |q|): a rotation vector is meaningful within a
 /// turn, and a mechanism far from its rest position (a body hanging on an unloaded joint, two
@@ -156,6 +160,24 @@ int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& option
   return -(options.max_iterations + 1);
 }
 
+void acceptEquilibrium(EquilibriumSystem& system, const VecX& x, StaticResult& result) {
+  const Model& model = system.model();
+  const VecX r = system.residual(x);
+  VecX unloaded = x;  // λ = 0: the residual is the generalized forces F alone
+  unloaded.tail(model.m).setZero();
+  const double forces = std::max(1.0, system.residual(unloaded).head(model.nv).cwiseAbs().maxCoeff());
+  result.q = x.head(model.nq);
+  result.lambda = x.tail(model.m);
+  result.force_residual = r.head(model.nv).cwiseAbs().maxCoeff();
+  result.constraint_residual = model.m > 0 ? r.tail(model.m).cwiseAbs().maxCoeff() : 0.0;
+  result.converged = result.force_residual <= kResidualAcceptance * forces;
+  if (!result.converged)
+    result.message = fmt::format("static equilibrium not found: after {} Newton iterations the force residual is {:.3g} N, {:.2g} "
+                                 "of the largest force present ({:.3g} N; accepted up to {:g})",
+                                 result.iterations, result.force_residual, result.force_residual / forces, forces,
+                                 kResidualAcceptance);
+}
+
 StaticResult solveStatics(const Model& model, const VecX& q_start, double t, const StaticOptions& options) {
   StaticResult result;
   result.t = t;
@@ -189,12 +211,7 @@ StaticResult solveStatics(const Model& model, const VecX& q_start, double t, con
     if (used <= options.fast_iterations) increment *= 2.0;
   }
   system.setLoadFactor(1.0);
-  const VecX r = system.residual(x);
-  result.converged = true;
-  result.q = x.head(model.nq);
-  result.lambda = x.tail(model.m);
-  result.force_residual = r.head(model.nv).cwiseAbs().maxCoeff();
-  result.constraint_residual = model.m > 0 ? r.tail(model.m).cwiseAbs().maxCoeff() : 0.0;
+  acceptEquilibrium(system, x, result);
   return result;
 }
 

@@ -23,6 +23,7 @@
 #include "cranesim/crane/support_statics.hpp"
 #include "cranesim/model/support_elements.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
+#include "carriage_on_pads.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -34,54 +35,14 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr double kHalfLength = 2.5, kHalfWidth = 2.0;  // m: the pads at (±2.5, ±2)
 const char* const kPadNames[] = {"front_left", "rear_left", "rear_right", "front_right"};
 
-/// A 20 t carriage on four pads of 0.5 m² on soil of modulus k_s; on its slewing ring 1.2 m up a
-/// 6 t upper carriage (its counterweight puts its centroid 1 m behind the slewing axis) slewed
-/// by `slewed_deg`, with a 9 t load hanging 2 m below the tip of its arm, 8 m out and 4 m up.
-/// The resultant swings 1.886 m about the axis: beyond the pads' kern over the corners.
+/// The tests' carriage on pads (carriage_on_pads.hpp) with its default masses, slewed by
+/// `slewed_deg`, on soil of modulus k_s.
 std::string carriageOnPads(double slewed_deg, double subgrade_modulus, double smoothing = 0.1) {
-  const double c = std::cos(slewed_deg * kDegree), s = std::sin(slewed_deg * kDegree);
-  return fmt::format(R"(
-name: carriage on four pads
-gravity: [0, 0, -9.81]
-ground:
-  supports:
-    body: carriage
-    soil: {{subgrade_modulus: {}, allowable_pressure: 1.0e6}}
-    smoothing: {}
-    pads:
-      - {{name: front_left, joint: carriage.front_left, area: 0.5}}
-      - {{name: rear_left, joint: carriage.rear_left, area: 0.5}}
-      - {{name: rear_right, joint: carriage.rear_right, area: 0.5}}
-      - {{name: front_right, joint: carriage.front_right, area: 0.5}}
-bodies:
-  - name: carriage
-    mass: 20000
-    centroid: [0, 0, 0.6]
-    inertia: [30000, 40000, 60000]
-    joints:
-      - {{name: front_left, position: [2.5, 2, 0]}}
-      - {{name: rear_left, position: [-2.5, 2, 0]}}
-      - {{name: rear_right, position: [-2.5, -2, 0]}}
-      - {{name: front_right, position: [2.5, -2, 0]}}
-      - {{name: ring, position: [0, 0, 1.2]}}
-  - name: upper
-    mass: 6000
-    centroid: [-1, 0, 1]
-    inertia: [6000, 10000, 10000]
-    position: [0, 0, 1.2]
-    rotation: {{axis: [0, 0, 1], angle_deg: {}}}
-    joints: [{{name: tip, position: [8, 0, 4]}}]
-  - name: load
-    mass: 9000
-    centroid: [0, 0, -2]
-    inertia: [1000, 1000, 1000]
-    position: [{}, {}, 5.2]
-constraints:
-  - {{name: slewing, type: revolute, joints: [carriage.ring, upper.origin], axis: z, drive: {{type: constant, value: {}, unit: deg}}}}
-  - {{name: hook, type: spherical, joints: [upper.tip, load.origin]}}
-solver: {{t_end: 1, rtol: 1.0e-8, atol: 1.0e-10}}
-)",
-                     subgrade_modulus, smoothing, slewed_deg, 8 * c, 8 * s, slewed_deg);
+  test::CarriageOnPads c;
+  c.slewed_deg = slewed_deg;
+  c.subgrade_modulus = subgrade_modulus;
+  c.smoothing = smoothing;
+  return test::carriageOnPadsYaml(c);
 }
 
 struct Standing {

@@ -157,3 +157,51 @@ def test_permitted_wind_speed_is_the_largest_passing_mean_speed(tmp_path):
     assert chart.returncode == 0, chart.stderr
     row = chart.stdout.splitlines()[1].split()
     assert float(row[0]) == 200000 and float(row[2]) == permitted
+
+
+def test_a_chart_in_every_direction_is_the_least_of_the_directions(tmp_path):
+    # The crawler crane (crane_on_crawlers.yaml: tracks 12 m long, 9 m apart) at one radius, its
+    # load straight ahead over the tracks' ends (0°) and over the left track's side (90°).
+    # plot_load_chart.py --direction admits a load only where every direction admits it: its
+    # capacity is the smaller of the per-direction charts (--group), and it names the direction
+    # whose heavier load fails. Over the side the tipping edge lies 4.5 m from the slewing axis,
+    # over the ends 6 m, and the counterweight's arm shrinks alike: every load is less stable
+    # over the side.
+    (tmp_path / "chart.yaml").write_text(f"""\
+scene: {SOURCE_DIR / 'configs' / 'crane_on_crawlers.yaml'}
+analysis: static
+modify:
+  constraints.slewing.drive: {{type: constant, value: 0, unit: deg}}
+parameters:
+  - {{path: members.luffing_rope.length, values: [24]}}
+  - {{path: bodies.load.mass, values: [40000, 60000, 80000, 90000, 100000, 150000]}}
+  - {{path: constraints.slewing.drive.value, values: [0, 90]}}
+figures:
+  - {{name: radius, quantity: horizontal_distance, body: load, relative_to: carriage.ring}}
+  - {{name: stability, quantity: tipping_load_fraction, body: load}}
+criteria:
+  - {{figure: stability, max: 0.75, source: "ASME B30.5 on crawlers"}}
+""")
+    crane_sim(tmp_path, "study", "chart.yaml", "-o", "chart.h5", "--jobs", "2")
+    with h5py.File(tmp_path / "chart.h5", "r") as table:
+        fraction = table["figures/stability"][...].reshape(6, 2)
+        status = table["cases/status"].asstr()[...].reshape(6, 2)
+        message = table["cases/message"].asstr()[...].reshape(6, 2)
+    # 150 t tips the crane both ways (its tipping load is about 140 t straight ahead, 110 t over
+    # the side): the statics end with the carriage on its edge, and the cases fail as tipped.
+    assert np.all(status[-1] == "failed") and all("has tipped" in m for m in message[-1]), message[-1]
+    assert np.all(status[:-1] == "complete")
+    assert np.all(fraction[:-1, 1] > fraction[:-1, 0])
+
+    def chart(*arguments):
+        done = subprocess.run(["python3", str(SOURCE_DIR / "scripts" / "plot_load_chart.py"), str(tmp_path / "chart.h5"),
+                               *arguments, "-o", str(tmp_path / "chart.png")], capture_output=True, text=True, timeout=120)
+        assert done.returncode == 0, done.stderr
+        return [line.split() for line in done.stdout.splitlines()[1:] if not line.startswith("wrote")]
+
+    every = chart("--direction", "constraints.slewing.drive.value")
+    per_direction = chart("--group", "constraints.slewing.drive.value")
+    capacities = {float(row[2]): float(row[5]) for row in per_direction}  # "…drive.value = 0": the group's value
+    assert len(every) == 1 and len(capacities) == 2
+    assert float(every[0][2]) == min(capacities.values()) < max(capacities.values())
+    assert every[0][-1] == "90" and every[0][-2] == "in"

@@ -16,6 +16,7 @@
 #include "cranesim/crane/support_statics.hpp"
 #include "cranesim/study/case_runner.hpp"
 #include "cranesim/study/study.hpp"
+#include "carriage_on_pads.hpp"
 
 using namespace cranesim;
 using Eigen::Vector2d;
@@ -25,52 +26,17 @@ namespace {
 constexpr double kGravity = 9.81, kCarriage = 20000, kUpper = 6000, kLoad = 9000;  // kg
 constexpr double kPadArea = 0.5, kHalfLength = 2.5, kHalfWidth = 2.0;             // m², m
 
-/// The carriage on pads at (±2.5, ±2) m; the upper carriage, its centroid 1 m behind the slewing
-/// axis, slewed by `slewed_deg`; the load hanging from its arm's tip 8 m out.
+/// The tests' carriage on pads (carriage_on_pads.hpp) with the masses above, slewed by
+/// `slewed_deg`.
 std::string carriageOnPads(double slewed_deg) {
-  const double c = std::cos(slewed_deg * std::numbers::pi / 180), s = std::sin(slewed_deg * std::numbers::pi / 180);
-  return fmt::format(R"(
-name: carriage on four pads
-gravity: [0, 0, -{}]
-ground:
-  supports:
-    body: carriage
-    soil: {{subgrade_modulus: 1.0e10, allowable_pressure: 1.0e6}}
-    pads:
-      - {{name: front_left, joint: carriage.front_left, area: {}}}
-      - {{name: rear_left, joint: carriage.rear_left, area: {}}}
-      - {{name: rear_right, joint: carriage.rear_right, area: {}}}
-      - {{name: front_right, joint: carriage.front_right, area: {}}}
-bodies:
-  - name: carriage
-    mass: {}
-    centroid: [0, 0, 0.6]
-    inertia: [30000, 40000, 60000]
-    joints:
-      - {{name: front_left, position: [2.5, 2, 0]}}
-      - {{name: rear_left, position: [-2.5, 2, 0]}}
-      - {{name: rear_right, position: [-2.5, -2, 0]}}
-      - {{name: front_right, position: [2.5, -2, 0]}}
-      - {{name: ring, position: [0, 0, 1.2]}}
-  - name: upper
-    mass: {}
-    centroid: [-1, 0, 1]
-    inertia: [6000, 10000, 10000]
-    position: [0, 0, 1.2]
-    rotation: {{axis: [0, 0, 1], angle_deg: {}}}
-    joints: [{{name: tip, position: [8, 0, 4]}}]
-  - name: load
-    mass: {}
-    centroid: [0, 0, -2]
-    inertia: [1000, 1000, 1000]
-    position: [{}, {}, 5.2]
-constraints:
-  - {{name: slewing, type: revolute, joints: [carriage.ring, upper.origin], axis: z, drive: {{type: constant, value: {}, unit: deg}}}}
-  - {{name: hook, type: spherical, joints: [upper.tip, load.origin]}}
-solver: {{t_end: 1, rtol: 1.0e-8, atol: 1.0e-10}}
-)",
-                     kGravity, kPadArea, kPadArea, kPadArea, kPadArea, kCarriage, kUpper, slewed_deg, kLoad, 8 * c, 8 * s,
-                     slewed_deg);
+  test::CarriageOnPads c;
+  c.carriage_mass = kCarriage;
+  c.upper_mass = kUpper;
+  c.load_mass = kLoad;
+  c.pad_area = kPadArea;
+  c.gravity = kGravity;
+  c.slewed_deg = slewed_deg;
+  return test::carriageOnPadsYaml(c);
 }
 
 constexpr const char* kStudy = R"(

@@ -39,6 +39,8 @@ class SupportElement final : public ContactElement {
 
   /// Each point's vertical force (N, ≥ 0) now, in the order given.
   std::vector<double> pointForces(const ElementInput& in) const;
+  /// Each point's position (inertial) now, in the order given.
+  std::vector<Vec3> pointPositions(const ElementInput& in) const;
 
  private:
   template <class S> Eigen::Matrix<S, 6, 1> generalizedForce(const Eigen::Matrix<S, 6, 1>& q, const Eigen::Matrix<S, 6, 1>& v) const;

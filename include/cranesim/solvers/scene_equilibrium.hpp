@@ -26,8 +26,9 @@ StaticResult sceneEquilibrium(const Scene& scene, const Model& model, const Asse
 /// full-member model's 1230, a few seconds at 2000).
 inline constexpr int kStabilityCheckLimit = 2000;
 
-/// Why the equilibrium is unstable (its reduced stiffness has a negative eigenvalue), or empty;
-/// the lowest elastic mode is reported on stderr unless `quiet`.
+/// Why the equilibrium is not one the scene stands in — its carriage has tipped
+/// (model/carriage_tipping.hpp), or it is unstable (its reduced stiffness has a negative
+/// eigenvalue) — or empty; the lowest elastic mode is reported on stderr unless `quiet`.
 std::string equilibriumInstability(const Model& model, const StaticResult& eq, bool quiet);
 
 /// The state a run starts from: the assembled drawing, or for `initial_state: equilibrium` the

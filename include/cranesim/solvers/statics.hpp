@@ -51,6 +51,13 @@ struct StaticResult {
 int dampedNewton(EquilibriumSystem& system, VecX& x, const StaticOptions& options, std::string& why,
                  Eigen::SparseLU<Eigen::SparseMatrix<double>>* factorisation = nullptr);
 
+/// Records x = [q, λ] in `result` as the equilibrium of `system` at its time (full load), with
+/// its residuals, when Newton has declared it converged; accepted (`converged`) only when the
+/// force residual max |F + Gᵀλ| is small beside the largest force present, max |F| (statics.cpp,
+/// kResidualAcceptance): Newton's own test is on the length of its step, which a step along a
+/// direction of large stiffness passes with a residual far from 0.
+void acceptEquilibrium(EquilibriumSystem& system, const VecX& x, StaticResult& result);
+
 /// Equilibrium near `q_start` at time t (drives and profiles evaluated at t).
 StaticResult solveStatics(const Model& model, const VecX& q_start, double t, const StaticOptions& options = {});
 
