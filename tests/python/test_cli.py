@@ -573,6 +573,33 @@ def test_check_lists_each_truss_sections_fidelity(tmp_path: Path):
     assert sections["derrick3"] == ["type6", "super_truss"]
 
 
+def test_check_draws_a_stated_equilibrium_where_static_draws_it(tmp_path: Path):
+    """A scene stating its hook's radius and height: `check` searches the boom angle and the hoist
+    rope's length as `static` does (the same drawing reported on stderr), and `static`'s
+    equilibrium meets both figures to 1 mm."""
+    scene = tmp_path / "stated.yaml"
+    scene.write_text(f"base: {SOURCE_DIR / 'configs' / 'crane_configured.yaml'}\n"
+                     "modify:\n"
+                     "  booms.boom.angle_deg: from_equilibrium\n"
+                     "  booms.boom.hoist.hanging_length: from_equilibrium\n"
+                     "  booms.boom.equilibrium: {hook_radius: 25, hook_height: 8}\n"
+                     "  bodies.load.mass: 100000\n", encoding="utf-8")
+    drawn = re.compile(r"boom 'boom' drawn at (\d+\.\d+)°, its hoist rope (\d+\.\d+) m long: its equilibrium holds "
+                       r"the hook at a radius of [\d.]+ m and a height of [\d.]+ m \(stated 25 and 8; \d+ equilibria\)")
+    checked = crane_sim("check", scene, cwd=tmp_path, timeout=120)
+    assert checked.returncode == 0, checked.stderr
+    static = crane_sim("static", scene, "-o", tmp_path / "stated_static.h5", cwd=tmp_path, timeout=120)
+    assert static.returncode == 0, static.stderr
+    in_check, in_static = drawn.search(checked.stderr), drawn.search(static.stderr)
+    assert in_check and in_static, (checked.stderr, static.stderr)
+    assert in_check.groups() == in_static.groups()
+    assert 60 < float(in_check.group(1)) < 80
+    figures = {" ".join(line.split()[:3]): float(line.split()[3]) for line in static.stdout.splitlines()
+               if line.startswith("  ") and "[" in line and len(line.split()) >= 4}
+    assert figures["hook radius [m]"] == pytest.approx(25, abs=1e-3)
+    assert figures["hook height [m]"] == pytest.approx(8, abs=1e-3)
+
+
 def test_a_run_reports_leaving_the_envelope_and_can_stop_there(tmp_path: Path):
     """The hard case's first 2.5 s: the hoist rope's snatch above its breaking force is named with
     its time and force on stderr and under /envelope; with solver.outside_envelope: stop the run
@@ -606,7 +633,8 @@ def test_a_run_reports_leaving_the_envelope_and_can_stop_there(tmp_path: Path):
 
 def slewed_deg(hook: np.ndarray) -> float:
     """The angle about the slewing axis from the hook's first sample to its last, in degrees."""
-    return math.remainder(math.degrees(math.atan2(hook[-1, 1], hook[-1, 0]) - math.atan2(hook[0, 1], hook[0, 0])), 360.0)
+    turned = math.atan2(hook[-1, 1], hook[-1, 0]) - math.atan2(hook[0, 1], hook[0, 0])
+    return math.remainder(math.degrees(turned), 360.0)
 
 
 # What each motion does to the hook, in metres or degrees where the configured crane's hook
