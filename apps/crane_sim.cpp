@@ -298,7 +298,7 @@ void printTrussFidelities(const Scene& scene) {
 }
 
 int check(const std::string& scene_path) {
-  const Scene scene = readScene(scene_path);
+  const Scene scene = sceneAtStatedEquilibrium(readScene(scene_path), false);
   const Model model = compileModel(scene);
   locateCrane(scene, model);
   requireResultsFit(scene, model);

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Prints the case table of a `crane-sim study` file (docs/study-format.md): one row per case with
-its parameter values, its figures, its status and, with criteria, whether it is admissible.
+its parameter values, its figures, its status, with criteria whether it is admissible and with a
+capacity search the capacity found and what limits it.
 
     python3 scripts/study_table.py TABLE.h5                    # every case, aligned columns
     python3 scripts/study_table.py TABLE.h5 --status complete  # only the complete cases
@@ -23,7 +24,8 @@ class NotAStudy(Exception):
 
 
 def read_table(path: str) -> tuple[list, list]:
-    """(header, rows): case number, parameters, figures, admissible (with criteria), status, message."""
+    """(header, rows): case number, parameters, figures, admissible (with criteria), the capacity
+    and what limits it (with capacity), status, message."""
     try:
         f = h5py.File(path, "r")
     except OSError as e:
@@ -35,11 +37,16 @@ def read_table(path: str) -> tuple[list, list]:
         columns += [(name, f["figures"][name][()]) for name in f.get("figures", {})]
         if "admissible" in f["cases"]:
             columns.append(("admissible", f["cases/admissible"][()]))
+        texts = []
+        if "capacity" in f:
+            columns.append(("capacity", f["capacity/load"][()]))
+            columns.append(("inadmissible_load", f["capacity/inadmissible_load"][()]))
+            texts.append(("limited_by", f["capacity/limited_by"].asstr()[()]))
         status = f["cases/status"].asstr()[()]
         message = f["cases/message"].asstr()[()]
-    header = ["case"] + [name for name, _ in columns] + ["status", "message"]
-    rows = [[case] + [float(values[case]) for _, values in columns] + [status[case], message[case]]
-            for case in range(len(status))]
+    header = ["case"] + [name for name, _ in columns] + [name for name, _ in texts] + ["status", "message"]
+    rows = [[case] + [float(values[case]) for _, values in columns] + [values[case] for _, values in texts]
+            + [status[case], message[case]] for case in range(len(status))]
     return header, rows
 
 

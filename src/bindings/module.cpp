@@ -14,6 +14,7 @@
 #include <future>
 
 #include "cranesim/control/crane_sway.hpp"
+#include "cranesim/crane/stated_equilibrium_search.hpp"
 #include "cranesim/control/sway_axis.hpp"
 #include "cranesim/io/modes_writer.hpp"
 #include "cranesim/io/results_writer.hpp"
@@ -89,9 +90,12 @@ template <class Work> auto interruptibly(const Work& work) {
   return done.get();
 }
 
-/// The scene file at `path`, or the YAML `text` standing for a file called `name`.
+/// The scene file at `path`, or the YAML `text` standing for a file called `name`, drawn where its
+/// equilibrium meets the figures it states.
 Scene scene(const std::string& path, const std::string& text, const std::string& name) {
-  return read(path.empty() ? name : path, [&] { return path.empty() ? parseScene(text, name) : readScene(path); });
+  return read(path.empty() ? name : path, [&] {
+    return sceneAtStatedEquilibrium(path.empty() ? parseScene(text, name) : readScene(path), true);
+  });
 }
 
 /// The scene's static equilibrium (its solver.statics method), written to `out` as a one-sample

@@ -8,6 +8,7 @@
 
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/member_force_elements.hpp"
+#include "cranesim/model/reeved_rope_element.hpp"
 
 namespace cranesim {
 namespace {
@@ -27,6 +28,12 @@ double radius(const Vec3& p, const Vec3& a, const Vec3& n) {
 RopeTension ropeTension(const Model& model, const std::string& rope, const double* q, double t) {
   const VecX zero = VecX::Zero(model.nv);
   const ElementInput in{q, zero.data(), zero.data(), t, model.gravity};
+  if (const int reeved = findReevedRope(model, rope); reeved >= 0) {  // its winch's part and its dead end's
+    const ReevedRopeElement& element = reevedRope(model, reeved);
+    std::vector<double> parts(static_cast<std::size_t>(element.kernel().parts()));
+    element.partTensions(in, parts.data());
+    return {rope, parts.front(), parts.back()};
+  }
   const std::vector<int> elements = memberForceElements(model, rope, true);
   double first[kTensionPoints], last[kTensionPoints];
   model.elements[static_cast<std::size_t>(elements.front())]->tensions(in, first);

@@ -156,7 +156,9 @@ class BoomAssembler {
       if (boom.has(rigging) && !head)
         boom.at(rigging).fail(fmt::format("the {} hangs from the boom's head: give boom '{}' a head", rigging, name));
     if (const auto luffing = boom.find("luffing")) rigLuffingLine(*luffing, *head);
-    if (const auto hoist = boom.find("hoist")) rigHoist(*hoist, *head);
+    if (const auto hoist = boom.find("hoist")) rigHoist(*hoist, *head, statesFor(boom));
+    else if (statesFor(boom) && stated_->hook_height)
+      throw SceneError(stated_->hook_height->where, "a stated hook height sizes the boom's hoist rope: give the boom a hoist");
   }
 
   /// `root` with the assembled items: members and constraints before the scene's own, heads and
@@ -218,10 +220,21 @@ class BoomAssembler {
   double boomAngle(const YamlField& boom, double boom_length) {
     const YamlField field = boom.at("angle_deg");
     const bool from_equilibrium = field.isScalar() && field.text() == "from_equilibrium";
-    if (boom.has("equilibrium") != from_equilibrium)
-      (from_equilibrium ? field : boom.at("equilibrium"))
-          .fail("a stated equilibrium sets the boom angle: give both equilibrium and angle_deg: from_equilibrium, or neither");
-    if (from_equilibrium) return stateEquilibrium(boom, boom_length);
+    if (const auto equilibrium = boom.find("equilibrium")) stateEquilibrium(boom, *equilibrium);
+    const bool angle_stated = statesFor(boom) && stated_->angle_figure;
+    if (from_equilibrium && !angle_stated)
+      field.fail("'from_equilibrium' draws the boom where its equilibrium meets a stated figure: give the boom "
+                 "equilibrium: {hook_radius: <m>} or {boom_angle_deg: <deg>}");
+    if (angle_stated && !from_equilibrium)
+      boom.at("equilibrium").fail("a stated equilibrium sets the boom angle: with a hook_radius or boom_angle_deg give "
+                                  "angle_deg: from_equilibrium, or state neither");
+    if (from_equilibrium) {
+      stated_->drawn.angle_deg = stated_->figure == StatedEquilibrium::Figure::BoomAngle
+                                     ? stated_->angle_figure->value
+                                     : angleHangingHookAt(boom, boom.at("equilibrium").at("hook_radius"),
+                                                          stated_->angle_figure->value, boom_length);
+      return stated_->drawn.angle_deg;
+    }
     const std::optional<YamlField> luffing = boom.find("luffing");
     const bool from_rope = field.isScalar() && field.text() == "from_luffing_rope";
     if (luffing && luffing->has("rope_length") != from_rope)
@@ -237,31 +250,30 @@ class BoomAssembler {
     return angle;
   }
 
-  /// `equilibrium: {hook_radius: R}` (m, from the slewing axis) or `{boom_angle_deg: A}`: the
-  /// figure the boom's equilibrium is to meet, recorded for the search (one boom per scene); the
-  /// first angle is A, or the one hanging the hook, straight below the sheave, R from the foot.
-  double stateEquilibrium(const YamlField& boom, double boom_length) {
-    const YamlField field = boom.at("equilibrium");
-    if (!field.isMap() || field.keys().size() != 1)
-      field.fail("expected one stated figure: {hook_radius: <m>} or {boom_angle_deg: <deg>}");
-    field.allowKeys({"hook_radius", "boom_angle_deg"});
+  /// Whether `boom` is the boom whose equilibrium the scene states.
+  bool statesFor(const YamlField& boom) const { return stated_ && stated_->boom == boom.at("name").text(); }
+
+  /// `equilibrium: {hook_radius: R}` (m, from the slewing axis) or `{boom_angle_deg: A}`, and/or
+  /// `{hook_height: H}` (m): the figures the boom's equilibrium is to meet, recorded for the
+  /// search (one boom per scene). The first drawing is left to boomAngle and rigHoist.
+  void stateEquilibrium(const YamlField& boom, const YamlField& field) {
+    if (!field.isMap() || field.keys().empty())
+      field.fail("expected the stated figures: {hook_radius: <m>} or {boom_angle_deg: <deg>}, and {hook_height: <m>}");
+    field.allowKeys({"hook_radius", "boom_angle_deg", "hook_height"});
+    if (field.has("hook_radius") && field.has("boom_angle_deg"))
+      field.at("boom_angle_deg").fail("one figure sets the boom angle: a hook_radius or a boom_angle_deg, not both");
     if (stated_) field.fail(fmt::format("boom '{}' states its equilibrium already: one boom per scene may", stated_->boom));
     StatedEquilibrium stated;
     stated.boom = boom.at("name").text();
     if (const auto angle = field.find("boom_angle_deg")) {
       stated.figure = StatedEquilibrium::Figure::BoomAngle;
-      stated.value = angle->within(0.5, 89.5, "°");
-      stated.where = angle->where();
-      stated.drawn_angle_deg = stated.value;
-    } else {
-      const YamlField radius = field.at("hook_radius");
+      stated.angle_figure = {angle->within(0.5, 89.5, "°"), angle->where()};
+    } else if (const auto radius = field.find("hook_radius")) {
       stated.figure = StatedEquilibrium::Figure::HookRadius;
-      stated.value = radius.positive();
-      stated.where = radius.where();
-      stated.drawn_angle_deg = angleHangingHookAt(boom, radius, stated.value, boom_length);
+      stated.angle_figure = {radius->positive(), radius->where()};
     }
+    if (const auto height = field.find("hook_height")) stated.hook_height = {height->number(), height->where()};
     stated_ = stated;
-    return stated.drawn_angle_deg;
   }
 
   /// The boom angle in [0°, 89.5°] at which the hoist's sheave, on the boom drawn rigid, stands
@@ -298,11 +310,36 @@ class BoomAssembler {
     return length;
   }
 
+  /// A luffing rope reeved between the anchor and the line's lower end (`element: reeved` in its
+  /// falls form): its falls, and its lead line from the winch to the anchor.
+  struct LuffingReeving {
+    int falls = 1;
+    double lead = 0.0;  // m
+  };
+
+  /// The reeving of the luffing `rope` whose anchor is drawn at `anchor`, if it is reeved.
+  std::optional<LuffingReeving> luffingReeving(const YamlField& rope, const Vec3& anchor) const {
+    const std::optional<YamlField> element = rope.isMap() ? rope.find("element") : std::nullopt;
+    if (!element || element->text() != "reeved") return std::nullopt;
+    if (rope.has("path"))
+      rope.at("path").fail("the boom reeves its luffing rope between the anchor and the line's end: give falls, winch "
+                           "and the blocks' radii (head: the anchor's, hook: the line's end), not a path");
+    for (const char* block : {"head", "hook"})
+      if (const auto b = rope.find(block); b && b->isMap() && b->has("joint"))
+        b->at("joint").fail("the boom places its luffing rope's blocks: give the block's radius, not its joint");
+    const YamlField falls = rope.at("falls");
+    if (falls.integer() < 1) falls.fail("at least 1 fall");
+    return LuffingReeving{falls.integer(), (anchor - jointFrame(rope.at("winch"), "the luffing winch").origin).norm()};
+  }
+
   /// The steepest boom angle at which the straight luffing line from the head's joint to its
-  /// anchor is as long as its ties and a rope of `rope_length`, all drawn unstretched.
+  /// anchor is as long as its ties and a rope of `rope_length`, all drawn unstretched (a reeved
+  /// rope: its lead line and falls, each fall spanning the rest of the line).
   double angleFromLuffingRope(const YamlField& boom, const YamlField& luffing, double boom_length) const {
     const YamlField rope_field = luffing.at("rope_length");
-    const double rope = lengthAtStart(rope_field);
+    const Vec3 anchor = jointFrame(luffing.at("to"), "the luffing line's anchor").origin;
+    double rope = lengthAtStart(rope_field);
+    if (const auto reeving = luffingReeving(luffing.at("rope"), anchor)) rope = (rope - reeving->lead) / reeving->falls;
     double reach = 0.0;
     if (const auto ties = luffing.find("ties"))
       for (const YamlField& tie : ties->items()) reach += tie.at("length").positive();
@@ -310,7 +347,6 @@ class BoomAssembler {
     const std::optional<Frame> joint = namedJoint(Frame{}, head.find("joints"), luffing.at("from").text());
     if (!joint) luffing.at("from").fail(fmt::format("the head has no joint '{}'", luffing.at("from").text()));
     const Vec3 from = boom_length * Vec3::UnitX() + joint->origin;  // in the boom's frame
-    const Vec3 anchor = jointFrame(luffing.at("to"), "the luffing line's anchor").origin;
     const auto gap = [&](double angle) {
       const Frame axes = boomAxes(boom, angle);
       return (anchor - (axes.origin + axes.axes * from)).norm() - reach - rope;
@@ -486,7 +522,9 @@ class BoomAssembler {
 
   /// `luffing: {from: <head joint>, to: <joint>, ties: [strut ties with a length], rope: {…}}`:
   /// one straight line from the head's joint to the anchor, the ties first; the luffing rope
-  /// closes it, its unstretched length the rest of the line.
+  /// closes it, its unstretched length the rest of the line — or, reeved, its falls span the rest
+  /// of the line between a block at the anchor and one at the line's end, its length the lead
+  /// line from its winch and the falls.
   void rigLuffingLine(const YamlField& luffing, const YamlField& head) {
     luffing.allowKeys({"from", "to", "ties", "rope", "rope_length"});
     const std::string head_name = head.at("name").text();
@@ -518,9 +556,22 @@ class BoomAssembler {
                             "the luffing rope needs at least {:g} m (fewer or shorter ties)", reach, line, kShortestRope));
     YAML::Node member = riggingMember(rope, "rope", {"length"});
     const std::string name = rope.at("name").text();
+    const std::optional<YamlField> given_length = luffing.find("rope_length");
+    if (const auto reeving = luffingReeving(rope, anchor)) {
+      const auto block = [&](const char* key, const std::string& joint) {
+        YAML::Node b = rope.has(key) && rope.at(key).isMap() ? copyExcept(rope.at(key).node(), {}) : YAML::Node(YAML::NodeType::Map);
+        b["joint"] = joint;
+        member[key] = b;
+      };
+      block("head", luffing.at("to").text());
+      block("hook", previous);
+      member["length"] = given_length ? given_length->node() : number(reeving->lead + reeving->falls * rope_length);
+      members_.push_back(member);
+      return;
+    }
     member["start"] = point(anchor);
     member["end"] = point(from + reach * along);
-    member["length"] = luffing.has("rope_length") ? luffing.at("rope_length").node() : number(rope_length);
+    member["length"] = given_length ? given_length->node() : number(rope_length);
     members_.push_back(member);
     addConstraint(rope.at("name"), name + "_start", "spherical", luffing.at("to").text(), name + ".start");
     addConstraint(rope.at("name"), name + "_end", "spherical", previous, name + ".end");
@@ -528,21 +579,39 @@ class BoomAssembler {
 
   /// `hoist: {sheave: <head joint>, rope: {…}, hanging_length | hook_height, hook: <body>.<joint>}`:
   /// the hoist rope hangs straight down from the sheave, its unstretched length the hanging
-  /// length; the load body is drawn with its hook joint at the rope's end.
-  void rigHoist(const YamlField& hoist, const YamlField& head) {
+  /// length (`from_equilibrium`: at first the distance down to the stated hook height); the load
+  /// body is drawn with its hook joint at the rope's end. `stated`: the boom's equilibrium is
+  /// the scene's stated one.
+  void rigHoist(const YamlField& hoist, const YamlField& head, bool stated) {
     hoist.allowKeys({"sheave", "rope", "hanging_length", "hook_height", "hook"});
     const Vec3 sheave = headJoint(head, hoist.at("sheave")).origin;
     if (hoist.has("hanging_length") == hoist.has("hook_height"))
       hoist.fail("give the hook's hanging_length below the sheave or its hook_height, one of them");
+    const std::optional<YamlField> hanging = hoist.find("hanging_length");
+    const bool from_equilibrium = hanging && hanging->isScalar() && hanging->text() == "from_equilibrium";
+    const bool height_stated = stated && stated_->hook_height;
+    if (from_equilibrium && !height_stated)
+      hanging->fail("'from_equilibrium' sizes the hoist rope where its equilibrium holds the hook at a stated height: give "
+                    "the boom equilibrium: {hook_height: <m>}");
+    if (height_stated && !from_equilibrium)
+      throw SceneError(stated_->hook_height->where,
+                       "a stated hook height sizes the hoist rope: give hoist.hanging_length: from_equilibrium with it");
+    const auto lengthDownTo = [&](double height, const auto& fail) {
+      const double length = sheave.dot(kUp) - height;
+      if (length < 0.1)
+        fail(fmt::format("the hook must hang at least 0.1 m below the sheave, drawn at a height of {:.6g} m", sheave.dot(kUp)));
+      return length;
+    };
     double length = 0.0;
-    if (const auto h = hoist.find("hanging_length")) {
-      length = lengthAtStart(*h);
+    if (from_equilibrium) {
+      length = lengthDownTo(stated_->hook_height->value,
+                            [&](const std::string& message) { throw SceneError(stated_->hook_height->where, message); });
+      stated_->drawn.hanging_length = length;
+    } else if (hanging) {
+      length = lengthAtStart(*hanging);
     } else {
       const YamlField height = hoist.at("hook_height");
-      length = sheave.dot(kUp) - height.number();
-      if (length < 0.1)
-        height.fail(fmt::format("the hook must hang at least 0.1 m below the sheave, drawn at a height of {:.6g} m",
-                                sheave.dot(kUp)));
+      length = lengthDownTo(height.number(), [&](const std::string& message) { height.fail(message); });
     }
     const YamlField rope = hoist.at("rope");
     const std::string name = rope.at("name").text();
@@ -550,7 +619,7 @@ class BoomAssembler {
     const Vec3 hook = sheave - length * kUp;
     member["start"] = point(sheave);
     member["end"] = point(hook);
-    member["length"] = hoist.has("hanging_length") ? hoist.at("hanging_length").node() : number(length);
+    member["length"] = hanging && !from_equilibrium ? hanging->node() : number(length);
     members_.push_back(member);
     addConstraint(rope.at("name"), name + "_start", "spherical", head.at("name").text() + "." + hoist.at("sheave").text(),
                   name + ".start");

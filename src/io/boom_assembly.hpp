@@ -14,7 +14,7 @@
 
 namespace cranesim {
 
-/// The scene's booms expanded, and the figure a boom with `angle_deg: from_equilibrium` states
+/// The scene's booms expanded, and the figures a boom's `equilibrium` states
 /// (its `drawn_at` left to the scene reader, which knows how to read the scene again).
 struct ExpandedBooms {
   YAML::Node root;
@@ -27,9 +27,10 @@ struct ExpandedBooms {
 /// than its own). `root` is left as it is, so a scene composed on this
 /// one still edits its `booms:`; without `booms:` the result is `root`. The expanded items keep
 /// the nodes the scene wrote (names, types, the head's fields), so errors found in them later
-/// name their lines. A boom with `angle_deg: from_equilibrium` is drawn at a first angle from its
-/// rigid geometry: its stated boom angle, or the angle that hangs the hook at the stated radius
-/// from the boom's foot. Throws SceneError naming the boom's field.
+/// name their lines. A boom whose equilibrium is stated is drawn at a first angle and hoist rope
+/// length from its rigid geometry: its stated boom angle, or the angle that hangs the hook at the
+/// stated radius from the boom's foot; the rope that hangs the hook at the stated height. Throws
+/// SceneError naming the boom's field.
 ExpandedBooms expandBooms(const YAML::Node& root);
 
 }  // namespace cranesim

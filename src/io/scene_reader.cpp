@@ -618,23 +618,27 @@ FeedbackSpec readFeedback(const YamlField& f, const Scene& s) {
   return spec;
 }
 
-/// The figure a boom's equilibrium is to meet, with the way to draw the scene at another boom
-/// angle: the composed scene read again with that angle in place of `from_equilibrium`.
+/// The figures a boom's equilibrium is to meet, with the way to draw the scene otherwise: the
+/// composed scene read again with the angle and the hoist rope's length it searches in place of
+/// `from_equilibrium`.
 StatedEquilibrium statedEquilibrium(StatedEquilibrium stated, const ComposedScene& composed, const Scene& scene) {
   const std::string boom_foot = stated.boom + "_foot";
+  const SourceLocation& where = stated.angle_figure ? stated.angle_figure->where : stated.hook_height->where;
   if (!scene.crane)
-    throw SceneError(stated.where, "a stated equilibrium is measured on the crane: give the scene a crane: block (its "
-                                   "slewing, boom_foot, boom_head and hook)");
+    throw SceneError(where, "a stated equilibrium is measured on the crane: give the scene a crane: block (its "
+                            "slewing, boom_foot, boom_head and hook)");
   if (scene.crane->boom_foot != boom_foot)
-    throw SceneError(stated.where, fmt::format("the crane: block measures the boom whose foot is '{}': state the "
-                                               "equilibrium of that boom, not of '{}' (foot '{}')",
-                                               scene.crane->boom_foot, stated.boom, boom_foot));
+    throw SceneError(where, fmt::format("the crane: block measures the boom whose foot is '{}': state the "
+                                        "equilibrium of that boom, not of '{}' (foot '{}')",
+                                        scene.crane->boom_foot, stated.boom, boom_foot));
   const YAML::Node root = YAML::Clone(composed.root);
-  stated.drawn_at = [root, text = composed.text, path = scene.path, boom = stated.boom](double angle_deg) {
+  stated.drawn_at = [root, text = composed.text, path = scene.path, boom = stated.boom, angle = stated.angle_figure.has_value(),
+                     length = stated.hook_height.has_value()](const BoomDrawing& drawing) {
     const YAML::Node redrawn = YAML::Clone(root);
     for (YAML::Node b : redrawn["booms"])
       if (b["name"].as<std::string>() == boom) {
-        b["angle_deg"] = fmt::format("{:.17g}", angle_deg);
+        if (angle) b["angle_deg"] = fmt::format("{:.17g}", drawing.angle_deg);
+        if (length) b["hoist"]["hanging_length"] = fmt::format("{:.17g}", drawing.hanging_length);
         b.remove("equilibrium");
       }
     return sceneFromComposed({redrawn, text}, path);

@@ -21,6 +21,7 @@ namespace cranesim {
 struct StudySceneSource {
   std::vector<ComposedScene> bases;        // `scene`, or each of `scenes`, with the study's `modify`
   std::vector<YamlField> parameter_paths;  // where each parameter is named in the study file
+  std::vector<YamlField> capacity_paths;   // capacity: where its load, then each follower, is named
   mutable std::mutex lock;
 };
 
@@ -364,6 +365,50 @@ StudyParameter readParameter(const YamlField& f, const std::vector<ComposedScene
   return p;
 }
 
+/// `capacity: {load, from, to, tolerance, scales}`: the field bisected to each case's capacity
+/// and the fields that follow it; `paths` gets where each is named. Needs criteria to bisect
+/// by, a load no parameter varies, and numbers to scale.
+CapacitySpec readCapacity(const YamlField& f, const Study& study, const std::vector<ComposedScene>& scenes,
+                          std::vector<YamlField>& paths) {
+  f.allowKeys({"load", "from", "to", "tolerance", "scales"});
+  if (study.criteria.empty()) f.fail("a capacity is the heaviest load every criterion admits: give the study criteria");
+  CapacitySpec c;
+  const auto varied = [&](const YamlField& path) {
+    for (const StudyParameter& p : study.parameters)
+      if (p.path == path.text())
+        path.fail(fmt::format("'{}' is varied by a parameter: the capacity sets it in each case itself", p.path));
+  };
+  const YamlField load = f.at("load");
+  c.load = load.text();
+  varied(load);
+  for (const ComposedScene& scene : scenes) {
+    double base = 0.0;
+    const YAML::Node value = sceneField(scene.root, load, c.load);
+    if (!value.IsScalar() || !YAML::convert<double>::decode(value, base) || !std::isfinite(base) || base == 0.0)
+      load.fail(fmt::format("the scene's '{}' must be a non-zero number: the load bisected, and scaled by", c.load));
+  }
+  paths.push_back(load);
+  c.from = f.at("from").positive();
+  c.to = f.at("to").number();
+  if (!(c.to > c.from)) f.at("to").fail(fmt::format("the bracket's heavy end must lie above from ({:g}), found {:g}", c.from, c.to));
+  const YamlField tolerance = f.at("tolerance");
+  c.tolerance = tolerance.positive();
+  if (c.tolerance >= c.to - c.from)
+    tolerance.fail(fmt::format("the bracket [{:g}, {:g}] is narrower than the tolerance already", c.from, c.to));
+  if (const auto scales = f.find("scales"))
+    for (const YamlField& follower : scales->items()) {
+      c.scales.push_back(follower.text());
+      varied(follower);
+      for (const ComposedScene& scene : scenes) try {
+          scaled(sceneField(scene.root, follower, c.scales.back()), 1.0);
+        } catch (const std::invalid_argument&) {
+          follower.fail(fmt::format("the scene's '{}' must be a number or a list of numbers to scale", c.scales.back()));
+        }
+      paths.push_back(follower);
+    }
+  return c;
+}
+
 /// The study's scenes: `scene`, or each of `scenes`, composed as scene files are, with the
 /// study's `modify` set in each, and read; their paths and texts go into `study`.
 std::vector<Scene> readStudyScenes(const YamlField& f, const std::string& path, Study& study, std::vector<ComposedScene>& bases) {
@@ -434,7 +479,7 @@ Study readStudy(const std::string& path) {
   const YamlField f(root, "");
   if (!f.isMap()) f.fail("a study file is a mapping (scene, analysis, parameters, figures, …)");
   f.allowKeys({"name", "scene", "scenes", "modify", "analysis", "modes", "parameters", "samples", "seed", "figures",
-               "criteria", "keep_results"});
+               "criteria", "capacity", "keep_results"});
 
   auto source = std::make_shared<StudySceneSource>();
   const std::vector<Scene> scenes = readStudyScenes(f, path, study, source->bases);
@@ -508,12 +553,14 @@ Study readStudy(const std::string& path) {
   }
   if (const auto criteria = f.find("criteria"))
     for (const YamlField& c : criteria->items()) study.criteria.push_back(readCriterion(c, study.figures));
+  if (const auto capacity = f.find("capacity"))
+    study.capacity = readCapacity(*capacity, study, source->bases, source->capacity_paths);
   if (const auto keep = f.find("keep_results")) study.keep_results = keep->boolean();
   study.source = std::move(source);
   return study;
 }
 
-Scene caseScene(const Study& study, long index) {
+Scene caseScene(const Study& study, long index, std::optional<double> load) {
   const std::vector<double> values = study.parameterValues(index);
   const StudySceneSource& source = *study.source;
   std::size_t scene = 0;
@@ -522,6 +569,7 @@ Scene caseScene(const Study& study, long index) {
     header += fmt::format(" {} = {}", study.parameters[k].path, values[k]);
     if (study.parameters[k].scene_index) scene = static_cast<std::size_t>(values[k]);
   }
+  if (load) header += fmt::format(" {} = {} (capacity)", study.capacity->load, *load);
   const std::lock_guard<std::mutex> lock(source.lock);
   const ComposedScene& base = source.bases[scene];
   ComposedScene composed{YAML::Clone(base.root), header + "\n" + base.text};
@@ -532,6 +580,15 @@ Scene caseScene(const Study& study, long index) {
     const YAML::Node value = p.scales_with ? scaled(sceneField(base.root, where, p.path), values[k])
                                            : YAML::Node(fmt::format("{}", values[k]));
     modifyScene(composed.root, where, p.path, value);
+  }
+  if (load) {
+    // The followers first: they scale with the load over the scene's own value of it.
+    const std::vector<YamlField>& paths = source.capacity_paths;
+    const double factor = *load / sceneField(base.root, paths[0], study.capacity->load).as<double>();
+    for (std::size_t k = 0; k < study.capacity->scales.size(); ++k)
+      modifyScene(composed.root, paths[k + 1], study.capacity->scales[k],
+                  scaled(sceneField(base.root, paths[k + 1], study.capacity->scales[k]), factor));
+    modifyScene(composed.root, paths[0], study.capacity->load, YAML::Node(fmt::format("{}", *load)));
   }
   return sceneFromComposed(composed, study.scene_paths[scene]);
 }

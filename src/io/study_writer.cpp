@@ -1,6 +1,7 @@
 #include "cranesim/io/study_writer.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -90,6 +91,22 @@ void writeStudyResults(const std::string& path, const Study& study, const std::v
         file.attribute(dataset, "source", c.source);
       }
       file.writeDoubles("/cases/admissible", {n}, admissible.data());
+    }
+    if (study.capacity) {
+      const CapacitySpec& c = *study.capacity;
+      file.ensureGroup("/capacity");
+      file.attribute("/capacity", "load_path", c.load);
+      file.attribute("/capacity", "from", c.from);
+      file.attribute("/capacity", "to", c.to);
+      file.attribute("/capacity", "tolerance", c.tolerance);
+      file.attribute("/capacity", "scales", fmt::format("{}", fmt::join(c.scales, ", ")));
+      for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].capacity;
+      file.writeDoubles("/capacity/load", {n}, column.data());
+      for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].inadmissible_load;
+      file.writeDoubles("/capacity/inadmissible_load", {n}, column.data());
+      std::vector<std::string> limited_by(n);
+      for (std::size_t i = 0; i < n; ++i) limited_by[i] = rows[i].limited_by;
+      file.writeStrings("/capacity/limited_by", {n}, limited_by);
     }
     std::vector<std::string> status(n), messages(n), workers(n);
     for (std::size_t i = 0; i < n; ++i) status[i] = rows[i].status, messages[i] = rows[i].message, workers[i] = rows[i].worker;

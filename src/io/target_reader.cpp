@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "bounded_yaml.hpp"
+#include "cranesim/crane/stated_equilibrium_search.hpp"
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/compile.hpp"
@@ -346,7 +347,7 @@ TargetSpec readTarget(const std::string& path) {
   const YamlField scene = f.at("scene");
   const std::string scene_path = (std::filesystem::path(path).parent_path() / scene.text()).string();
   try {
-    t.scene = readScene(scene_path);
+    t.scene = sceneAtStatedEquilibrium(readScene(scene_path), true);
   } catch (const SceneError& e) {
     scene.fail(fmt::format("in the scene '{}': {}", scene_path, e.what()));
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "cranesim/crane/stated_equilibrium_search.hpp"
 #include "cranesim/io/scene_reader.hpp"
 #include "cranesim/io/state_file.hpp"
 #include "cranesim/model/closest_name.hpp"
@@ -14,7 +15,8 @@
 
 namespace cranesim {
 
-Session::Session(const std::string& scene_path, bool record) : Session(readScene(scene_path), record) {}
+Session::Session(const std::string& scene_path, bool record)
+    : Session(sceneAtStatedEquilibrium(readScene(scene_path), true), record) {}
 
 Session::Session(const Scene& scene, bool record)
     : scene_(scene), recording_(record), model_(std::make_unique<Model>(compileModel(scene_))),

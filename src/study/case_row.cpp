@@ -48,6 +48,7 @@ std::string encodeRow(const CaseRow& row) {
   std::string line =
       fmt::format("{}\t{}\t{}\t{}\t{}", row.index, row.status, bitsOf(row.steps), bitsOf(row.wall_time_s), escaped(row.worker));
   for (const double f : row.figures) line += "\t" + bitsOf(f);
+  line += fmt::format("\t{}\t{}\t{}", bitsOf(row.capacity), bitsOf(row.inadmissible_load), escaped(row.limited_by));
   return line + "\t" + escaped(row.message);
 }
 
@@ -56,7 +57,7 @@ std::optional<CaseRow> decodeRow(const std::string& line, std::size_t figures) {
   std::stringstream in(line);
   for (std::string field; std::getline(in, field, '\t');) fields.push_back(field);
   if (!line.empty() && line.back() == '\t') fields.emplace_back();  // an empty message
-  if (fields.size() != 6 + figures) return std::nullopt;
+  if (fields.size() != 9 + figures) return std::nullopt;
   CaseRow row;
   try {
     std::size_t used = 0;
@@ -76,6 +77,11 @@ std::optional<CaseRow> decodeRow(const std::string& line, std::size_t figures) {
     if (!value) return std::nullopt;
     row.figures.push_back(*value);
   }
+  const auto capacity = doubleOf(fields[5 + figures]), inadmissible = doubleOf(fields[6 + figures]);
+  if (!capacity || !inadmissible) return std::nullopt;
+  row.capacity = *capacity;
+  row.inadmissible_load = *inadmissible;
+  row.limited_by = unescaped(fields[7 + figures]);
   row.message = unescaped(fields.back());
   return row;
 }

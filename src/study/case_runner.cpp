@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "cranesim/control/closed_loop.hpp"
 #include "cranesim/crane/stated_equilibrium_search.hpp"
@@ -11,15 +12,16 @@
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
+#include "cranesim/study/capacity_search.hpp"
 #include "cranesim/study/case_figures.hpp"
 
 namespace cranesim {
 namespace {
 
-/// The analysis of one case; fills the row's status, message and steps and, when complete, its
-/// figures.
-void analyse(const Study& study, long index, const CaseOptions& options, CaseRow& row) {
-  const Scene scene = sceneAtStatedEquilibrium(caseScene(study, index), true);
+/// The analysis of one case (at `load`, with a capacity search); fills the row's status, message
+/// and steps and, when complete, its figures.
+void analyse(const Study& study, long index, std::optional<double> load, const CaseOptions& options, CaseRow& row) {
+  const Scene scene = sceneAtStatedEquilibrium(caseScene(study, index, load), true);
   const Model model = compileModel(scene);
   if (study.analysis == StudyAnalysis::Run) requireResultsFit(scene, model);
   const Assembler assembler(model);
@@ -67,21 +69,37 @@ void analyse(const Study& study, long index, const CaseOptions& options, CaseRow
   row.figures = caseFigures(study, scene, model, session ? *session->recorder() : recorder, modal ? &*modal : nullptr);
 }
 
-}  // namespace
-
-CaseRow runCase(const Study& study, long index, const CaseOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+/// The row of case `index` analysed once (at `load`, with a capacity search).
+CaseRow analysedCase(const Study& study, long index, std::optional<double> load, const CaseOptions& options) {
   CaseRow row;
   row.index = index;
   row.figures.assign(study.figures.size(), std::numeric_limits<double>::quiet_NaN());
   try {
-    analyse(study, index, options, row);
+    analyse(study, index, load, options, row);
   } catch (const SceneError& e) {
     row.status = kCaseBadInput;
     row.message = e.what();
   } catch (const std::exception& e) {
     row.status = kCaseFailed;
     row.message = e.what();
+  }
+  return row;
+}
+
+}  // namespace
+
+CaseRow runCase(const Study& study, long index, const CaseOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CaseRow row;
+  if (!study.capacity) {
+    row = analysedCase(study, index, std::nullopt, options);
+  } else {
+    CaseOptions bisecting = options;
+    bisecting.results_path.clear();
+    row = searchCapacity(study, [&](double load) { return analysedCase(study, index, load, bisecting); });
+    // The full results of the row's load: the capacity, or the bracket's end the row is of.
+    if (!options.results_path.empty() && row.status == kCaseComplete)
+      analysedCase(study, index, std::isnan(row.capacity) ? study.capacity->from : row.capacity, options);
   }
   row.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return row;

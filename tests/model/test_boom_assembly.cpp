@@ -1,11 +1,14 @@
 // Booms assembled from their sections (`booms:`, src/io/boom_assembly.cpp) on the thesis crane:
 // configs/crane_configured.yaml against configs/crane.yaml, which draws every coordinate by
-// hand, and the same configuration with one 15 m insert more and one fewer.
+// hand, and the same configuration with one 15 m insert more and one fewer; booms drawn where
+// their equilibrium meets stated figures.
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <numbers>
 
@@ -14,6 +17,8 @@
 
 #include "cranesim/crane/crane_figures.hpp"
 #include "cranesim/crane/stated_equilibrium_search.hpp"
+#include "cranesim/planning/target.hpp"
+#include "cranesim/session/session.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 #include "scene_fixtures.hpp"
 
@@ -349,18 +354,18 @@ modify:
   REQUIRE(eq.converged);
   const CraneFigures f = craneFigures(drawn, model, eq.q.data(), eq.t);
   CHECK(f.boom->hook_radius == Approx(stated).margin(kStatedRadiusTolerance));
-  CHECK(model.jointFrame(model.q0.data(), model.findJoint("boom5.end")).r.normalized().dot(ThesisGeometry(1.0, search.angle_deg).x) ==
+  CHECK(model.jointFrame(model.q0.data(), model.findJoint("boom5.end")).r.normalized().dot(ThesisGeometry(1.0, search.drawing.angle_deg).x) ==
         Approx(1.0).margin(1e-12));  // drawn at the angle found
 
   const auto rigidRadius = [](double a) { return 57.2 * std::cos(a * kDeg) + 1.7 * std::sin(a * kDeg); };
   const double rigid_angle = root([&](double a) { return rigidRadius(a) - stated; }, 10.0, 89.0);
-  const ThesisGeometry at_found(55.0, search.angle_deg);
+  const ThesisGeometry at_found(55.0, search.drawing.angle_deg);
   const HandStretch stretch(at_found, 30.0, model, eq, f);
   const auto handRadius = [&](double a) { return -stretch.placed(ThesisGeometry(55.0, a).sheave).x(); };
   const double hand_angle = root([&](double a) { return handRadius(a) - stated; }, 10.0, 89.0);
-  CHECK(search.angle_deg == Approx(hand_angle).margin(0.05));
-  CHECK(search.angle_deg - rigid_angle > (mass > 1e5 ? 0.4 : 0.1));  // the stretch counts
-  UNSCOPED_INFO("rigid " << rigid_angle << "°, hand with stretch " << hand_angle << "°, found " << search.angle_deg << "°");
+  CHECK(search.drawing.angle_deg == Approx(hand_angle).margin(0.05));
+  CHECK(search.drawing.angle_deg - rigid_angle > (mass > 1e5 ? 0.4 : 0.1));  // the stretch counts
+  UNSCOPED_INFO("rigid " << rigid_angle << "°, hand with stretch " << hand_angle << "°, found " << search.drawing.angle_deg << "°");
 }
 
 TEST_CASE("A boom drawn where its equilibrium stands at a stated boom angle", "[scene][boom_assembly][crane]") {
@@ -379,8 +384,189 @@ modify:
   const CraneFigures f = craneFigures(drawn, model, eq.q.data(), eq.t);
   CHECK(f.boom->boom_angle_deg == Approx(60.0).margin(kStatedBoomAngleTolerance));
   // Drawn steeper by the stretch, as the hand calculation at the angle found says.
-  const HandStretch stretch(ThesisGeometry(55.0, search.angle_deg), 30.0, model, eq, f);
-  const Eigen::Vector2d head = stretch.placed(ThesisGeometry(55.0, search.angle_deg).head);
+  const HandStretch stretch(ThesisGeometry(55.0, search.drawing.angle_deg), 30.0, model, eq, f);
+  const Eigen::Vector2d head = stretch.placed(ThesisGeometry(55.0, search.drawing.angle_deg).head);
   CHECK(std::atan2(head.y(), -head.x()) / kDeg == Approx(60.0).margin(0.05));
-  CHECK(search.angle_deg - 60.0 > 0.2);
+  CHECK(search.drawing.angle_deg - 60.0 > 0.2);
+}
+
+TEST_CASE("A hoist rope sized where its equilibrium holds the hook at a stated height", "[scene][boom_assembly][crane]") {
+  // crane_configured.yaml at its 85° with the hook stated 5 m above the ground: the rope the
+  // tool finds is the one that, hanging from the sheave where the equilibrium puts it and
+  // stretched under the 390 t load and its own weight, reaches down to 5 m — the stretch
+  // δ = (W L + ρ g A L² / 2) / EA, about 0.24 m, is what it leaves out of the drawn length.
+  const double stated = 5.0;
+  const Scene scene = parseScene(fmt::format(R"(
+base: crane_configured.yaml
+modify:
+  booms.boom.hoist.hanging_length: from_equilibrium
+  booms.boom.equilibrium: {{hook_height: {}}}
+)", stated), test::configPath("at_height.yaml"));
+  REQUIRE(scene.stated_equilibrium);
+  const StatedEquilibriumSearch search = searchStatedEquilibrium(scene);
+  CHECK(search.equilibria <= 3);  // the hook moves by the rope's change, stretched: by 0.5 % more
+  const Scene drawn = sceneAtStatedEquilibrium(scene, true);
+  const Model model = compileModel(drawn);
+  const StaticResult eq = solveEquilibrium(drawn, model, 0.0);
+  REQUIRE(eq.converged);
+  const CraneFigures f = craneFigures(drawn, model, eq.q.data(), eq.t);
+  CHECK(f.boom->hook_height == Approx(stated).margin(kStatedHookHeightTolerance));
+  CHECK(f.boom->boom_angle_deg < 85.0);  // the angle is not searched: drawn at 85°, lowered by the stretch
+  CHECK(f.boom->boom_angle_deg > 84.0);
+  const double L = (*member(drawn, "hoist_rope").length)(0.0);
+  CHECK(L == search.drawing.hanging_length);
+
+  const double g = 9.8, W = 390000.6 * g, A = std::numbers::pi * 0.05 * 0.05, EA = 1.0e11 * A;
+  const double sheave = model.jointFrame(eq.q.data(), model.findJoint("head.sheave")).r.z();
+  const double hand = root([&](double l) { return l + (W * l + 7800.0 * g * A * l * l / 2.0) / EA - (sheave - stated); },
+                           1.0, sheave);
+  // The rope's Green–Lagrange strain ε(1 + ε/2) leaves ε²/2 L ≈ 0.7 mm of the stretch to the
+  // linear formula; the search's tolerance 1 mm.
+  CHECK(L == Approx(hand).margin(2.0e-3));
+  CHECK(sheave - stated - L > 0.2);  // the stretch counts
+}
+
+TEST_CASE("A boom drawn where its equilibrium holds the hook at a stated radius and height", "[scene][boom_assembly][crane]") {
+  // The boom angle and the hoist rope found together: 100 t at 30 m, 10 m above the ground.
+  const Scene scene = parseScene(R"(
+base: crane_configured.yaml
+modify:
+  booms.boom.angle_deg: from_equilibrium
+  booms.boom.hoist.hanging_length: from_equilibrium
+  booms.boom.equilibrium: {hook_radius: 30, hook_height: 10}
+  bodies.load.mass: 100000
+)", test::configPath("at_radius_and_height.yaml"));
+  const StatedEquilibriumSearch search = searchStatedEquilibrium(scene);
+  CHECK(search.equilibria <= 7);
+  const Scene drawn = sceneAtStatedEquilibrium(scene, true);
+  const Model model = compileModel(drawn);
+  const StaticResult eq = solveEquilibrium(drawn, model, 0.0);
+  REQUIRE(eq.converged);
+  const CraneFigures f = craneFigures(drawn, model, eq.q.data(), eq.t);
+  CHECK(f.boom->hook_radius == Approx(30.0).margin(kStatedRadiusTolerance));
+  CHECK(f.boom->hook_height == Approx(10.0).margin(kStatedHookHeightTolerance));
+  CHECK(search.figure == Approx(f.boom->hook_radius).margin(1e-9));
+  CHECK(search.hook_height == Approx(f.boom->hook_height).margin(1e-9));
+}
+
+TEST_CASE("crane-opt's target and a session draw a stated equilibrium as run and static do", "[scene][boom_assembly][crane]") {
+  // A scene stating the hook's radius, read by crane-opt's target and by a step-by-step session:
+  // each draws the boom where `sceneAtStatedEquilibrium` does, none at the search's first angle.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "cranesim_stated_readers";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path scene_path = dir / "at_radius.yaml", target_path = dir / "target.yaml";
+  std::ofstream(scene_path) << fmt::format(R"(
+base: {}
+modify:
+  booms.boom.angle_deg: from_equilibrium
+  booms.boom.equilibrium: {{hook_radius: 25}}
+  bodies.load.mass: 100000
+)", test::configPath("crane_configured.yaml"));
+  std::ofstream(target_path) << fmt::format(R"(
+scene: {}
+method: flatness
+crane: {{luffing_rope: luffing_rope, hoist_rope: hoist_rope, boom_angle: [pedestal.boom_foot, head.origin], end_point: load.origin}}
+map: {{boom_angle: {{from: 60, to: 80, step: 5}}, hoist_change: {{from: 0, to: 4, step: 2}}, hoist_length: 54.8342}}
+fit: {{type: polynomial, order: [2, 2]}}
+trajectory:
+  origin: [0, 2.041]
+  start: [-25, 0, 0, 0]
+  target: [-20, 2, 0, 0]
+  state_min: [-50, 0, -1, -1]
+  state_max: [-5, 30, 1, 1]
+  control_min: [-0.2, -0.2]
+  control_max: [0.2, 0.2]
+  Q: [100, 100, 100, 100]
+  R: [1, 1]
+  P_end: [100, 100, 100, 100]
+  steps: 300
+  sample_time: 0.1
+)", scene_path.string());
+  const Scene read = readScene(scene_path.string());
+  REQUIRE(read.stated_equilibrium);
+  const Scene drawn = sceneAtStatedEquilibrium(read, true);
+  const auto boomTop = [](const Scene& s) { return member(s, "boom5").end; };
+  const double first = read.stated_equilibrium->drawn.angle_deg;
+  CHECK((boomTop(drawn) - boomTop(read)).norm() > 0.1);  // the search moves the boom off its first angle
+  INFO("first angle " << first << "°");
+
+  const TargetSpec target = readTarget(target_path.string());
+  CHECK_FALSE(target.scene.stated_equilibrium);
+  CHECK((boomTop(target.scene) - boomTop(drawn)).norm() < 1e-12);
+  CHECK((*member(target.scene, "luffing_rope").length)(0.0) == (*member(drawn, "luffing_rope").length)(0.0));
+
+  const Session session(scene_path.string());
+  CHECK_FALSE(session.scene().stated_equilibrium);
+  CHECK((boomTop(session.scene()) - boomTop(drawn)).norm() < 1e-12);
+  std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+/// crane_configured.yaml with its luffing rope reeved on `falls` parts between the derrick's top
+/// and the ties' end, from a winch on the pedestal at (2, 0, 1); the rope's `length` line is
+/// added to the luffing line as `extra` (empty: the tool sizes the rope).
+std::string reevedLuffing(int falls, const std::string& extra = "") {
+  return fmt::format(R"(
+base: crane_configured.yaml
+add:
+  bodies.pedestal.joints: [{{name: luffing_winch, position: [2, 0, 1]}}]
+modify:
+  booms.boom.luffing.rope: {{name: luffing_rope, element: reeved, falls: {}, winch: pedestal.luffing_winch,
+                            head: {{radius: 0.35}}, hook: {{radius: 0.35}}, section: {{radius: 0.05}},
+                            material: {{density: 7800, youngs_modulus: 1.0e11}}, damping: 1.0e-3}}
+{})", falls, extra);
+}
+
+}  // namespace
+
+TEST_CASE("A luffing rope reeved between the derrick's top and the ties' end", "[scene][boom_assembly][reeving]") {
+  // Drawn: the rope runs from its winch to the derrick's top, then 12 falls over the 6.145 m the
+  // ties leave of the line: its length the lead line and the falls.
+  const ThesisGeometry hand(55.0);
+  const Vec3 winch(2.0, 0.0, 1.0);
+  const double span = (hand.derrick_top - hand.tie_joint).norm() - 30.0, lead = (hand.derrick_top - winch).norm();
+  const Scene reeved = parseScene(reevedLuffing(12), test::configPath("reeved_luffing.yaml"));
+  const MemberSpec& rope = member(reeved, "luffing_rope");
+  REQUIRE(rope.reeving);
+  CHECK((*rope.length)(0.0) == Approx(lead + 12.0 * span).margin(1e-9));
+  CHECK((member(reeved, "tie2").end - (hand.tie_joint + 30.0 * (hand.derrick_top - hand.tie_joint).normalized())).norm() < 1e-12);
+  CHECK(std::none_of(reeved.constraints.begin(), reeved.constraints.end(),
+                     [](const ConstraintSpec& c) { return c.name.rfind("luffing_rope", 0) == 0; }));
+
+  // At rest every fall carries the same tension, and the twelve together hold the boom as the
+  // one straight rope of crane_configured.yaml does: its moment about the foot is the same, but
+  // for the stiffer line's smaller stretch (the boom stands a little higher).
+  const Scene single = test::loadScene("crane_configured.yaml");
+  const auto lineTension = [](const Scene& scene) {
+    const Model model = compileModel(scene);
+    const StaticResult eq = solveEquilibrium(scene, model, 0.0);
+    REQUIRE(eq.converged);
+    const CraneFigures f = craneFigures(scene, model, eq.q.data(), eq.t);
+    return std::pair{tensionOf(f, "luffing_rope").at_start, f.boom->boom_angle_deg};
+  };
+  const auto [part, reeved_angle] = lineTension(reeved);
+  const auto [line, single_angle] = lineTension(single);
+  CHECK(12.0 * part == Approx(line).epsilon(0.005));
+  CHECK(reeved_angle > single_angle);
+  CHECK(reeved_angle - single_angle < 0.2);
+
+  // The boom angle a reeved rope's length gives: the one its falls close the line at, as the
+  // single rope of the same span.
+  const auto angleOf = [](const Scene& scene) {
+    const Model model = compileModel(scene);
+    return craneFigures(scene, model, model.q0.data(), 0.0).boom->boom_angle_deg;
+  };
+  const Scene by_rope = parseScene(reevedLuffing(12, fmt::format("  booms.boom.angle_deg: from_luffing_rope\n"
+                                                                 "  booms.boom.luffing.rope_length: {:.17g}\n",
+                                                                 lead + 12.0 * 7.0608)),
+                                   test::configPath("reeved_by_rope.yaml"));
+  const Scene single_by_rope = parseScene(R"(
+base: crane_configured.yaml
+modify:
+  booms.boom.angle_deg: from_luffing_rope
+  booms.boom.luffing.rope_length: 7.0608
+)", test::configPath("by_rope.yaml"));
+  CHECK(angleOf(by_rope) == Approx(angleOf(single_by_rope)).margin(1e-9));
+  CHECK(angleOf(by_rope) < 85.0);  // 0.9 m more rope than at 85°: lower
 }

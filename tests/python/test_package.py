@@ -299,6 +299,26 @@ def test_run_static_and_modes_write_the_command_lines_files(tmp_path):
     assert run.get("joints/boom.tip/position").shape == (run.time().size, 3)
 
 
+def test_a_stated_equilibrium_is_drawn_as_the_command_line_draws_it(tmp_path):
+    """A scene stating its hook's radius: the package's scenes are drawn at the boom angle the
+    command line's search finds, not at the search's first angle; its equilibrium is the same."""
+    import h5py
+
+    scene = tmp_path / "stated.yaml"
+    scene.write_text(f"base: {ROOT / 'configs' / 'crane_configured.yaml'}\n"
+                     "modify:\n"
+                     "  booms.boom.angle_deg: from_equilibrium\n"
+                     "  booms.boom.equilibrium: {hook_radius: 25}\n"
+                     "  bodies.load.mass: 100000\n", encoding="utf-8")
+    crane_sim("static", scene, "-o", tmp_path / "cli_static.h5")
+    with h5py.File(tmp_path / "cli_static.h5") as cli, cranesim.static(scene, tmp_path / "py_static.h5") as results:
+        assert np.array_equal(results.get("q"), cli["q"][()])
+        assert cli["/crane"].attrs["hook_radius"] == pytest.approx(25, abs=1e-3)
+    simulation = cranesim.Simulation(scene)
+    load = simulation.joint_position("load.origin")
+    assert math.hypot(load[0], load[1]) == pytest.approx(25, abs=1e-3)
+
+
 def test_analyses_of_dicts_need_an_output_and_name_errors_in_them(tmp_path):
     scene = yaml.safe_load(LUFFING_JIB.read_text())
     with pytest.raises(ValueError, match="output"):

@@ -479,3 +479,40 @@ figures:
     for angle, r in zip(angles, radius):
         drawn = [42.2 * math.cos(math.radians(a)) + 1.7 * math.sin(math.radians(a)) for a in (angle, angle - 1.0)]
         assert drawn[0] < r < drawn[1], (angle, r, drawn)
+
+
+def test_capacity_by_bisection_and_what_limits_it(tmp_path: Path):
+    """Each case bisects the ball's mass to where the rope's top tension reaches 20 kN: the rope
+    carries the ball and its own weight, (m + ρ A L) g, so the capacity is 20 kN / g − ρ A L for
+    each rope density, found from below to the 1 kg tolerance; the table names what limits it and
+    study_table.py prints it."""
+    table = computed_study(tmp_path, "capacity", f"""\
+scene: {ROPE_PENDULUM}
+analysis: static
+parameters:
+  - {{path: members.rope.material.density, values: [7800, 15600]}}
+capacity: {{load: bodies.ball.mass, from: 500, to: 5000, tolerance: 1, scales: [bodies.ball.inertia]}}
+figures:
+  - {{name: top, quantity: rope_tension, rope: rope, end: start}}
+criteria:
+  - {{figure: top, max: 20000, source: a test limit}}
+""")
+    with h5py.File(table, "r") as f:
+        density = f["parameters/members.rope.material.density"][...]
+        capacity = f["capacity/load"][...]
+        inadmissible = f["capacity/inadmissible_load"][...]
+        assert list(f["capacity/limited_by"].asstr()[...]) == ["top", "top"]
+        assert f["capacity"].attrs["load_path"] == "bodies.ball.mass" and f["capacity"].attrs["tolerance"] == 1
+        assert np.all(f["figures/top"][...] <= 20000)
+        steps = f["cases/steps"][...]
+    hand = 20000 / GRAVITY - density * ROPE_AREA * ROPE_LENGTH
+    assert np.all(capacity <= hand * (1 + 1e-9)) and np.all(inadmissible >= hand * (1 - 1e-9))
+    assert np.all(inadmissible - capacity <= 1)
+    assert np.all(steps > 14)  # ⌈log2(4500)⌉ + 2 = 15 equilibria, each a few Newton iterations
+
+    printed = subprocess.run([sys.executable, str(SOURCE_DIR / "scripts" / "study_table.py"), str(table)],
+                             capture_output=True, text=True)
+    assert printed.returncode == 0, printed.stderr
+    header, *rows = [line.split() for line in printed.stdout.splitlines()]
+    assert header[-5:] == ["capacity", "inadmissible_load", "limited_by", "status", "message"]
+    assert [float(row[header.index("capacity")]) for row in rows] == pytest.approx(list(capacity), rel=1e-5)  # 6 digits

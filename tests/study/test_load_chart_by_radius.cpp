@@ -1,12 +1,15 @@
 // Load charts by radius over three boom lengths (configs/study_load_chart_by_radius.yaml): each
 // chart point's scene, drawn at the boom angle the tool finds, holds the hook at its radius; and
 // at one radius per boom length the capacity — the load at which the limiting criterion, the sub
-// cable's F_min / Z_p, is reached — agrees with a hand estimate by moments about the boom foot.
+// cable's F_min / Z_p, is reached — agrees with a hand estimate by moments about the boom foot,
+// and the study that bisects each case's load to its capacity (study_capacity_by_radius.yaml)
+// finds it too.
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <set>
 #include <string>
@@ -16,6 +19,7 @@
 #include "cranesim/crane/crane_figures.hpp"
 #include "cranesim/crane/stated_equilibrium_search.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
+#include "cranesim/study/capacity_search.hpp"
 #include "cranesim/study/case_runner.hpp"
 #include "cranesim/study/study.hpp"
 #include "scene_fixtures.hpp"
@@ -156,6 +160,57 @@ TEST_CASE("Capacity at a stated radius per boom length against moments about the
   const double hand_capacity = crossing(hand_sub_cable, kRopeLimit, 50000.0, 100000.0, 1e-3);
   UNSCOPED_INFO(file << ": capacity at " << radius << " m " << capacity << " kg, by hand " << hand_capacity << " kg");
   CHECK(capacity == Approx(hand_capacity).epsilon(0.005));  // the issue asks 2 %
+
+  // The study's bisection (configs/study_capacity_by_radius.yaml) brackets the same capacity to
+  // its 0.1 t from below and names the sub cable; the boom angle it reports there holds the hook
+  // at the radius again. The load chart's grid (study_load_chart_by_radius.yaml) agrees: its
+  // heaviest grid load below the capacity is admissible, the next one is not.
+  const auto caseAt = [&](const Study& study, double mass) {
+    for (long i = 0; i < study.cases; ++i) {
+      const std::vector<double> values = study.parameterValues(i);
+      if (std::filesystem::path(study.scene_paths[static_cast<std::size_t>(values[0])]).filename() == scene &&
+          values[1] == radius && (values.size() < 3 || values[2] == mass))
+        return i;
+    }
+    FAIL("no case at " << radius << " m, " << mass << " kg");
+    return 0L;
+  };
+  const Study bisected = readStudy(std::string(CRANESIM_SOURCE_DIR) + "/configs/study_capacity_by_radius.yaml");
+  const CaseRow row = runCase(bisected, caseAt(bisected, 0.0), {});
+  REQUIRE(row.status == kCaseComplete);
+  UNSCOPED_INFO(file << ": bisected " << row.capacity << " … " << row.inadmissible_load << " kg in " << row.wall_time_s << " s");
+  CHECK(row.capacity <= capacity + 1.0);  // the secant's 1 kg
+  CHECK(row.inadmissible_load >= capacity - 1.0);
+  CHECK(row.inadmissible_load - row.capacity <= bisected.capacity->tolerance);
+  CHECK(row.limited_by == "sub_cable");
+  const auto figure = [&](const Study& study, const char* name) {
+    const auto f = std::find_if(study.figures.begin(), study.figures.end(), [&](const FigureSpec& s) { return s.name == name; });
+    REQUIRE(f != study.figures.end());
+    return static_cast<std::size_t>(f - study.figures.begin());
+  };
+  CHECK(row.figures[figure(bisected, "radius")] == Approx(radius).margin(kStatedRadiusTolerance));
+  CHECK(row.figures[figure(bisected, "sub_cable")] <= kRopeLimit);
+  const Scene by_angle = sceneAtStatedEquilibrium(parseScene(fmt::format(R"(
+base: {}
+modify:
+  booms.boom.angle_deg: from_equilibrium
+  booms.boom.equilibrium: {{boom_angle_deg: {:.17g}}}
+  bodies.load.mass: {:.17g}
+)", scene, row.figures[figure(bisected, "boom_angle")], row.capacity), test::configPath("by_angle.yaml")), true);
+  const Model by_angle_model = compileModel(by_angle);
+  const StaticResult by_angle_eq = solveEquilibrium(by_angle, by_angle_model, 0.0);
+  REQUIRE(by_angle_eq.converged);
+  CHECK(craneFigures(by_angle, by_angle_model, by_angle_eq.q.data(), by_angle_eq.t).boom->hook_radius ==
+        Approx(radius).margin(0.01));
+
+  const Study grid = readStudy(std::string(CRANESIM_SOURCE_DIR) + "/configs/study_load_chart_by_radius.yaml");
+  const std::vector<double>& loads = grid.parameters.back().scales_with ? grid.parameters[grid.parameters.size() - 2].values
+                                                                        : grid.parameters.back().values;
+  const auto above = std::upper_bound(loads.begin(), loads.end(), row.capacity);
+  REQUIRE(above != loads.begin());
+  REQUIRE(above != loads.end());
+  CHECK(admissible(grid, runCase(grid, caseAt(grid, *(above - 1)), {})));
+  CHECK_FALSE(admissible(grid, runCase(grid, caseAt(grid, *above), {})));
 }
 
 TEST_CASE("Each chart point of the shipped study: its radius, and reproduced from its boom angle", "[crane][load_chart][study]") {

@@ -6,7 +6,8 @@
 // - heights: along −gravity above the inertial origin (the ground's datum);
 // - radii: distances from the slewing axis (the slewing joint's axis through its joint);
 // - rope tensions at each rope's start and end (a hoist rope's start at the head sheave carries
-//   the load and the rope's weight).
+//   the load and the rope's weight; a reeved rope's start is its winch's part, its end its dead
+//   end's).
 
 #include <optional>
 #include <string>

@@ -20,10 +20,11 @@ namespace cranesim {
 
 class Session {
  public:
-  /// Reads and compiles the scene file (SceneError naming the file, key path and line on bad
-  /// input) and solves its starting state as `crane-sim run` does (solver.initial_state). With
-  /// `record`, keeps the run's samples every output.interval as `crane-sim run` records them
-  /// (SceneError at output.interval when a run to solver.t_end would not fit in memory).
+  /// Reads the scene file, drawn where its equilibrium meets the figures it states, compiles it
+  /// (SceneError naming the file, key path and line on bad input) and solves its starting state
+  /// as `crane-sim run` does (solver.initial_state). With `record`, keeps the run's samples every
+  /// output.interval as `crane-sim run` records them (SceneError at output.interval when a run to
+  /// solver.t_end would not fit in memory).
   explicit Session(const std::string& scene_path, bool record = false);
   explicit Session(const Scene& scene, bool record = false);
   ~Session();

@@ -3,6 +3,7 @@
 // one line of text (the checkpoint's lines, the messages between MPI ranks) with every double
 // written by its bits, so that a row read back is the row computed.
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,12 @@ struct CaseRow {
   double wall_time_s = 0.0;
   std::string worker;           // who computed it: "thread 0", "rank 3"; not part of the results proper
   std::vector<double> figures;  // in the study's order; NaN unless the case is complete
+  /// A study with `capacity` (study/capacity_search.hpp): the heaviest load found admissible
+  /// (NaN when the bracket's lightest is not), the lightest found inadmissible (NaN when the
+  /// heaviest is admissible), and what that one violates.
+  double capacity = std::numeric_limits<double>::quiet_NaN();
+  double inadmissible_load = std::numeric_limits<double>::quiet_NaN();
+  std::string limited_by;
 };
 
 std::string encodeRow(const CaseRow& row);

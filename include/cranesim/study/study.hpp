@@ -91,6 +91,15 @@ struct StudyCriterion {
   double holds(double value) const;
 };
 
+/// A study's `capacity`: each case's heaviest admissible load found by bisection on a field of
+/// the scene (study/capacity_search.hpp), instead of a load read off a grid.
+struct CapacitySpec {
+  std::string load;                 // a `modify` path to a number every scene gives, e.g. bodies.load.mass
+  double from = 0.0, to = 0.0;      // the bracket: a load every case is expected to admit, and one none does
+  double tolerance = 0.0;           // the bracket's width at which the bisection stops
+  std::vector<std::string> scales;  // fields that follow the load in proportion to their scene's values
+};
+
 /// The base scene's YAML, from which each case's scene is built (io/study_reader.cpp).
 struct StudySceneSource;
 
@@ -106,6 +115,7 @@ struct Study {
   std::uint64_t seed = 0;
   std::vector<FigureSpec> figures;
   std::vector<StudyCriterion> criteria;
+  std::optional<CapacitySpec> capacity;
   bool keep_results = false;
   long cases = 1;          // the product of the grids' sizes × samples
   std::shared_ptr<const StudySceneSource> source;
@@ -123,9 +133,10 @@ inline constexpr double kMaxStudyCases = 1e7;
 /// SceneError naming the study file's YAML path and line (a problem in the base scene names it).
 Study readStudy(const std::string& path);
 
-/// The scene of case `index`: the base scene with the case's parameter values set, its text
-/// prefixed by the case's values. Throws SceneError (naming the parameter's path in the study
-/// file) when those values make a bad scene. Safe to call from several threads.
-Scene caseScene(const Study& study, long index);
+/// The scene of case `index`: the base scene with the case's parameter values set (and with
+/// `capacity`, the load `load` and its followers), its text prefixed by the case's values. Throws
+/// SceneError (naming the parameter's path in the study file) when those values make a bad
+/// scene. Safe to call from several threads.
+Scene caseScene(const Study& study, long index, std::optional<double> load = std::nullopt);
 
 }  // namespace cranesim
