@@ -668,3 +668,26 @@ def test_configured_crane_moves_as_the_drawn_one(motion: str, tmp_path: Path):
     assert drawn.shape == configured.shape
     assert np.max(np.linalg.norm(drawn - configured, axis=1)) < tolerance
     assert moved(drawn)
+
+
+@pytest.mark.parametrize("configuration", ["crane_configured_long.yaml", "crane_configured_short.yaml"])
+def test_a_boom_one_insert_longer_or_shorter_runs(tmp_path: Path, configuration: str):
+    """The configured crane with one 15 m insert more or fewer, drawn by the tool, slews 20° in
+    8 s from its equilibrium: the run completes, the pedestal turns by the drive's 20°, and the load
+    hangs on (its height within 5 cm, its radius within 1 m of where it started)."""
+    scene = tmp_path / "slewing.yaml"
+    scene.write_text(f"base: {SOURCE_DIR / 'configs' / configuration}\n"
+                     "modify:\n"
+                     "  constraints.slewing.drive: {type: trapezoid, from: 0, distance: 20, t_start: 0, duration: 8,"
+                     " t_accel: 2, t_decel: 2, unit: deg}\n"
+                     "  solver.t_end: 10\n", encoding="utf-8")
+    out = tmp_path / "slewing.h5"
+    result = crane_sim("run", scene, "-o", out, cwd=tmp_path, timeout=300)
+    assert result.returncode == 0, result.stderr
+    with h5py.File(out, "r") as f:
+        turn = f["/bodies/pedestal/rotation"][-1] @ f["/bodies/pedestal/rotation"][0].T
+        load = f["/bodies/load/position"][()]
+    assert np.degrees(np.arctan2(turn[1, 0], turn[0, 0])) == pytest.approx(20.0, abs=1e-6)
+    assert np.abs(load[:, 2] - load[0, 2]).max() < 0.05
+    radius = np.hypot(load[:, 0], load[:, 1])
+    assert np.abs(radius - radius[0]).max() < 1.0
