@@ -13,6 +13,7 @@
 #include "cranesim/model/contact_elements.hpp"
 #include "cranesim/model/support_elements.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
+#include "element_differences.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -23,32 +24,8 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 
 /// ∂r/∂q and ∂r/∂dq of element e at (q, v) by central differences, beside its Jacobian.
 void checkJacobian(const Element& e, const VecX& q, const VecX& v) {
-  const int n = e.size();
-  const VecX a = VecX::Zero(n);
-  const ElementInput in{q.data(), v.data(), a.data(), 0.0, Vec3(0, 0, -9.81)};
-  MatX J(n, 2 * n);
-  e.jacobian(in, 10.0, J.data());
-  MatX fd(n, 2 * n);
-  for (int c = 0; c < 2 * n; ++c) {
-    VecX qp = q, qm = q, vp = v, vm = v;
-    const double h = 1e-7;
-    if (c < n) qp(c) += h, qm(c) -= h;
-    else vp(c - n) += h, vm(c - n) -= h;
-    VecX rp(n), rm(n);
-    ElementInput ip = in, im = in;
-    ip.q = qp.data(), ip.v = vp.data(), im.q = qm.data(), im.v = vm.data();
-    e.residual(ip, rp.data());
-    e.residual(im, rm.data());
-    fd.col(c) = (rp - rm) / (2 * h);
-  }
-  const double q_error = (J.leftCols(n) - fd.leftCols(n)).norm() / fd.leftCols(n).norm();
-  const double v_error = (J.rightCols(n) - fd.rightCols(n)).norm() / fd.rightCols(n).norm();
-  CAPTURE(q_error, v_error, fd.leftCols(n).norm(), fd.rightCols(n).norm());
-  CHECK(q_error <= 1e-6);
-  CHECK(v_error <= 1e-6);
-  MatX Jq(n, n);
-  e.coordinateJacobian(in, Jq.data());
-  CHECK((Jq - J.leftCols(n)).norm() <= 1e-14 * J.leftCols(n).norm());
+  const VecX a = VecX::Zero(e.size());
+  test::checkMasslessJacobian(e, ElementInput{q.data(), v.data(), a.data(), 0.0, Vec3(0, 0, -9.81)}, 1e-7);
 }
 
 /// A frame node's coordinates [r, φ] turned by h about its body axis k (so that a change of

@@ -15,6 +15,7 @@
 #include "cranesim/math/turbulence.hpp"
 #include "cranesim/model/truss_geometry.hpp"
 #include "cranesim/model/wind_elements.hpp"
+#include "element_differences.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -254,33 +255,10 @@ TEST_CASE("The wind elements' Jacobians match finite differences", "[wind]") {
   std::mt19937 random(5);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   const auto check = [&](const Element& e, const VecX& q, const VecX& v) {
-    const int n = e.size();
-    const VecX a = VecX::Zero(n);
+    const VecX a = VecX::Zero(e.size());
     ElementInput in{q.data(), v.data(), a.data(), 3.7, Vec3(0, 0, -9.81)};
     in.load_factor = 0.8;
-    MatX J(n, 2 * n);
-    e.jacobian(in, 10.0, J.data());
-    MatX fd(n, 2 * n);
-    for (int c = 0; c < 2 * n; ++c) {
-      VecX qp = q, qm = q, vp = v, vm = v;
-      const double h = 1e-6;
-      if (c < n) qp(c) += h, qm(c) -= h;
-      else vp(c - n) += h, vm(c - n) -= h;
-      VecX rp(n), rm(n);
-      ElementInput ip = in, im = in;
-      ip.q = qp.data(), ip.v = vp.data(), im.q = qm.data(), im.v = vm.data();
-      e.residual(ip, rp.data());
-      e.residual(im, rm.data());
-      fd.col(c) = (rp - rm) / (2 * h);
-    }
-    const double q_error = (J.leftCols(n) - fd.leftCols(n)).norm() / fd.leftCols(n).norm();
-    const double v_error = (J.rightCols(n) - fd.rightCols(n)).norm() / fd.rightCols(n).norm();
-    CAPTURE(q_error, v_error);
-    CHECK(q_error <= 1e-6);
-    CHECK(v_error <= 1e-6);
-    MatX Jq(n, n);
-    e.coordinateJacobian(in, Jq.data());
-    CHECK((Jq - J.leftCols(n)).norm() <= 1e-14 * J.leftCols(n).norm());
+    test::checkMasslessJacobian(e, in, 1e-6);
   };
   SECTION("a load at a point off its origin") {
     const BodyWindElement e(wind, 14.4, Vec3(0.3, -0.2, 1.5), 0, {0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4, 5});
