@@ -201,7 +201,8 @@ class Simulation:
 
     def rope_tension(self, rope: str) -> np.ndarray:
         """A rope's axial force now (N, ≥ 0, 0 where slack), one row per element of the rope,
-        at equally spaced points from the element's first node to its second."""
+        at equally spaced points from the element's first node to its second; for a reeved rope
+        one row per part, winch to dead end, each row one tension (a massless part's)."""
         return self._core.rope_tensions(rope).reshape(-1, _core.tension_points)
 
     def drive_power(self, constraint: str) -> float:
@@ -212,7 +213,8 @@ class Simulation:
     def winch_power(self, rope: str) -> float:
         """The power a rope's winch delivers to the crane now, W: through the change of the
         rope's unstretched length, as the energy books count winch work; positive while it reels
-        a rope under tension in, negative while it lowers."""
+        a rope under tension in, negative while it lowers; a reeved rope's includes what its
+        sheaves dissipate."""
         return self._core.winch_power(rope)
 
     def sway(self, hanging: Union[int, str], pivot: Union[int, str]) -> tuple[np.ndarray, np.ndarray]:

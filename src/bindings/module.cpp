@@ -256,7 +256,7 @@ NB_MODULE(_core, m) {
              const std::vector<double> t = s.ropeTensions(rope);
              return vector(t.data(), t.size());
            },
-           nb::arg("rope"), "A rope's axial force along its elements now, kTensionPoints per element.")
+           nb::arg("rope"), "A rope's axial force along its elements (a reeved rope's parts) now, kTensionPoints per element.")
       .def("drive_power", &Session::drivePower, nb::arg("constraint"), "The power a constraint's drive delivers now, W.")
       .def("winch_power", &Session::winchPower, nb::arg("rope"), "The power a rope's winch delivers now, W.")
       .def("sway",

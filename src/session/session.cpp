@@ -11,6 +11,7 @@
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/model/member_force_elements.hpp"
+#include "cranesim/model/reeved_rope_element.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
 namespace cranesim {
@@ -190,12 +191,20 @@ const MemberSpec& Session::rope(const std::string& name) const {
       if (m.type == MemberType::Rope) ropes.push_back(m.name);
     throw std::invalid_argument(unknownName("rope", name, ropes));
   }
-  if (spec->reeving) throw std::invalid_argument(fmt::format("rope '{}' is reeved: its parts are not observed yet", name));
   return *spec;
 }
 
 std::vector<double> Session::ropeTensions(const std::string& name) const {
   rope(name);
+  if (const int reeved = findReevedRope(*model_, name); reeved >= 0) {
+    const ReevedRopeElement& element = reevedRope(*model_, reeved);
+    const double* y = state();
+    double parts[ReevedRopeKernel::kMaxPoints];
+    element.partTensions(ElementInput{y, y + assembler_->vOffset(), nullptr, observed_t_, model_->gravity}, parts);
+    std::vector<double> tensions;
+    for (int k = 0; k < element.kernel().parts(); ++k) tensions.insert(tensions.end(), kTensionPoints, parts[k]);
+    return tensions;
+  }
   const VecX zero = VecX::Zero(model_->nv);
   const ElementInput in{state(), zero.data(), zero.data(), observed_t_, model_->gravity};
   std::vector<double> tensions;
@@ -217,6 +226,7 @@ double Session::winchPower(const std::string& name) const {
   rope(name);
   const double* y = state();
   const ElementInput in{y, y + assembler_->vOffset(), nullptr, observed_t_, model_->gravity};
+  if (const int reeved = findReevedRope(*model_, name); reeved >= 0) return reevedRope(*model_, reeved).explicitTimePower(in);
   double power = 0.0;
   for (const int e : memberForceElements(*model_, name, true))
     power += model_->elements[static_cast<std::size_t>(e)]->explicitTimePower(in);

@@ -14,53 +14,24 @@
 #include "cranesim/model/reeved_rope_element.hpp"
 #include "cranesim/solvers/dynamics.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
+#include "guided_hook.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
 
 namespace {
 
-constexpr double kHookMass = 1.0e4, kWeight = kHookMass * 9.81, kFriction = 0.1;
+constexpr double kWeight = test::kHookWeight, kFriction = 0.1;
 
-/// A 10 t hook guided vertically 10 m under a capstan fixed at 20 m (friction 0.1), the winch
-/// 8 m beside it, so the drawn rope turns 90° over the capstan; `wrap` adds `wrap_deg: <wrap>`.
-/// The winch reels `distance` m (trapezoid from 1.5 s over 8 s, 1 s ramps: 0.4 m/s), Kelvin–Voigt
-/// damping 0.1 s; 9.5 s from equilibrium at rtol 1e-9.
+/// The guided hook (guided_hook.hpp) 10 m under a capstan at the head (friction 0.1), so the
+/// drawn rope turns 90° over it; `wrap` adds `wrap_deg: <wrap>`. The winch reels `distance` m
+/// (trapezoid from 1.5 s over 8 s, 1 s ramps: 0.4 m/s), Kelvin–Voigt damping 0.1 s; 9.5 s.
 Scene capstanHook(const std::string& wrap, double distance) {
-  return parseScene(fmt::format(R"(
-name: hook under a capstan
-ground:
-  joints:
-    - {{name: winch, position: [-8, 0, 20]}}
-    - {{name: capstan, position: [0, 0, 20]}}
-    - {{name: guide, position: [0, 0, 10]}}
-bodies:
-  - name: hook
-    mass: {}
-    inertia: [1000, 1000, 1000]
-    position: [0, 0, 10]
-members:
-  - name: hoist
-    type: rope
-    element: reeved
-    path: [ground.winch, {{joint: ground.capstan, radius: 0.3, friction: {}{}}}, hook.origin]
-    section: {{radius: 0.01}}
-    material: {{density: 7800, youngs_modulus: 1.0e11, poisson_ratio: 0.3}}
-    damping: 0.1
-    length: {{type: trapezoid, from: 17.99, distance: {}, t_start: 1.5, duration: 8, t_accel: 1, t_decel: 1}}
-constraints:
-  - {{name: guide, type: prismatic, joints: [ground.guide, hook.origin], axis: z}}
-solver: {{t_end: 9.5, rtol: 1.0e-9, atol: 1.0e-11, initial_state: equilibrium}}
-output: {{interval: 0.05}}
-)",
-                                kHookMass, kFriction, wrap.empty() ? "" : ", wrap_deg: " + wrap, distance),
-                    "<test>");
-}
-
-const ReevedRopeElement& hoistRope(const Model& model) {
-  for (const auto& e : model.elements)
-    if (const auto* rope = dynamic_cast<const ReevedRopeElement*>(e.get())) return *rope;
-  throw std::runtime_error("no reeved rope");
+  return test::guidedHook(
+      fmt::format("    path: [ground.winch, {{joint: ground.head, radius: 0.3, friction: {}{}}}, hook.sheaves]\n"
+                  "    length: {{type: trapezoid, from: 17.99, distance: {}, t_start: 1.5, duration: 8, t_accel: 1, t_decel: 1}}",
+                  kFriction, wrap.empty() ? "" : ", wrap_deg: " + wrap, distance),
+      0.1, 9.5);
 }
 
 /// Records, in the steady run from `from` to 8.4 s (the winch slows from 8.5 s), the worst
@@ -68,7 +39,7 @@ const ReevedRopeElement& hoistRope(const Model& model) {
 /// dissipated energy and hook height at its ends; forwards every sample to the results recorder (energy books).
 struct SteadyCapstan final : SampleSink {
   SteadyCapstan(const Model& model, const Assembler& assembler, double from, double ratio)
-      : model(model), rope(hoistRope(model)), recorder(assembler), from(from), ratio(ratio) {}
+      : model(model), rope(test::reevedRopeNamed(model)), recorder(assembler), from(from), ratio(ratio) {}
   void sample(double t, const double* y, const WorkTerms& work) override {
     recorder.sample(t, y, work);
     if (t < from || t > 8.4) return;
@@ -95,9 +66,9 @@ struct SteadyCapstan final : SampleSink {
 
 TEST_CASE("A capstan's wrap angle: given in degrees, or the drawn path's turn at its centre", "[reeving][capstan]") {
   const Model drawn = compileModel(capstanHook("", 0.0));
-  CHECK(std::abs(hoistRope(drawn).kernel().friction_exponent[0] - kFriction * std::numbers::pi / 2.0) < 1e-15);
+  CHECK(std::abs(test::reevedRopeNamed(drawn).kernel().friction_exponent[0] - kFriction * std::numbers::pi / 2.0) < 1e-15);
   const Model drum = compileModel(capstanHook("450", 0.0));  // a turn and a quarter on a drum
-  CHECK(std::abs(hoistRope(drum).kernel().friction_exponent[0] - kFriction * 2.5 * std::numbers::pi) < 1e-15);
+  CHECK(std::abs(test::reevedRopeNamed(drum).kernel().friction_exponent[0] - kFriction * 2.5 * std::numbers::pi) < 1e-15);
 }
 
 TEST_CASE("The friction band: a capstan's ratio is e^(±μθ) when slipping, 1 at rest", "[reeving][capstan]") {

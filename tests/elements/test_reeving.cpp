@@ -15,67 +15,26 @@
 #include "cranesim/solvers/dynamics.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 #include "random_states.hpp"
+#include "guided_hook.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
 
 namespace {
 
-constexpr double kHookMass = 1.0e4, kGravity = 9.81, kWeight = kHookMass * kGravity;
-constexpr double kRopeArea = 3.14159265358979e-4;  // radius 1 cm
+using test::kHookMass;
+using test::partTensions;
+using test::reevedRopeNamed;
+constexpr double kGravity = 9.81, kWeight = test::kHookWeight, kRopeArea = test::kHookRopeArea;
 
-/// A 10 t hook block 10 m under a head sheave fixed at 20 m, on `falls` falls of a steel rope
-/// (r = 1 cm, E = 1e11 Pa) from a winch 8 m beside the head, guided by a vertical prismatic
-/// joint; every sheave of efficiency `efficiency`; the rope's length `length` (YAML; empty: the
-/// drawn path), Kelvin–Voigt damping 0.05 s; 8 s from equilibrium at rtol 1e-9.
+/// The guided hook (guided_hook.hpp) on `falls` falls from a head sheave at 20 m, every sheave
+/// of efficiency `efficiency`; the rope's length `length` (YAML; empty: the drawn path),
+/// Kelvin–Voigt damping 0.05 s; 8 s.
 Scene guidedHook(int falls, double efficiency, const std::string& length = "") {
-  const std::string yaml = fmt::format(R"(
-name: guided hook block
-ground:
-  joints:
-    - {{name: winch, position: [-8, 0, 20]}}
-    - {{name: head, position: [0, 0, 20]}}
-    - {{name: guide, position: [0, 0, 10]}}
-bodies:
-  - name: hook
-    mass: {}
-    inertia: [1000, 1000, 1000]
-    position: [0, 0, 10]
-    joints: [{{name: sheaves, position: [0, 0, 0]}}]
-members:
-  - name: hoist
-    type: rope
-    element: reeved
-    falls: {}
-    winch: ground.winch
-    head: {{joint: ground.head, radius: 0.3}}
-    hook: {{joint: hook.sheaves, radius: 0.3}}
-    efficiency: {}
-    section: {{radius: 0.01}}
-    material: {{density: 7800, youngs_modulus: 1.0e11, poisson_ratio: 0.3}}
-    damping: 0.05
-{}
-constraints:
-  - {{name: guide, type: prismatic, joints: [ground.guide, hook.origin], axis: z}}
-solver: {{t_end: 8, rtol: 1.0e-9, atol: 1.0e-11, initial_state: equilibrium}}
-output: {{interval: 0.05}}
-)",
-                                       kHookMass, falls, efficiency, length.empty() ? "" : "    length: " + length);
-  return parseScene(yaml, "<test>");
-}
-
-const ReevedRopeElement& reevedRope(const Model& model, const std::string& name = "hoist") {
-  for (const auto& e : model.elements)
-    if (const auto* rope = dynamic_cast<const ReevedRopeElement*>(e.get()); rope && rope->name() == name) return *rope;
-  throw std::runtime_error("no reeved rope " + name);
-}
-
-std::vector<double> tensions(const Model& model, const double* q, const double* v, double t, const std::string& name = "hoist") {
-  const ReevedRopeElement& rope = reevedRope(model, name);
-  std::vector<double> T(rope.kernel().parts());
-  const ElementInput in{q, v, nullptr, t, model.gravity};
-  rope.partTensions(in, T.data());
-  return T;
+  return test::guidedHook(fmt::format("    falls: {}\n    winch: ground.winch\n    head: {{joint: ground.head, radius: 0.3}}\n"
+                                      "    hook: {{joint: hook.sheaves, radius: 0.3}}\n    efficiency: {}{}",
+                                      falls, efficiency, length.empty() ? "" : "\n    length: " + length),
+                          0.05, 8.0);
 }
 
 /// The line pull T₀ at the winch of n falls over n sheaves of efficiency η (each sheave passed
@@ -95,7 +54,7 @@ struct SteadyHoist final : SampleSink {
   void sample(double t, const double* y, const WorkTerms& work) override {
     recorder.sample(t, y, work);
     if (t < from) return;
-    const std::vector<double> T = tensions(model, y, y + model.nq, t);
+    const std::vector<double> T = partTensions(model, y, y + model.nq, t);
     pull_error = std::max(pull_error, std::abs(T[0] / expected_pull - 1.0));
     const double strain = T[0] / (1.0e11 * kRopeArea);
     const double hook_speed = y[model.nq + model.nodes[0].v + 2];
@@ -120,7 +79,7 @@ TEST_CASE("A load on n frictionless falls: each part carries W/n, the hook block
   const StaticResult eq = solveEquilibrium(scene, model, 0.0);
   REQUIRE(eq.converged);
   const VecX v = VecX::Zero(model.nv);
-  const std::vector<double> T = tensions(model, eq.q.data(), v.data(), 0.0);
+  const std::vector<double> T = partTensions(model, eq.q.data(), v.data(), 0.0);
   REQUIRE(static_cast<int>(T.size()) == falls + 1);
   double on_hook = 0.0, worst = 0.0;
   for (int k = 0; k <= falls; ++k) worst = std::max(worst, std::abs(T[k] / (kWeight / falls) - 1.0));
@@ -204,7 +163,7 @@ TEST_CASE("Reeved rope: Jacobian equals central differences of the residual", "[
   // velocities, so the velocity columns are not constant; so do a capstan's.
   const bool capstan = GENERATE(false, true);
   const Model model = spreadBlocks(0.96, capstan);
-  const ReevedRopeElement& rope = reevedRope(model);
+  const ReevedRopeElement& rope = reevedRopeNamed(model);
   test::Rng rng(11);
   for (int trial = 0; trial < 5; ++trial) {
     VecX q = model.q0, v(model.nv);
@@ -241,7 +200,7 @@ TEST_CASE("Reeved rope keeps the books: dqᵀF = dV/dt − P_winch + P_sheaves +
   const double efficiency = GENERATE(1.0, 0.96);
   const bool capstan = GENERATE(false, true);
   const Model model = spreadBlocks(efficiency, capstan);
-  const ReevedRopeElement& rope = reevedRope(model);
+  const ReevedRopeElement& rope = reevedRopeNamed(model);
   test::Rng rng(5);
   for (int trial = 0; trial < 5; ++trial) {
     VecX q = model.q0, v(model.nv);
@@ -331,7 +290,7 @@ TEST_CASE("The reeved thesis crane: the falls carry hook block and load, equal p
   const Model model = compileModel(scene);
   const StaticResult eq = solveEquilibrium(scene, model, 0.0);
   REQUIRE(eq.converged);
-  const ReevedRopeElement& rope = reevedRope(model, "hoist_rope");
+  const ReevedRopeElement& rope = reevedRopeNamed(model, "hoist_rope");
   const VecX v = VecX::Zero(model.nv);
   const ElementInput in{eq.q.data(), v.data(), nullptr, 0.0, model.gravity};
   VecX r(rope.size());
@@ -341,7 +300,7 @@ TEST_CASE("The reeved thesis crane: the falls carry hook block and load, equal p
   const int z = static_cast<int>(std::find(at.begin(), at.end(), hook.v + 2) - at.begin());
   REQUIRE(z < rope.size());
   const double carried = (390000.6 + 8000.0) * 9.8;  // load and hook block
-  const std::vector<double> T = tensions(model, eq.q.data(), v.data(), 0.0, "hoist_rope");
+  const std::vector<double> T = partTensions(model, eq.q.data(), v.data(), 0.0, "hoist_rope");
   REQUIRE(T.size() == 9);
   const auto [lowest, highest] = std::minmax_element(T.begin(), T.end());
   INFO("rope's lift on the hook block " << -r(z) << " N against " << carried << " N; parts " << *lowest << " … " << *highest
@@ -350,7 +309,7 @@ TEST_CASE("The reeved thesis crane: the falls carry hook block and load, equal p
   CHECK(*highest / *lowest - 1.0 < 1e-12);
   CHECK(std::abs(T[0] / (carried / 8.0) - 1.0) < 1e-5);  // the falls lean by 0.15 m over 52 m: cos = 1 − 4e-6
   // The luffing rope's 12 parts, equal at rest, hold the ties' joint Q: 13 parts with the lead line.
-  const std::vector<double> luffing = tensions(model, eq.q.data(), v.data(), 0.0, "luffing_rope");
+  const std::vector<double> luffing = partTensions(model, eq.q.data(), v.data(), 0.0, "luffing_rope");
   REQUIRE(luffing.size() == 13);
   const auto [least, most] = std::minmax_element(luffing.begin(), luffing.end());
   INFO("luffing rope's parts " << *least << " … " << *most << " N");

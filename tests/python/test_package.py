@@ -376,6 +376,25 @@ def test_loads_and_energies_are_observed(crane):
         crane.constraint_load("hok")
 
 
+def test_a_reeved_ropes_parts_and_winch_are_observed():
+    """configs/hook_block.yaml: a 10 t hook block on 4 falls over sheaves of efficiency 0.98. At
+    rest every part carries W/4 (one row per part, the lead line first, the falls leaning 0.1 m in
+    10 m); hoisting steadily at 0.5 m/s the lead line pulls W (1 − η) / (η (1 − η⁴)), 5.2 % more, and
+    the winch's power is that pull times the winch's speed (its sheaves' losses included)."""
+    sim = cranesim.Simulation(ROOT / "configs" / "hook_block.yaml")
+    weight, eta = 1.0e4 * 9.81, 0.98
+    tension = sim.rope_tension("hoist")
+    assert tension.shape == (5, 9)
+    assert np.allclose(tension, weight / 4, rtol=2e-4, atol=0)
+    assert np.ptp(tension) < 1e-9 * weight
+    sim.advance_to(5.0)  # the winch reels 4 m in from 1 s to 10 s, steadily from 2 s to 9 s
+    tension = sim.rope_tension("hoist")
+    pull = weight * (1 - eta) / (eta * (1 - eta**4))
+    assert tension[0, 0] == pytest.approx(pull, rel=1e-3)
+    assert np.all(np.diff(tension[:, 0]) < 0)  # each sheave passed holds back 2 %
+    assert sim.winch_power("hoist") == pytest.approx(pull * 0.5, rel=1e-3)
+
+
 def test_the_threaded_vector_environment_is_the_synchronous_one_bit_for_bit():
     import gymnasium as gym
     import cranesim.gym

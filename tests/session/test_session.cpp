@@ -414,6 +414,54 @@ TEST_CASE("The drives' and winches' powers, integrated along a lift, are the ene
   CHECK_THROWS_WITH(session.winchPower("hoist"), Catch::Contains("hoist_rope"));
 }
 
+TEST_CASE("A reeved rope's part tensions and winch power, its sheaves' losses in the winch's work", "[session][reeving]") {
+  // configs/hook_block.yaml: a 10 t hook block hoisted 1 m on 4 falls over sheaves of efficiency
+  // 0.98; the winch reels 4 m in 9 s. Stepped every 10 ms (the run's steps do not depend on it).
+  Session session(std::string(CRANESIM_SOURCE_DIR) + "/configs/hook_block.yaml", true);
+  constexpr double kWeight = 1.0e4 * 9.81, kEta = 0.98;
+  const int falls = 4, block = session.joint("hook_block.origin");
+
+  // At rest every part carries the same tension (the middle of the friction band): W/4 on
+  // falls leaning 0.1 m in 10 m (cos = 1 − 5e-5).
+  std::vector<double> tension = session.ropeTensions("hoist");
+  REQUIRE(tension.size() == 5 * kTensionPoints);  // the lead line and 4 falls
+  for (const double T : tension) CHECK(T == Approx(kWeight / falls).epsilon(2e-4));
+  CHECK(*std::max_element(tension.begin(), tension.end()) - *std::min_element(tension.begin(), tension.end()) <
+        1e-9 * kWeight);
+  CHECK(session.winchPower("hoist") == 0.0);
+
+  const double start = session.jointPosition(block).z();
+  double before = 0.0, work = 0.0, steady_pull = 0.0;
+  for (int k = 1; k <= 1200; ++k) {
+    session.advanceTo(0.01 * k);
+    const double now = session.winchPower("hoist");
+    work += 0.5 * 0.01 * (before + now);
+    before = now;
+    if (k == 500) steady_pull = session.ropeTensions("hoist").front();  // mid-lift at 0.5 m/s
+  }
+  const ResultsRecorder& recorder = *session.recorder();
+  REQUIRE(recorder.time().back() == Approx(session.time()).epsilon(1e-15));
+  const double lift = session.jointPosition(block).z() - start;
+  INFO("winch work " << work << " J, books " << recorder.winchWork().back() << " J, lift " << lift << " m");
+  CHECK(work == Approx(recorder.winchWork().back()).epsilon(1e-5));  // measured 4e-7
+  // Hoisting steadily the line pull is W (1 − η) / (η (1 − η⁴)) (elements/reeved_rope.hpp), so
+  // the winch pays 4 × that per metre of lift, 5.2 % more than the load's W: the sheaves' loss.
+  const double pull = kWeight * (1.0 - kEta) / (kEta * (1.0 - std::pow(kEta, falls)));
+  CHECK(steady_pull == Approx(pull).epsilon(2e-4));
+  // 4 m of rope reeled at the same strain ε = (W/4)/EA before and after: the block rises 1 + ε.
+  const double strain = kWeight / falls / (1.0e11 * std::numbers::pi * 0.008 * 0.008);
+  CHECK(lift == Approx(1.0 + strain).epsilon(2e-4));
+  CHECK(work / (kWeight * lift) == Approx(falls * pull / kWeight).epsilon(1e-3));
+
+  // The last sample's part tensions are the results file's.
+  tension = session.ropeTensions("hoist");
+  const std::vector<double>& recorded = recorder.partTensions(0);
+  REQUIRE(recorded.size() == 5 * recorder.samples());
+  for (int part = 0; part < 5; ++part)
+    CHECK(tension[static_cast<std::size_t>(part * kTensionPoints)] ==
+          Approx(recorded[recorded.size() - 5 + static_cast<std::size_t>(part)]).epsilon(1e-12));
+}
+
 TEST_CASE("Commands at times summed from a sample period pass a breakpoint within rounding of them",
           "[session]") {
   // A load that gusts from 2 s to 5 s: breakpoints at 2 and 5 s, which a caller adding 0.02 s to

@@ -102,7 +102,10 @@ class Session {
   /// at its end is the force of the joint holding it there.
   ConstraintReaction constraintLoad(int constraint) const;
   /// The axial force along a rope member now: kTensionPoints per element, from each element's
-  /// first node to its second (N, 0 where slack); std::invalid_argument for no such rope.
+  /// first node to its second (N, 0 where slack); std::invalid_argument for no such rope. A
+  /// reeved rope's parts, winch to dead end, stand for its elements: kTensionPoints equal values
+  /// each (a massless part's tension is one), its sheaves' losses by the direction the rope runs
+  /// now, as the results file's /ropes/<rope>/part_tension.
   std::vector<double> ropeTensions(const std::string& rope) const;
   /// The power a driven constraint's drive delivers to the crane now, W: λ·Φ_t of its rows, as
   /// the energy books count drive work (0 for a constraint without a drive). Negative while the
@@ -110,7 +113,8 @@ class Session {
   double drivePower(int constraint) const;
   /// The power the winch of a rope delivers to the crane now, W: its elements' power through the
   /// change of their unstretched length, as the energy books count winch work (positive while it
-  /// reels a rope under tension in); std::invalid_argument for no such rope or a reeved one.
+  /// reels a rope under tension in; a reeved rope's includes what its sheaves dissipate);
+  /// std::invalid_argument for no such rope.
   double winchPower(const std::string& rope) const;
   /// Kinetic energy ½ dqᵀ M dq, and gravity's potential plus strain energy (J).
   double kineticEnergy() const;
@@ -127,7 +131,7 @@ class Session {
 
   void start();
   void observed(double t);
-  /// The scene's rope named `name`; std::invalid_argument for none or a reeved one.
+  /// The scene's rope named `name`; std::invalid_argument for none.
   const MemberSpec& rope(const std::string& name) const;
   /// Accelerations and multipliers consistent with the state at time() (the saddle-point
   /// system (4-3)), solved once per observed time, as the results file's are; with them, the
