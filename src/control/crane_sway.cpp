@@ -80,10 +80,7 @@ CraneSwayController::CraneSwayController(Session& session, const CraneSwaySpec& 
     shaped_luffing_ = luffing_reference_;
     slewing_start_ = slewing_reference_;
   }
-  if (spec.sensor.delay > 0.0) {
-    late_head_speeds_.emplace(spec.sensor.delay, spec.across.sample_time);
-    sensor_delay_ = spec.sensor.delay;
-  }
+  if (spec.sensor.delay > 0.0) late_head_speeds_.emplace(spec.sensor.delay, spec.across.sample_time);
   if (spec.boom_period > 0.0)
     smoothed_hoist_.emplace(static_cast<std::size_t>(std::max(1L, std::lround(spec.boom_period / across_.spec().sample_time))), 0.0);
 }
@@ -143,7 +140,7 @@ std::vector<double> CraneSwayController::apply(const CraneSwayReference& referen
   Session::Sway sway = sensor_.read(session_.sway(hook_, sheave_));
   if (late_head_speeds_) {
     const Eigen::Vector2d head_speeds(ratio * luffing_rate, to_head * slewing_rate);
-    sway = predictOverDelay(sway, sensor_delay_, across_.spec().gravity, length, head_speeds - (*late_head_speeds_)(head_speeds));
+    sway = predictOverDelay(sway, sensor_.delay(), across_.spec().gravity, length, head_speeds - (*late_head_speeds_)(head_speeds));
   }
   const double across = across_.command(length, to_head * (slewing - reference.slewing), to_head * slewing_rate,
                                         to_head * reference.slewing_speed, sway.across - reference.sway.across,

@@ -6,12 +6,12 @@
 #include <array>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "cranesim/math/units.hpp"
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/source_location.hpp"
 #include "profile_reader.hpp"
@@ -21,7 +21,6 @@
 namespace cranesim {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 const Vec3 kUp = Vec3::UnitZ();
 
 /// A joint's drawn pose: its origin and its axes (columns) in the scene's frame.
@@ -208,7 +207,7 @@ class BoomAssembler {
                             pinAxis(boom), pin.x(), pin.y(), pin.z()));
     Frame axes;
     axes.origin = pin_frame.origin;
-    axes.axes.col(0) = std::cos(angle * kDeg) * towards + std::sin(angle * kDeg) * kUp;
+    axes.axes.col(0) = std::cos(angle * kRadiansPerDegree) * towards + std::sin(angle * kRadiansPerDegree) * kUp;
     axes.axes.col(1) = pin.normalized();
     axes.axes.col(2) = axes.axes.col(0).cross(axes.axes.col(1));
     return axes;

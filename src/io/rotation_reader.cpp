@@ -1,17 +1,10 @@
 #include "rotation_reader.hpp"
 
-#include <numbers>
-
 #include "cranesim/math/rotation.hpp"
+#include "cranesim/math/units.hpp"
 #include "yaml_field.hpp"
 
 namespace cranesim {
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-}  // namespace
-
 Mat3 readRotation(const YamlField& f) {
   f.allowKeys({"axis", "angle", "angle_deg", "rotation_vector", "matrix"});
   const int forms = f.has("rotation_vector") + f.has("matrix") + f.has("axis");
@@ -31,7 +24,7 @@ Mat3 readRotation(const YamlField& f) {
   if (axis.norm() < 1e-12) axis_field.fail("axis must not be the zero vector");
   if (f.has("angle") && f.has("angle_deg")) f.at("angle_deg").fail("give either angle (rad) or angle_deg, not both");
   if (!f.has("angle") && !f.has("angle_deg")) f.fail("an axis needs an angle (rad) or angle_deg");
-  const double angle = f.has("angle") ? f.at("angle").number() : f.at("angle_deg").number() * kDeg;
+  const double angle = f.has("angle") ? f.at("angle").number() : f.at("angle_deg").number() * kRadiansPerDegree;
   return axisAngle(axis, angle);
 }
 

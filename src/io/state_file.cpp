@@ -12,7 +12,7 @@ namespace cranesim {
 namespace {
 
 constexpr const char* kFormat = "cranesim run state";
-constexpr long kVersion = 1;
+constexpr long kStateFileVersion = 1;
 constexpr int kInputFields = 6;  // t, u, r, x, z₁, z₂
 
 std::string inputNames(const Model& model) {
@@ -89,7 +89,7 @@ class StateReader {
 void writeStateFile(const std::string& path, const Model& model, const SimulationState& state) {
   writeResultsFile(path, [&](Hdf5File& file) {
     file.attribute("/", "format", std::string(kFormat));
-    file.attribute("/", "version", kVersion);
+    file.attribute("/", "version", kStateFileVersion);
     file.attribute("/", "scene", model.name);
     file.attribute("/", "inputs", inputNames(model));
     file.writeDoubles("/t", {1}, &state.t);
@@ -112,8 +112,8 @@ SimulationState readStateFile(const std::string& path, const Model& model) {
   const std::lock_guard<std::mutex> lock(hdf5_detail::libraryLock());
   const StateReader file(path);
   if (file.text("format") != kFormat) file.fail("is not a run state file");
-  if (const long version = file.number("version"); version != kVersion)
-    file.fail(fmt::format("is a run state of version {}; this cranesim reads version {}", version, kVersion));
+  if (const long version = file.number("version"); version != kStateFileVersion)
+    file.fail(fmt::format("is a run state of version {}; this cranesim reads version {}", version, kStateFileVersion));
   if (const std::string inputs = file.text("inputs"); inputs != inputNames(model))
     file.fail(fmt::format("was saved from a model with the inputs [{}], not [{}]", inputs, inputNames(model)));
   SimulationState state;

@@ -45,7 +45,7 @@ Vec3 readDirection(const YamlField& f, const Vec3& up) {
   return d.normalized();
 }
 
-WindProfileSpec readProfile(const YamlField& f) {
+WindProfileSpec readWindProfile(const YamlField& f) {
   WindProfileSpec p;
   const std::string law = f.at("law").choice({"uniform", "power", "logarithmic"});
   if (law == "uniform") {
@@ -175,7 +175,7 @@ WindSpec readWind(const YamlField& f, const Scene& scene) {
   field.direction = readDirection(f, up);
   if (const auto rf = f.find("air_density")) field.air_density = rf->within(1e-3, 1e2, "kg/m³");
   field.ground_height = f.number("ground_height", 0.0);
-  if (const auto pf = f.find("profile")) field.profile = readProfile(*pf);
+  if (const auto pf = f.find("profile")) field.profile = readWindProfile(*pf);
   if (field.profile.law != WindProfileLaw::Uniform && !(field.reference_height > field.profile.roughness_length))
     f.at("reference_height").fail("the reference height must exceed the roughness length");
   if (const auto gf = f.find("gust")) field.gust = readGust(*gf, field.speed);

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
+#include "cranesim/math/units.hpp"
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/contact_elements.hpp"
 #include "cranesim/model/member_force_elements.hpp"
@@ -13,8 +13,6 @@
 
 namespace cranesim {
 namespace {
-
-constexpr double kDegree = std::numbers::pi / 180.0;
 
 /// The first `count` coordinate and velocity indices of node n.
 void leadingIndices(const Model& model, int n, int count, std::vector<int>& q, std::vector<int>& v) {
@@ -107,13 +105,13 @@ void compileBackstop(Model& model, const CraneSpec& crane, EnvelopeBoom& boom) {
   hinge.drawn = s.R.transpose() * across.normalized();
   hinge.point = model.joints[point_joint].offset;
   hinge.sense = raise > 0.0 ? 1.0 : -1.0;
-  hinge.engaged = (spec.angle_deg - drawn) * kDegree;
+  hinge.engaged = (spec.angle_deg - drawn) * kRadiansPerDegree;
   std::vector<int> q, v;
   leadingIndices(model, slewing, 6, q, v);
   leadingIndices(model, on_boom, 6, q, v);
   boom.backstop_element = static_cast<int>(model.elements.size());
   boom.backstop_angle_deg = spec.angle_deg;
-  model.elements.push_back(std::make_unique<BackstopElement>(hinge, PenaltyLaw{spec.stiffness, spec.damping, spec.smoothing_deg * kDegree},
+  model.elements.push_back(std::make_unique<BackstopElement>(hinge, PenaltyLaw{spec.stiffness, spec.damping, spec.smoothing_deg * kRadiansPerDegree},
                                                              slewing, on_boom, std::move(q), std::move(v)));
 }
 

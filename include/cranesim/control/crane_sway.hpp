@@ -84,7 +84,6 @@ class CraneSwayController {
   SwayAxisController across_, along_;
   SwaySensor sensor_;
   std::optional<DelayLine<Eigen::Vector2d>> late_head_speeds_;  // [along, across] as they were sensor.delay ago
-  double sensor_delay_ = 0.0;
   std::vector<double> table_length_, table_ratio_;  // dR/dl at luffing rope lengths
   double slewing_reference_, luffing_reference_, hoist_reference_;  // where the speeds lead, in the inputs' values
   double hoist_gain_;

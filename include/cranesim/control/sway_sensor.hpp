@@ -24,6 +24,9 @@ class SwaySensor {
   /// Takes this sample's true swing and returns what the controller reads.
   Session::Sway read(const Session::Sway& truth);
 
+  /// s: how late a reading is.
+  double delay() const { return spec_.delay; }
+
  private:
   SwaySensorSpec spec_;
   DelayLine<Eigen::Vector4d> delayed_;  // [radial, across, their rates]
