@@ -222,7 +222,8 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
         break;
       }
       step *= 0.5;
-      if (step < options.min_step) {
+      const bool tipped = !carriageTipped(path, trial.head(path.nq), next).empty();
+      if (step < (tipped ? options.min_step_tipped : options.min_step)) {
         std::string moved;
         for (const PathControl& c : controls) moved += (moved.empty() ? "" : ", ") + describe(c, tau);
         result.converged = false;
