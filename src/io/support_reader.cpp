@@ -92,7 +92,7 @@ SupportTrackSpec readTrack(const YamlField& f, const RigidBodySpec& body) {
 }  // namespace
 
 GroundSupportsSpec readGroundSupports(const YamlField& f, const Scene& scene) {
-  f.allowKeys({"body", "soil", "damping_ratio", "shear_ratio", "smoothing", "pads", "tracks"});
+  f.allowKeys({"body", "soil", "damping_ratio", "shear_ratio", "friction", "smoothing", "pads", "tracks"});
   GroundSupportsSpec s;
   s.where = f.where();
   const YamlField bf = f.at("body");
@@ -106,6 +106,7 @@ GroundSupportsSpec readGroundSupports(const YamlField& f, const Scene& scene) {
     if (s.damping_ratio > 2.0) df->fail(fmt::format("{:g} lies outside [0, 2]", s.damping_ratio));
   }
   if (const auto rf = f.find("shear_ratio")) s.shear_ratio = rf->within(0.01, 10.0, "");
+  if (const auto ff = f.find("friction")) s.friction = ff->within(0.01, 2.0, "");
   if (const auto sf = f.find("smoothing")) s.smoothing = sf->within(1e-4, 1.0, "of the mean settlement");
   std::set<std::string> names;
   const auto unique = [&](const YamlField& item, const std::string& name) {

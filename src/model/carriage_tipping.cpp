@@ -13,6 +13,12 @@ namespace {
 /// line stay in one line as it turns, to 1e-15 of their span).
 constexpr double kInLine = 1e-9;
 
+/// A point carries when its force exceeds this fraction of all the supports carry: a point
+/// entering the bed's smoothing band carries a force quadratic in its settlement, and one
+/// barely in it (1e-9 of the weight, a Newton iterate past the tipping point) adds no
+/// stiffness about the edge the others stand on.
+constexpr double kCarrying = 1e-6;
+
 /// What the points span seen along `up`: an area, a line, or one point.
 enum class Span { Area, Line, Point };
 
@@ -38,16 +44,22 @@ std::string carriageTipped(const Model& model, const VecX& q, double t) {
   const EnvelopeSupports& supports = *model.envelope.supports;
   const VecX zero = VecX::Zero(model.nv);
   const ElementInput in{q.data(), zero.data(), zero.data(), t, model.gravity};
+  const auto elementOf = [&](const EnvelopeSupport& s) -> const SupportElement& {
+    return dynamic_cast<const SupportElement&>(*model.elements[static_cast<std::size_t>(s.element)]);
+  };
+  double carried = 0.0;
+  for (const auto* list : {&supports.pads, &supports.tracks})
+    for (const EnvelopeSupport& s : *list) carried += elementOf(s).contactForce(in);
   std::vector<Vec3> carrying;
   std::string carriers;
   for (const auto* list : {&supports.pads, &supports.tracks})
     for (const EnvelopeSupport& s : *list) {
-      const auto& element = dynamic_cast<const SupportElement&>(*model.elements[static_cast<std::size_t>(s.element)]);
+      const SupportElement& element = elementOf(s);
       const std::vector<double> forces = element.pointForces(in);
       const std::vector<Vec3> positions = element.pointPositions(in);
       std::size_t count = 0;
       for (std::size_t k = 0; k < forces.size(); ++k)
-        if (forces[k] > 0.0) carrying.push_back(positions[k]), ++count;
+        if (forces[k] > kCarrying * carried) carrying.push_back(positions[k]), ++count;
       if (count == 0) continue;
       carriers += carriers.empty() ? "" : ", ";
       carriers += s.length > 0.0 && count < forces.size()

@@ -115,6 +115,7 @@ void compileSupports(Model& model, const Scene& scene) {
         bed.law = {k, damping, smoothing};
         bed.shear_stiffness = spec.shear_ratio * k;
         bed.shear_damping = std::sqrt(spec.shear_ratio) * damping;
+        bed.friction = spec.friction;
         points.push_back({p.point, bed});
       }
       std::vector<int> q, v;

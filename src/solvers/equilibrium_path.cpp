@@ -10,6 +10,7 @@
 #include "cranesim/math/rotation.hpp"
 #include "cranesim/model/carriage_tipping.hpp"
 #include "cranesim/model/compile.hpp"
+#include "cranesim/model/slack_ropes.hpp"
 #include "cranesim/solvers/drive_posing.hpp"
 #include "cranesim/solvers/equilibrium_system.hpp"
 #include "cranesim/solvers/initial_conditions.hpp"
@@ -86,6 +87,16 @@ VecX predict(const Model& model, const VecX& x, const VecX& tangent, double h) {
   return next;
 }
 
+/// What the last iterate of a failed statics shows: a carriage tipped, ropes slack at an end
+/// (a part that a slack rope alone held has nothing holding it); empty when neither.
+std::string lastIterateFindings(const Scene& scene, const Model& model, const VecX& q, double t) {
+  std::string findings;
+  if (const std::string tipped = carriageTipped(model, q, t); !tipped.empty()) findings += "; its last iterate: " + tipped;
+  if (const std::string slack = slackRopeEnds(scene, model, q, t); !slack.empty())
+    findings += fmt::format("; ropes slack in its last iterate: {} (a rope only pulls: what it alone holds there falls)", slack);
+  return findings;
+}
+
 }  // namespace
 
 // At the chord itself every Gauss point sits on the kink of the tension-only law, where the
@@ -121,7 +132,8 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
   VecX q_posed = model.q0;
   poseAtDrives(model, t, q_posed);
   const std::vector<PathControl> controls = pathControls(scene, model, q_posed, t);
-  const Model path = compileModel(pathScene(scene, model, q_posed, t));
+  const Scene path_scene = pathScene(scene, model, q_posed, t);
+  const Model path = compileModel(path_scene);
   VecX q_drawn = path.q0;
   poseAtDrives(path, 0.0, q_drawn);
   const DynamicState drawn =
@@ -142,11 +154,12 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
     result.iterations = used;
     result.load_steps = 1;
   } else {
+    const VecX stalled = x.head(path.nq);  // Newton's last iterate under the full load
     result = solveStatics(path, drawn.q, 0.0, start_newton);
     result.iterations += -used - 1;
     result.t = t;
     if (!result.converged) {
-      result.message = "at the drawn controls: " + result.message;
+      result.message = "at the drawn controls: " + result.message + lastIterateFindings(path_scene, path, stalled, 0.0);
       return finish(result);
     }
     x << result.q, result.lambda;
@@ -209,18 +222,20 @@ StaticResult solveEquilibrium(const Scene& scene, const Model& model, double t, 
         break;
       }
       step *= 0.5;
-      if (step < options.min_step) {
+      const bool tipped = !carriageTipped(path, trial.head(path.nq), next).empty();
+      if (step < (tipped ? options.min_step_tipped : options.min_step)) {
         std::string moved;
         for (const PathControl& c : controls) moved += (moved.empty() ? "" : ", ") + describe(c, tau);
         result.converged = false;
         result.path_reached = tau;
         result.q = x.head(model.nq);
         result.lambda = x.tail(model.m);
-        // A crane that tips on the way has no equilibrium beyond: its corrector's last iterate
-        // says so (a load past the tipping load stalls Newton with the carriage on an edge).
-        const std::string tipped = carriageTipped(path, trial.head(path.nq), next);
+        // A crane that tips on the way, or whose rope goes slack under what it held, has no
+        // equilibrium beyond: its corrector's last iterate says so (a load past the tipping load
+        // stalls Newton with the carriage on an edge).
         result.message = fmt::format("static equilibrium not found: the path from the drawn controls stopped at "
-                                     "{:.1f} % ({}): {}{}", 100.0 * tau, moved, why, tipped.empty() ? "" : "; its last iterate: " + tipped);
+                                     "{:.1f} % ({}): {}{}", 100.0 * tau, moved, why,
+                                     lastIterateFindings(path_scene, path, trial.head(path.nq), next));
         return finish(result);
       }
     }

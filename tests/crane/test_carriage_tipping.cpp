@@ -1,7 +1,7 @@
 // The statics' acceptance of a crane on supports: a carriage whose load tips it is no equilibrium
 // (the case fails, saying it tipped), one whose load barely lets it stand is (with the margin of
-// a moment balance); and a solution is accepted only with its force residual small beside the
-// forces present.
+// a moment balance); a solution is accepted only with its force residual small beside the
+// forces present; and a statics past the tipping point stops soon after its corrector ends tipped.
 //
 // The tests' carriage on pads (carriage_on_pads.hpp) straight ahead: the pads' front edge at
 // x = 2.5 m, the upper carriage's 6 t 1 m behind the axis, the load 8 m out. Its resultant
@@ -9,11 +9,13 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <stdexcept>
 
 #include "carriage_on_pads.hpp"
 #include "cranesim/crane/support_reading.hpp"
 #include "cranesim/model/carriage_tipping.hpp"
+#include "cranesim/solvers/equilibrium_path.hpp"
 #include "cranesim/solvers/equilibrium_system.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 #include "scene_fixtures.hpp"
@@ -141,4 +143,28 @@ TEST_CASE("The outrigger crane with a load past its tipping load fails as tipped
     CHECK((why.find("has tipped") != std::string::npos) == (load == 80000.0));
     if (load == 20000.0) CHECK(why.empty());
   }
+}
+
+TEST_CASE("A statics past the tipping point stops once its corrector ends tipped", "[supports][statics][crane]") {
+  // The outrigger crane luffed out to 34 m with 80 t tips at 47 % of the path from its drawing.
+  // Past that point there is no equilibrium, only a tipping point to find more closely: the path
+  // stops halving its step at 1/64 of the path (PathOptions::min_step_tipped) instead of 1/4096,
+  // and reports where it stopped within that step.
+  Scene scene = test::loadScene("crane_on_outriggers.yaml");
+  for (MemberSpec& m : scene.members)
+    if (m.name == "luffing_rope") m.length = Profile(ConstantProfile{34.0});
+  for (RigidBodySpec& b : scene.bodies)
+    if (b.name == "load") b.mass = 80000.0;
+  const Model model = compileModel(scene);
+  PathOptions options;
+  const StaticResult coarse = solveEquilibrium(scene, model, 0.0, options);
+  options.min_step_tipped = options.min_step;
+  const StaticResult fine = solveEquilibrium(scene, model, 0.0, options);
+  CAPTURE(coarse.message, coarse.iterations, fine.iterations, coarse.path_reached, fine.path_reached);
+  for (const StaticResult* r : {&coarse, &fine}) {
+    CHECK_FALSE(r->converged);
+    CHECK(r->message.find("has tipped") != std::string::npos);
+  }
+  CHECK(std::abs(coarse.path_reached - fine.path_reached) <= 1.0 / 64);
+  CHECK(3 * coarse.iterations < 2 * fine.iterations);  // 107 against 178 iterations
 }

@@ -188,8 +188,10 @@ criteria:
         status = table["cases/status"].asstr()[...].reshape(6, 2)
         message = table["cases/message"].asstr()[...].reshape(6, 2)
     # 150 t tips the crane both ways (its tipping load is about 140 t straight ahead, 110 t over
-    # the side): the statics end with the carriage on its edge, and the cases fail as tipped.
-    assert np.all(status[-1] == "failed") and all("has tipped" in m for m in message[-1]), message[-1]
+    # the side): no equilibrium exists (lifted track stretches hold nothing), so the path from the
+    # drawing stops where the crane tips, its last iterate on the tracks' ends or on their edge.
+    assert np.all(status[-1] == "failed"), message[-1]
+    assert all("has tipped" in m or "path from the drawn controls stopped" in m for m in message[-1]), message[-1]
     assert np.all(status[:-1] == "complete")
     assert np.all(fraction[:-1, 1] > fraction[:-1, 0])
 

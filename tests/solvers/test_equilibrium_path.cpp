@@ -5,13 +5,14 @@
 // angle; loads from 10 t to 500 t, each equilibrium stable; relaxation reaching the same
 // equilibrium from the drawing; a drive in a closed loop, which
 // cannot be posed rigidly, moved along the path; the revolute drive's equation with one root
-// per turn.
+// per turn; a hook load too light for the derrick's sub-cable, which the statics name.
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <numbers>
 
+#include "cranesim/crane/crane_figures.hpp"
 #include "cranesim/math/rotation.hpp"
 #include "cranesim/planning/static_map.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
@@ -152,6 +153,40 @@ TEST_CASE("Relaxation, the independent second method: the condensed crane reeled
   const Vec3 load = model.jointFrame(relaxed.equilibrium.q.data(), model.findJoint("load.origin")).r;
   const CraneEquilibrium path = solveCrane("crane_condensed.yaml", far);
   CHECK((load - path.load).norm() < 1e-6);
+}
+
+TEST_CASE("Equilibrium path: a hook too light for the derrick's sub-cable, named as the cause", "[statics][crane]") {
+  // With the boom steep (luffing rope 6 m) the derrick leans back on its sub-cable only while the
+  // luffing rope's pull outweighs its own weight's moment, which the hook load sets. The moment
+  // balance is linear in the hook load on this nearly fixed geometry: the sub-cable's tension at
+  // its anchor falls linearly with the load, through 0 between 2 t and 3 t. Below that the rope
+  // hangs slack from the derrick, and at 1 t nothing holds the derrick back: no equilibrium
+  // exists, and the statics say which rope went slack rather than only that Newton stalled.
+  const auto anchorTension = [](double load) {
+    const Scene scene = craneScene("crane_condensed.yaml", {6.0, kThesisHoist, 0.0, load});
+    const Model model = compileModel(scene);
+    const StaticResult eq = solveEquilibrium(scene, model, 0.0);
+    INFO(load << " kg: " << eq.message);
+    REQUIRE(eq.converged);
+    for (const RopeTension& r : craneFigures(scene, model, eq.q.data(), 0.0).ropes)
+      if (r.rope == "sub_cable") return r.at_start;
+    FAIL("no sub_cable");
+    return 0.0;
+  };
+  const double t3 = anchorTension(3000.0), t4 = anchorTension(4000.0), t5 = anchorTension(5000.0);
+  CAPTURE(t3, t4, t5);
+  CHECK(t4 == Approx(0.5 * (t3 + t5)).epsilon(0.01));
+  const double slack_below = 3000.0 - t3 * 2000.0 / (t5 - t3);
+  CAPTURE(slack_below);
+  CHECK(slack_below > 2000.0);
+  CHECK(slack_below < 3000.0);
+
+  const Scene scene = craneScene("crane_condensed.yaml", {6.0, kThesisHoist, 0.0, 1000.0});
+  const Model model = compileModel(scene);
+  const StaticResult eq = solveEquilibrium(scene, model, 0.0);
+  CAPTURE(eq.message);
+  CHECK_FALSE(eq.converged);
+  CHECK(eq.message.find("'sub_cable' at its start") != std::string::npos);
 }
 
 TEST_CASE("Equilibrium path: a drive in a closed loop moves along the path", "[statics][drives]") {

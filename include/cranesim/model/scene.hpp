@@ -219,6 +219,7 @@ struct GroundSupportsSpec {
   SoilSpec soil;
   double damping_ratio = 0.2;  // of each bed spring with its share of the crane's mass
   double shear_ratio = 0.8;    // horizontal over vertical stiffness of a support
+  double friction = 0.5;       // μ between a support and the bed: steel on dry timber mats
   double smoothing = 0.1;      // the springs' smoothing band over the mean settlement
   std::vector<SupportPadSpec> pads;
   std::vector<SupportTrackSpec> tracks;

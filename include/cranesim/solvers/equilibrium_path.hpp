@@ -45,6 +45,11 @@ struct PathOptions {
   /// path's intermediate points: they only start the next step, whose predictor errs far more.
   double intermediate_tolerance = 1e-6;
   double min_step = 1.0 / 4096;   // the smallest path step tried before giving up
+  /// The smallest path step tried after a corrector that ended with the carriage tipped: past
+  /// its tipping point a crane on supports has no equilibrium, and halving further only finds
+  /// that point more closely (the outrigger chart's tipped cases took 0.67 s each, 12 Newton
+  /// iterations per halving down to min_step).
+  double min_step_tipped = 1.0 / 64;
   /// The predictor turns no node by more than this (rad): its error grows like the square of
   /// the turn, and a revolute drive's equation converges within half a turn.
   double max_angle_step = 0.5;
