@@ -165,6 +165,15 @@ std::vector<Vec3> MassiveReevedRopeElement::chainPositions(const ElementInput& i
   return state<double>(gather(in.q, q_), Local::Zero(size()), Local(), in).x;
 }
 
+MassiveReevedRopeElement::ChainPoint MassiveReevedRopeElement::chainPoint(int c) const {
+  const int n = kernel_.elements_per_part, k = c / n, e = c % n;
+  if (e == 0) {
+    const RopePath::Point& p = path_.points[static_cast<std::size_t>(k)];
+    return {p.slot < 0 ? -1 : nodes_[static_cast<std::size_t>(p.slot)], p.offset};
+  }
+  return {nodes_[path_.slots.size() + static_cast<std::size_t>(k * (n - 1) + e - 1)], Vec3::Zero()};
+}
+
 std::vector<double> MassiveReevedRopeElement::materialCoordinates(const ElementInput& in) const {
   const Local q = gather(in.q, q_);
   std::vector<double> sigma(static_cast<std::size_t>(kernel_.parts() + 1), 0.0);

@@ -47,6 +47,14 @@ class MassiveReevedRopeElement final : public ReevedRope {
   std::vector<double> elementTensions(const ElementInput& in) const;
   /// The chain's node positions, winch to dead end (path points included).
   std::vector<Vec3> chainPositions(const ElementInput& in) const;
+  /// Where chain node c sits: on a model node at an offset in its axes (a path point on a body or
+  /// member node), the node itself (an inner node, offset 0), or with node −1 the point itself
+  /// (a path point on the ground).
+  struct ChainPoint {
+    int node = -1;
+    Vec3 offset = Vec3::Zero();
+  };
+  ChainPoint chainPoint(int c) const;
   /// The material coordinates σ_0 … σ_m (file comment of massive_reeving.hpp), m.
   std::vector<double> materialCoordinates(const ElementInput& in) const;
 
