@@ -8,7 +8,7 @@
 
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/member_force_elements.hpp"
-#include "cranesim/model/reeved_rope_element.hpp"
+#include "cranesim/model/reeved_rope.hpp"
 
 namespace cranesim {
 namespace {
@@ -29,8 +29,8 @@ RopeTension ropeTension(const Model& model, const std::string& rope, const doubl
   const VecX zero = VecX::Zero(model.nv);
   const ElementInput in{q, zero.data(), zero.data(), t, model.gravity};
   if (const int reeved = findReevedRope(model, rope); reeved >= 0) {  // its winch's part and its dead end's
-    const ReevedRopeElement& element = reevedRope(model, reeved);
-    std::vector<double> parts(static_cast<std::size_t>(element.kernel().parts()));
+    const ReevedRope& element = reevedRope(model, reeved);
+    std::vector<double> parts(static_cast<std::size_t>(element.parts()));
     element.partTensions(in, parts.data());
     return {rope, parts.front(), parts.back()};
   }

@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "cranesim/model/contact_elements.hpp"
-#include "cranesim/model/reeved_rope_element.hpp"
+#include "cranesim/model/reeved_rope.hpp"
 
 namespace cranesim {
 namespace {
@@ -16,10 +16,10 @@ namespace {
 double largestTension(const Model& model, const EnvelopeRope& rope, const ElementInput& in) {
   double largest = 0.0;
   for (const int e : rope.elements) {
-    if (const auto* reeved = dynamic_cast<const ReevedRopeElement*>(model.elements[e].get())) {
-      double parts[ReevedRopeKernel::kMaxPoints];
+    if (const auto* reeved = dynamic_cast<const ReevedRope*>(model.elements[e].get())) {
+      double parts[ReevedRope::kMaxParts];
       reeved->partTensions(in, parts);
-      largest = std::max(largest, *std::max_element(parts, parts + reeved->kernel().parts()));
+      largest = std::max(largest, *std::max_element(parts, parts + reeved->parts()));
       continue;
     }
     double points[kTensionPoints];

@@ -16,6 +16,10 @@ std::vector<std::string> velocityLabels(const Model& model) {
   static const std::array<const char*, 3> slope{"slope_x", "slope_y", "slope_z"};
   std::vector<std::string> labels(model.nv);
   for (const Node& n : model.nodes) {
+    if (!n.hasPosition()) {
+      labels[n.v] = n.name + ".material";
+      continue;
+    }
     for (int k = 0; k < 3; ++k) labels[n.v + k] = n.name + "." + r[k];
     if (n.hasRotation())
       for (int k = 0; k < 3; ++k) labels[n.v + 3 + k] = n.name + "." + theta[k];

@@ -64,10 +64,24 @@ std::string jointName(const YamlField& f) {
   return f.text();
 }
 
+/// `fidelity: massless` (the default) or `massive` with `elements_per_part: n` (default 8).
+int readElementsPerPart(const YamlField& f) {
+  constexpr int kDefault = 8, kMost = 64;
+  const bool massive = f.has("fidelity") && f.at("fidelity").choice({"massless", "massive"}) == "massive";
+  if (!f.has("elements_per_part")) return massive ? kDefault : 0;
+  const YamlField n = f.at("elements_per_part");
+  if (!massive) n.fail("elements_per_part belongs to fidelity: massive (parts that carry the rope's mass)");
+  const int elements = n.integer();
+  if (elements < 2 || elements > kMost)
+    n.fail(fmt::format("a massive part is a chain of 2…{} cable elements (2 to sag at all); found {}", kMost, elements));
+  return elements;
+}
+
 }  // namespace
 
 ReevingSpec readReeving(const YamlField& f) {
   ReevingSpec r;
+  r.elements_per_part = readElementsPerPart(f);
   const double efficiency = f.has("efficiency") ? readEfficiency(f.at("efficiency")) : 1.0;
   if (const auto b = f.find("speed_band")) r.speed_band = b->positive();
   if (f.has("path") == f.has("falls"))

@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "cranesim/assembly/constraint_reaction.hpp"
-#include "cranesim/model/reeved_rope_element.hpp"
+#include "cranesim/model/reeved_rope.hpp"
 #include "cranesim/model/wind_elements.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 #include "cranesim/version.hpp"
@@ -220,6 +220,7 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
   const DynamicState motion = motionAt(t, y, C, M);
   append(state_, motion.lambda.data(), model.m);
   for (std::size_t n = 0; n < model.nodes.size(); ++n) {
+    if (!model.nodes[n].member.empty()) continue;  // drawn by model.drawing_lines, not written
     const Frame f = model.nodeFrame(q, static_cast<int>(n));
     append(body_position_[n], f.r.data(), 3);
     appendRowMajor(body_rotation_[n], f.R);
@@ -258,10 +259,10 @@ void ResultsRecorder::sample(double t, const double* y, const WorkTerms& work) {
     append(wind_forces_[p], force.data(), 3);
   }
   for (std::size_t r = 0; r < model.reeved_ropes.size(); ++r) {
-    const auto& rope = dynamic_cast<const ReevedRopeElement&>(*model.elements[model.reeved_ropes[r]]);
-    double tensions[ReevedRopeKernel::kMaxPoints];
+    const ReevedRope& rope = reevedRope(model, static_cast<int>(r));
+    double tensions[ReevedRope::kMaxParts];
     rope.partTensions(in, tensions);
-    append(part_tensions_[r], tensions, rope.kernel().parts());
+    append(part_tensions_[r], tensions, rope.parts());
   }
   for (std::size_t k = 0; k < load_constraints_.size(); ++k) {
     const ConstraintReaction load = constraintReaction(model, model.constraints[load_constraints_[k]], C.G, q, motion.lambda.data());
@@ -407,8 +408,8 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     for (std::size_t p = 0; p < model.wind_parts.size(); ++p)
       file.writeDoubles("/wind/" + model.wind_parts[p].name + "/force", {N, 3}, wind_forces_[p].data());
     for (std::size_t r = 0; r < model.reeved_ropes.size(); ++r) {
-      const auto& rope = dynamic_cast<const ReevedRopeElement&>(*model.elements[model.reeved_ropes[r]]);
-      file.writeDoubles("/ropes/" + rope.name() + "/part_tension", {N, hsize_t(rope.kernel().parts())}, part_tensions_[r].data());
+      const ReevedRope& rope = reevedRope(model, static_cast<int>(r));
+      file.writeDoubles("/ropes/" + rope.name() + "/part_tension", {N, hsize_t(rope.parts())}, part_tensions_[r].data());
     }
     for (std::size_t k = 0; k < load_constraints_.size(); ++k) writeConstraintLoads(file, model.constraints[load_constraints_[k]], constraint_loads_[k]);
     for (std::size_t k = 0; k < tipping_moments_.size(); ++k) {

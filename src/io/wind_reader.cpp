@@ -141,7 +141,8 @@ WindMemberSpec readExposedMember(const YamlField& f, const Scene& scene) {
   if (member == scene.members.end())
     mf.fail(fmt::format("no member '{}' (here: {})", m.member, listedNames(namesOf(scene.members))));
   m.drag_coefficient = f.positive("drag_coefficient", 1.2);
-  if (member->reeving) mf.fail(fmt::format("member '{}' is a reeved rope: the wind does not act on its parts", m.member));
+  if (member->reeving && member->reeving->elements_per_part == 0)
+    mf.fail(fmt::format("member '{}' is a massless reeved rope: the wind acts on the parts of fidelity: massive only", m.member));
   if (member->type == MemberType::Truss) {
     f.allowKeys({"member", "drag_coefficient", "shielding"});
     if (const auto sf = f.find("shielding")) {

@@ -9,7 +9,7 @@
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/contact_elements.hpp"
 #include "cranesim/model/member_force_elements.hpp"
-#include "cranesim/model/reeved_rope_element.hpp"
+#include "cranesim/model/reeved_rope.hpp"
 
 namespace cranesim {
 namespace {
@@ -125,7 +125,7 @@ void compileContacts(Model& model, const Scene& scene) {
     if (m.breaking_force) {
       EnvelopeRope rope{m.name, *m.breaking_force, memberForceElements(model, m.name, true)};
       for (const int e : model.reeved_ropes)
-        if (dynamic_cast<const ReevedRopeElement&>(*model.elements[e]).name() == m.name) rope.elements = {e};
+        if (dynamic_cast<const ReevedRope&>(*model.elements[e]).name() == m.name) rope.elements = {e};
       envelope.ropes.push_back(std::move(rope));
     }
   if (scene.ground_surface) {

@@ -15,7 +15,8 @@ namespace {
 double modelMass(const Model& model, const Vec3& up) {
   VecX along = VecX::Zero(model.nv);
   for (const Node& n : model.nodes)
-    for (int k = 0; k < 3; ++k) along(n.v + k) = up(k);
+    if (n.hasPosition())
+      for (int k = 0; k < 3; ++k) along(n.v + k) = up(k);
   const VecX zero = VecX::Zero(model.nv);
   const ElementInput in{model.q0.data(), zero.data(), zero.data(), 0.0, model.gravity};
   double mass = 0.0;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <unordered_map>
 
+#include "cranesim/model/massive_reeved_rope_element.hpp"
 #include "cranesim/model/truss_geometry.hpp"
 #include "cranesim/model/wind_elements.hpp"
 
@@ -36,6 +37,31 @@ std::unique_ptr<Element> latticeWind(const Model& model, const Scene& scene, con
                                               std::move(q), std::move(v));
 }
 
+/// The wind on the cable from chain node c to c + 1 of a massive reeved rope, through the points
+/// where those nodes sit.
+std::unique_ptr<Element> chainWind(const Model& model, const MassiveReevedRopeElement& rope, int c, double drag_diameter,
+                                   int points) {
+  RopePath ends;
+  std::vector<int> nodes, q, v;
+  for (const MassiveReevedRopeElement::ChainPoint& p : {rope.chainPoint(c), rope.chainPoint(c + 1)}) {
+    if (p.node < 0) {
+      ends.points.push_back({-1, p.offset});
+      continue;
+    }
+    auto found = std::find(nodes.begin(), nodes.end(), p.node);
+    if (found == nodes.end()) {
+      const Node& node = model.nodes[p.node];
+      ends.slots.push_back({static_cast<int>(q.size()), node.size(), node.hasRotation()});
+      nodeIndices(model, {p.node}, q, v);
+      nodes.push_back(p.node);
+      found = nodes.end() - 1;
+    }
+    ends.points.push_back({static_cast<int>(found - nodes.begin()), p.offset});
+  }
+  return std::make_unique<PathLineWindElement>(model.wind, drag_diameter, points, std::move(ends), std::move(nodes), std::move(q),
+                                               std::move(v));
+}
+
 }  // namespace
 
 void compileWind(Model& model, const Scene& scene) {
@@ -61,6 +87,15 @@ void compileWind(Model& model, const Scene& scene) {
     if (member.type == MemberType::Truss) {
       part.elements.push_back(static_cast<int>(model.elements.size()));
       model.elements.push_back(latticeWind(model, scene, member, m, spec.quadrature, node_of));
+      model.wind_parts.push_back(std::move(part));
+      continue;
+    }
+    if (member.reeving) {  // massive (the reader refuses the wind on massless parts)
+      const auto& rope = dynamic_cast<const MassiveReevedRopeElement&>(reevedRope(model, findReevedRope(model, m.member)));
+      for (int c = 0; c + 1 < rope.kernel().chainNodes(); ++c) {
+        part.elements.push_back(static_cast<int>(model.elements.size()));
+        model.elements.push_back(chainWind(model, rope, c, m.drag_coefficient * m.diameter, spec.quadrature));
+      }
       model.wind_parts.push_back(std::move(part));
       continue;
     }

@@ -24,11 +24,12 @@ VecX Model::absoluteTolerances() const {
   const AbsoluteTolerance& atol = solver.atol;
   VecX out(nq + nv);
   for (const Node& node : nodes) {
-    // Every kind starts with r; the rest (φ, ‖r'‖, r') is dimensionless.
+    // Every kind starts with r (or is the length σ); the rest (φ, ‖r'‖, r') is dimensionless.
+    const int lengths = node.hasPosition() ? 3 : 1;
     out.segment(node.q, node.size()).setConstant(atol.rotation);
-    out.segment(node.q, 3).setConstant(atol.position);
+    out.segment(node.q, lengths).setConstant(atol.position);
     out.segment(nq + node.v, node.size()).setConstant(atol.angular_velocity);
-    out.segment(nq + node.v, 3).setConstant(atol.velocity);
+    out.segment(nq + node.v, lengths).setConstant(atol.velocity);
   }
   return out;
 }

@@ -10,10 +10,9 @@ constexpr int kMaxNodeDirections = 7;
 using NodeDual = Dual<double, kMaxNodeDirections>;
 }  // namespace
 
-ReevedRopeElement::ReevedRopeElement(std::string name, ReevedRopeKernel kernel, std::vector<PathPoint> path,
-                                     std::vector<Slot> slots, std::vector<int> nodes, std::vector<int> q_indices,
-                                     std::vector<int> v_indices)
-    : name_(std::move(name)), kernel_(std::move(kernel)), path_(std::move(path)), slots_(std::move(slots)), nodes_(std::move(nodes)),
+ReevedRopeElement::ReevedRopeElement(std::string name, ReevedRopeKernel kernel, RopePath path, std::vector<int> nodes,
+                                     std::vector<int> q_indices, std::vector<int> v_indices)
+    : name_(std::move(name)), kernel_(std::move(kernel)), path_(std::move(path)), nodes_(std::move(nodes)),
       q_(std::move(q_indices)), v_(std::move(v_indices)) {}
 
 ReevedRopeElement::Local<double> ReevedRopeElement::gather(const double* x, const std::vector<int>& at) const {
@@ -22,27 +21,9 @@ ReevedRopeElement::Local<double> ReevedRopeElement::gather(const double* x, cons
   return out;
 }
 
-/// x = r + R p, ẋ = ṙ + R (ω × p) (4-5), ω in body axes.
 template <class S> ReevedRopeElement::Path<S> ReevedRopeElement::path(const Local<S>& q, const Local<S>& v) const {
   Path<S> out;
-  for (std::size_t s = 0; s < slots_.size(); ++s)
-    if (slots_[s].rotates) out.R[s] = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(slots_[s].at + 3)));
-  for (std::size_t p = 0; p < path_.size(); ++p) {
-    const PathPoint& point = path_[p];
-    if (point.slot < 0) {
-      out.x[p] = point.offset.cast<S>();
-      out.xd[p].setZero();
-      continue;
-    }
-    const Slot& slot = slots_[point.slot];
-    out.x[p] = q.template segment<3>(slot.at);
-    out.xd[p] = v.template segment<3>(slot.at);
-    if (slot.rotates) {
-      const Vec3T<S> offset = point.offset.cast<S>();
-      out.x[p] += out.R[point.slot] * offset;
-      out.xd[p] += out.R[point.slot] * Vec3T<S>(Vec3T<S>(v.template segment<3>(slot.at + 3)).cross(offset));
-    }
-  }
+  path_.place<S>(q, v, out.x, out.xd, out.R);
   return out;
 }
 
@@ -53,14 +34,7 @@ ReevedRopeElement::Local<S> ReevedRopeElement::force(const Local<S>& q, const Lo
   ReevedRopeKernel::Points<S> f;
   kernel_.pointForces(p.x, p.xd, t, rates, f);
   Local<S> r = Local<S>::Zero(size());
-  for (std::size_t k = 0; k < path_.size(); ++k) {
-    const PathPoint& point = path_[k];
-    if (point.slot < 0) continue;
-    const Slot& slot = slots_[point.slot];
-    r.template segment<3>(slot.at) += f[k];
-    if (slot.rotates)
-      r.template segment<3>(slot.at + 3) += point.offset.cast<S>().cross(Vec3T<S>(p.R[point.slot].transpose() * f[k]));
-  }
+  path_.gather(p.R, f, r);
   return r;
 }
 
@@ -75,7 +49,7 @@ void ReevedRopeElement::tangent(const ElementInput& in, bool velocities, double*
   const Local<double>& values = velocities ? v : q;
   const int n = size();
   Eigen::Map<Eigen::MatrixXd> out(J, n, n);
-  for (const Slot& slot : slots_) {
+  for (const RopePath::Slot& slot : path_.slots) {
     for (int k = 0; k < slot.size; ++k) seeded_values(slot.at + k) = seeded<double, kMaxNodeDirections>(values(slot.at + k), k);
     const Local<NodeDual> r = force<NodeDual>(qd, vd, in.t, in.rates);
     for (int i = 0; i < n; ++i) out.row(i).segment(slot.at, slot.size) = r(i).derivatives().head(slot.size).transpose();
@@ -124,8 +98,8 @@ int findReevedRope(const Model& model, const std::string& rope) {
   return -1;
 }
 
-const ReevedRopeElement& reevedRope(const Model& model, int index) {
-  return dynamic_cast<const ReevedRopeElement&>(*model.elements[model.reeved_ropes[static_cast<std::size_t>(index)]]);
+const ReevedRope& reevedRope(const Model& model, int index) {
+  return dynamic_cast<const ReevedRope&>(*model.elements[model.reeved_ropes[static_cast<std::size_t>(index)]]);
 }
 
 }  // namespace cranesim

@@ -19,6 +19,29 @@ template <int N, class Coordinates, class Force> void forwardJacobian(const Coor
   for (int i = 0; i < N; ++i) dq.row(i) = Qd(i).derivatives().transpose();
 }
 
+/// The wind's forces on a cylinder of drag coefficient `coefficient` (½ ρ c d) along the chord
+/// r1 → r2 moving at v1, v2 at its ends (linearly between), lumped on the ends with the linear
+/// weights: [f₁, f₂] (LineWindElement).
+template <class S>
+Eigen::Matrix<S, 6, 1> cylinderEndForces(const WindField& wind, double coefficient, const GaussRule& rule, const Vec3T<S>& r1,
+                                         const Vec3T<S>& r2, const Vec3T<S>& v1, const Vec3T<S>& v2, double t) {
+  using std::sqrt;
+  const Vec3T<S> chord = r2 - r1;
+  const S length = sqrt(chord.squaredNorm());
+  const Vec3T<S> axis = chord / length;
+  Eigen::Matrix<S, 6, 1> Q = Eigen::Matrix<S, 6, 1>::Zero();
+  for (int g = 0; g < rule.points; ++g) {
+    const double xi = rule.xi[g];
+    const Vec3T<S> at = r1 + chord * xi;
+    const Vec3T<S> moving = v1 * (1.0 - xi) + v2 * xi;
+    const Vec3T<S> f = quadraticDrag<S>(normalPart<S>(Vec3T<S>(wind.velocity<S>(at, t) - moving), axis), coefficient) *
+                       (length * rule.weight[g]);
+    Q.template head<3>() += f * (1.0 - xi);
+    Q.template tail<3>() += f * xi;
+  }
+  return Q;
+}
+
 }  // namespace
 
 WindElement::WindElement(std::shared_ptr<const WindField> wind, std::vector<int> nodes, std::vector<int> q_indices,
@@ -117,21 +140,7 @@ LineWindElement::LineWindElement(std::shared_ptr<const WindField> wind, double d
 template <class S>
 Eigen::Matrix<S, 6, 1> LineWindElement::endForces(const Vec3T<S>& r1, const Vec3T<S>& r2, const Vec3& v1, const Vec3& v2,
                                                   double t) const {
-  using std::sqrt;
-  const Vec3T<S> chord = r2 - r1;
-  const S length = sqrt(chord.squaredNorm());
-  const Vec3T<S> axis = chord / length;
-  Eigen::Matrix<S, 6, 1> Q = Eigen::Matrix<S, 6, 1>::Zero();
-  for (int g = 0; g < rule_.points; ++g) {
-    const double xi = rule_.xi[g];
-    const Vec3T<S> at = r1 + chord * xi;
-    const Vec3 moving = (1.0 - xi) * v1 + xi * v2;
-    const Vec3T<S> f = quadraticDrag<S>(normalPart<S>(wind_->velocity<S>(at, t) - moving.cast<S>(), axis), coefficient_) *
-                       (length * rule_.weight[g]);
-    Q.template head<3>() += f * (1.0 - xi);
-    Q.template tail<3>() += f * xi;
-  }
-  return Q;
+  return cylinderEndForces<S>(*wind_, coefficient_, rule_, r1, r2, v1.cast<S>(), v2.cast<S>(), t);
 }
 
 void LineWindElement::force(const Local& q, const Local& v, double t, double* Q) const {
@@ -279,6 +288,54 @@ void LatticeWindElement::tangents(const Local& q, const Local& v, double t, doub
       for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2; ++j) dv += (N[i] * N[j]) * A[i].transpose() * block * A[j];
     }
+  }
+}
+
+PathLineWindElement::PathLineWindElement(std::shared_ptr<const WindField> wind, double drag_diameter, int points, RopePath ends,
+                                         std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices)
+    : WindElement(std::move(wind), std::move(nodes), std::move(q_indices), std::move(v_indices)),
+      coefficient_(0.5 * wind_->spec().air_density * drag_diameter), rule_(gaussLegendre(points)), ends_(std::move(ends)) {}
+
+template <class S>
+Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, 14, 1> PathLineWindElement::generalizedForce(
+    const Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, 14, 1>& q,
+    const Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, 14, 1>& v, double t, Vec3T<S>* resultant) const {
+  std::array<Vec3T<S>, 2> x, xd;
+  RopePath::Rotations<S> R;
+  ends_.place<S>(q, v, x, xd, R);
+  const Eigen::Matrix<S, 6, 1> f = cylinderEndForces<S>(*wind_, coefficient_, rule_, x[0], x[1], xd[0], xd[1], t);
+  const std::array<Vec3T<S>, 2> on_ends = {Vec3T<S>(f.template head<3>()), Vec3T<S>(f.template tail<3>())};
+  if (resultant) *resultant = on_ends[0] + on_ends[1];
+  Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, 14, 1> Q = Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, 14, 1>::Zero(size());
+  ends_.gather(R, on_ends, Q);
+  return Q;
+}
+
+void PathLineWindElement::force(const Local& q, const Local& v, double t, double* Q) const {
+  const Local out = generalizedForce<double>(q, v, t);
+  std::copy(out.data(), out.data() + size(), Q);
+}
+
+Vec3 PathLineWindElement::resultantForce(const ElementInput& in) const {
+  Vec3 resultant;
+  generalizedForce<double>(gather(in.q, coordinateIndices()), gather(in.v, velocityIndices()), in.t, &resultant);
+  return in.load_factor * resultant;
+}
+
+/// ∂Q/∂q and ∂Q/∂dq by forward AD in every local direction (at most two nodes of 7).
+void PathLineWindElement::tangents(const Local& q, const Local& v, double t, double* Qq, double* Qv) const {
+  using Seeded = Eigen::Matrix<D<kMaxLocal>, Eigen::Dynamic, 1, Eigen::ColMajor, 14, 1>;
+  const int n = size();
+  Seeded qd = q.cast<D<kMaxLocal>>(), vd = v.cast<D<kMaxLocal>>();
+  for (int k = 0; k < n; ++k) qd(k) = seeded<double, kMaxLocal>(q(k), k);
+  const Seeded by_q = generalizedForce<D<kMaxLocal>>(qd, vd, t);
+  qd = q.cast<D<kMaxLocal>>();
+  for (int k = 0; k < n; ++k) vd(k) = seeded<double, kMaxLocal>(v(k), k);
+  const Seeded by_v = generalizedForce<D<kMaxLocal>>(qd, vd, t);
+  Eigen::Map<MatX> dq(Qq, n, n), dv(Qv, n, n);
+  for (int i = 0; i < n; ++i) {
+    dq.row(i) = by_q(i).derivatives().head(n).transpose();
+    dv.row(i) = by_v(i).derivatives().head(n).transpose();
   }
 }
 

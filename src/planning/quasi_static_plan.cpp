@@ -10,7 +10,7 @@
 
 #include "cranesim/io/results_writer.hpp"
 #include "cranesim/model/compile.hpp"
-#include "cranesim/model/reeved_rope_element.hpp"
+#include "cranesim/model/reeved_rope.hpp"
 #include "cranesim/planning/control_trajectory.hpp"
 #include "cranesim/planning/flat_pendulum.hpp"
 #include "cranesim/planning/minimum_time_plan.hpp"

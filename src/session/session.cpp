@@ -11,7 +11,7 @@
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/model/member_force_elements.hpp"
-#include "cranesim/model/reeved_rope_element.hpp"
+#include "cranesim/model/reeved_rope.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
 namespace cranesim {
@@ -197,12 +197,12 @@ const MemberSpec& Session::rope(const std::string& name) const {
 std::vector<double> Session::ropeTensions(const std::string& name) const {
   rope(name);
   if (const int reeved = findReevedRope(*model_, name); reeved >= 0) {
-    const ReevedRopeElement& element = reevedRope(*model_, reeved);
+    const ReevedRope& element = reevedRope(*model_, reeved);
     const double* y = state();
-    double parts[ReevedRopeKernel::kMaxPoints];
+    double parts[ReevedRope::kMaxParts];
     element.partTensions(ElementInput{y, y + assembler_->vOffset(), nullptr, observed_t_, model_->gravity}, parts);
     std::vector<double> tensions;
-    for (int k = 0; k < element.kernel().parts(); ++k) tensions.insert(tensions.end(), kTensionPoints, parts[k]);
+    for (int k = 0; k < element.parts(); ++k) tensions.insert(tensions.end(), kTensionPoints, parts[k]);
     return tensions;
   }
   const VecX zero = VecX::Zero(model_->nv);

@@ -11,6 +11,7 @@ namespace {
 
 /// Moves node n rigidly: x ↦ c + R (x − c) + shift.
 void moveNode(const Node& n, const Vec3& c, const Mat3& R, const Vec3& shift, VecX& q, VecX* v) {
+  if (!n.hasPosition()) return;
   q.segment<3>(n.q) = c + R * (q.segment<3>(n.q) - c) + shift;
   if (n.hasRotation()) q.segment<3>(n.q + 3) = rotationVector(Mat3(R * rotationMatrix<double>(Vec3(q.segment<3>(n.q + 3)))));
   if (n.kind == NodeKind::PointSlope) q.segment<3>(n.q + 3) = R * q.segment<3>(n.q + 3);

@@ -29,7 +29,7 @@ double stepLimit(const Model& model, const VecX& x, const VecX& dx) {
   const double reach = 0.1 * (1.0 + x.head(model.nq).cwiseAbs().maxCoeff());
   double limit = 1.0;
   for (const Node& n : model.nodes) {
-    limit = std::min(limit, reach / std::max(dx.segment<3>(n.q).norm(), 1e-300));
+    limit = std::min(limit, reach / std::max(dx.segment(n.q, n.hasPosition() ? 3 : 1).norm(), 1e-300));
     if (n.hasRotation()) limit = std::min(limit, 0.5 * std::numbers::pi / std::max(dx.segment<3>(n.q + 3).norm(), 1e-300));
   }
   return limit;

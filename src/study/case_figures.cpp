@@ -9,7 +9,7 @@
 #include "cranesim/assembly/constraint_reaction.hpp"
 #include "cranesim/crane/support_reading.hpp"
 #include "cranesim/model/element.hpp"
-#include "cranesim/model/reeved_rope_element.hpp"
+#include "cranesim/model/reeved_rope.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
 namespace cranesim {
@@ -165,7 +165,7 @@ std::vector<double> elevations(const FigureSpec& fig, const Model& model, const 
 /// pull hoisting steadily the load its falls carry (LinePull, reeved_rope.hpp).
 std::vector<double> reevedRopeFigures(const FigureSpec& fig, const Model& model, const ResultsRecorder& recorder) {
   const int r = findReevedRope(model, fig.rope);
-  const ReevedRopeKernel& rope = reevedRope(model, r).kernel();
+  const ReevedRope& rope = reevedRope(model, r);
   const std::vector<double>& tensions = recorder.partTensions(r);
   std::vector<double> out(recorder.samples());
   for (std::size_t s = 0; s < out.size(); ++s) {

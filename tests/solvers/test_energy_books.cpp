@@ -80,14 +80,15 @@ TEST_CASE("Every element kind keeps the books: dqᵀ(M a + F) = dE/dt − P_time
   };
   // The crane while both winches reel and the slewing drive turns: super truss booms, the
   // strut-tie stay (with smoothing), ropes, rigid bodies; the beams and trusses of the
-  // cantilever scenes; a reeved rope over lossy sheaves on a hook block; every one damped.
+  // cantilever scenes; a reeved rope over lossy sheaves on a hook block, massless and massive;
+  // every one damped.
   for (const Case c : {Case{"crane_combined.yaml", 25.0, 1e-2, true}, Case{"rope_reeling.yaml", 5.0, 1e-2, true},
                        Case{"cantilever_timoshenko.yaml", 0.0, 1e-2, false},
                        Case{"cantilever_spline_beam.yaml", 0.0, 1e-2, false},
                        Case{"truss_type2_condensed.yaml", 0.0, 1e-2, false},
                        Case{"truss_type2_cantilever.yaml", 0.0, 1e-2, false},
                        Case{"crane_combined.yaml", 25.0, 1e-2, true, true}, Case{"rope_reeling.yaml", 5.0, 1e-2, true, true},
-                       Case{"hook_block.yaml", 5.0, 1e-2, true}}) {
+                       Case{"hook_block.yaml", 5.0, 1e-2, true}, Case{"hook_block_massive.yaml", 5.0, 1e-2, true}}) {
     Scene scene = test::loadScene(c.config);
     for (MemberSpec& m : scene.members) {
       m.damping = c.eta;

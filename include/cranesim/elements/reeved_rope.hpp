@@ -35,6 +35,21 @@
 
 namespace cranesim {
 
+/// The winch's pull while hoisting steadily (every sheave slipping towards the winch) the load
+/// that parts 1 … m−1 (the falls) of a rope of m parts carry with the tensions `tension`, λ_i
+/// the sheaves' friction exponents: the falls' sum over Σ_k Π_{i≤k} e^(−λ_i), the falls keeping
+/// their directions. For n falls over sheaves of efficiency η: W (1 − η) / (η (1 − ηⁿ)),
+/// DIN 15020-1's W / (n η_S η).
+inline double hoistingLinePull(const double* tension, const double* friction_exponent, int parts) {
+  double carried = 0.0, share = 0.0, ratio = 1.0;
+  for (int k = 1; k < parts; ++k) {
+    carried += tension[k];
+    ratio *= std::exp(-friction_exponent[k - 1]);
+    share += ratio;
+  }
+  return carried / share;
+}
+
 struct ReevedRopeKernel : ReeledLength {
   /// Path points a kernel call holds on the stack: a rope on 30 falls and its lead part.
   static constexpr int kMaxPoints = 34;
@@ -112,20 +127,6 @@ struct ReevedRopeKernel : ReeledLength {
       power += (tension[i] - tension[i - 1]) * beyond;
     }
     return power;
-  }
-
-  /// The winch's pull while hoisting steadily (every sheave slipping towards the winch) the
-  /// load that parts 1 … m−1 (the falls) carry with the tensions `tension`: their sum over
-  /// Σ_k Π_{i≤k} e^(−λ_i), the falls keeping their directions. For n falls over sheaves of
-  /// efficiency η: W (1 − η) / (η (1 − ηⁿ)), DIN 15020-1's W / (n η_S η).
-  double hoistingLinePull(const double* tension) const {
-    double carried = 0.0, share = 0.0, ratio = 1.0;
-    for (int k = 1; k < parts(); ++k) {
-      carried += tension[k];
-      ratio *= std::exp(-friction_exponent[k - 1]);
-      share += ratio;
-    }
-    return carried / share;
   }
 
   int parts() const { return points - 1; }

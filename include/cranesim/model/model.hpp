@@ -16,14 +16,15 @@
 
 namespace cranesim {
 
-/// What a node's generalized coordinates are. Every kind starts with the position r; the
-/// velocity of each coordinate is its time derivative except for the rotation vector φ,
+/// What a node's generalized coordinates are. Every kind but Material starts with the position
+/// r; the velocity of each coordinate is its time derivative except for the rotation vector φ,
 /// whose velocity is the body-frame angular velocity ω = T(φ) φ̇ (2-10).
 enum class NodeKind {
   Point,         // [r]: strut tie ends (3-7)
   Frame,         // [r, φ]: rigid bodies (3-1), Timoshenko beam nodes (3-28)
   FrameStretch,  // [r, φ, ‖r'‖]: cubic spline beam nodes (3-54)
   PointSlope,    // [r, r']: cubic spline rope nodes (C-141)
+  Material,      // [σ]: how much rope lies beyond a sheave (elements/massive_reeving.hpp), m
 };
 
 inline constexpr int kMaxNodeSize = 7;
@@ -34,6 +35,7 @@ inline int nodeSize(NodeKind kind) {
     case NodeKind::Frame: return 6;
     case NodeKind::FrameStretch: return 7;
     case NodeKind::PointSlope: return 6;
+    case NodeKind::Material: return 1;
   }
   return 0;
 }
@@ -49,6 +51,8 @@ struct Node {
   int size() const { return nodeSize(kind); }
   /// Whether coordinates 3…5 are a rotation vector (and velocities 3…5 a body angular velocity).
   bool hasRotation() const { return kind == NodeKind::Frame || kind == NodeKind::FrameStretch; }
+  /// Whether coordinates 0…2 are a position (all kinds but Material).
+  bool hasPosition() const { return kind != NodeKind::Material; }
 };
 
 /// A frame fixed on a node (4-5): r_J = r + R r_BJ, R_J = R R_BJ. `node` < 0: the ground,

@@ -1,48 +1,36 @@
 #pragma once
 // A massless reeved rope (elements/reeved_rope.hpp) as an element on the nodes its path runs
 // over: each path point is a joint (a sheave's centre, the winch, the dead end) on a body or
-// member node, or fixed on the ground. Its forces go to the nodes as [f, p × Rᵀ f] (the
-// force at the point p on a node's [ṙ, ω]). Its tension ratios depend on the direction the rope
-// runs, not a polynomial in the velocities, so both tangents come from forward AD of the same
-// code, one node at a time (a node's coordinates or velocities seeded, at most 7 directions).
+// member node, or fixed on the ground (model/rope_path.hpp). Its forces go to the nodes as
+// [f, p × Rᵀ f] (the force at the point p on a node's [ṙ, ω]). Its tension ratios depend on the
+// direction the rope runs, not a polynomial in the velocities, so both tangents come from
+// forward AD of the same code, one node at a time (a node's coordinates or velocities seeded, at
+// most 7 directions).
 //   residual   r = F(q, dq, t): the rope's forces on the nodes (no mass)
 
 #include <string>
 #include <vector>
 
 #include "cranesim/elements/reeved_rope.hpp"
-#include "cranesim/model/element.hpp"
+#include "cranesim/model/reeved_rope.hpp"
+#include "cranesim/model/rope_path.hpp"
 
 namespace cranesim {
 
 struct Model;
 
-class ReevedRopeElement final : public Element {
+class ReevedRopeElement final : public ReevedRope {
  public:
-  /// Nodes one rope may run over; their coordinates sit on the stack in every call.
-  static constexpr int kMaxNodes = 6;
-  static constexpr int kMaxLocal = kMaxNodes * 7;
+  /// The nodes' coordinates sit on the stack in every call.
+  static constexpr int kMaxLocal = RopePath::kMaxNodes * 7;
   template <class S> using Local = Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxLocal, 1>;
 
-  /// One of the element's nodes: where its values start in the local vectors, how many, and
-  /// whether values 3…5 are a rotation (vector; body angular velocity).
-  struct Slot {
-    int at = 0;
-    int size = 3;
-    bool rotates = false;
-  };
-  /// A path point: `offset` in the axes of the node in `slot`, or with slot < 0 the point itself,
-  /// fixed.
-  struct PathPoint {
-    int slot = -1;
-    Vec3 offset = Vec3::Zero();
-  };
+  /// `path`'s slots are the local vectors.
+  ReevedRopeElement(std::string name, ReevedRopeKernel kernel, RopePath path, std::vector<int> nodes,
+                    std::vector<int> q_indices, std::vector<int> v_indices);
 
-  ReevedRopeElement(std::string name, ReevedRopeKernel kernel, std::vector<PathPoint> path, std::vector<Slot> slots,
-                    std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);
-
-  /// The rope member's name.
-  const std::string& name() const { return name_; }
+  const std::string& name() const override { return name_; }
+  int parts() const override { return kernel_.parts(); }
   const ReevedRopeKernel& kernel() const { return kernel_; }
   const std::vector<int>& nodes() const override { return nodes_; }
   int size() const override { return static_cast<int>(v_.size()); }
@@ -57,15 +45,16 @@ class ReevedRopeElement final : public Element {
   double explicitTimePower(const ElementInput& in) const override;
   double dissipatedPower(const ElementInput& in) const override;
 
-  /// The tensions of the rope's parts, from the winch to the dead end (kernel().parts() values), N.
-  void partTensions(const ElementInput& in, double* tension) const;
-  /// The positions of the path points, winch to dead end.
-  std::vector<Vec3> pathPositions(const ElementInput& in) const;
+  void partTensions(const ElementInput& in, double* tension) const override;
+  std::vector<Vec3> pathPositions(const ElementInput& in) const override;
+  double hoistingLinePull(const double* tension) const override {
+    return cranesim::hoistingLinePull(tension, kernel_.friction_exponent.data(), kernel_.parts());
+  }
 
  private:
   template <class S> struct Path {
     ReevedRopeKernel::Points<S> x, xd;
-    std::array<Mat3T<S>, kMaxNodes> R;
+    RopePath::Rotations<S> R;
   };
   template <class S> Path<S> path(const Local<S>& q, const Local<S>& v) const;
   template <class S> Local<S> force(const Local<S>& q, const Local<S>& v, double t, ParameterRates rates) const;
@@ -75,14 +64,8 @@ class ReevedRopeElement final : public Element {
 
   std::string name_;
   ReevedRopeKernel kernel_;
-  std::vector<PathPoint> path_;
-  std::vector<Slot> slots_;
+  RopePath path_;
   std::vector<int> nodes_, q_, v_;
 };
-
-/// The index in Model::reeved_ropes of the reeved rope named `rope`, −1 for none.
-int findReevedRope(const Model& model, const std::string& rope);
-/// Model::reeved_ropes[index]'s element.
-const ReevedRopeElement& reevedRope(const Model& model, int index);
 
 }  // namespace cranesim

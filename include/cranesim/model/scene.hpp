@@ -70,6 +70,7 @@ struct ReevingSpec {
   std::vector<SheaveSpec> sheaves;
   double speed_band = 1e-3;  // m/s: the rope's running speed over which a sheave's loss turns
   double drawn_length = 0.0;  // Σ of the parts' drawn chords (placeMemberEnds)
+  int elements_per_part = 0;  // fidelity massive: each part's cable elements; 0: massless parts
 };
 
 /// A flexible member: a straight line of `segments` elements from `start` to `end`, with nodes

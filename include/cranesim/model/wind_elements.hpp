@@ -12,6 +12,7 @@
 
 #include "cranesim/math/gauss_legendre.hpp"
 #include "cranesim/model/element.hpp"
+#include "cranesim/model/rope_path.hpp"
 #include "cranesim/model/wind_field.hpp"
 
 namespace cranesim {
@@ -95,6 +96,29 @@ class LineWindElement final : public WindElement {
   double coefficient_;  // ½ ρ c d
   GaussRule rule_;
   int second_;  // local offset of the second node
+};
+
+/// The wind on one cable of a massive reeved rope's part (model/massive_reeved_rope_element.hpp):
+/// the cylinder of LineWindElement between two points that may sit on turning bodies (a sheave's
+/// centre, the winch, the dead end) or be the part's inner nodes, placed and loaded through the
+/// rope's path mapping (model/rope_path.hpp). Both tangents by forward AD.
+class PathLineWindElement final : public WindElement {
+ public:
+  /// `drag_diameter` c d, m; `ends` the two points on the element's nodes.
+  PathLineWindElement(std::shared_ptr<const WindField> wind, double drag_diameter, int points, RopePath ends,
+                      std::vector<int> nodes, std::vector<int> q_indices, std::vector<int> v_indices);
+  Vec3 resultantForce(const ElementInput& in) const override;
+
+ private:
+  template <class S> Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, 14, 1> generalizedForce(
+      const Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, 14, 1>& q,
+      const Eigen::Matrix<S, Eigen::Dynamic, 1, Eigen::ColMajor, 14, 1>& v, double t, Vec3T<S>* resultant = nullptr) const;
+  void force(const Local& q, const Local& v, double t, double* Q) const override;
+  void tangents(const Local& q, const Local& v, double t, double* Qq, double* Qv) const override;
+
+  double coefficient_;  // ½ ρ c d
+  GaussRule rule_;
+  RopePath ends_;
 };
 
 /// A tube of a lattice section between two of its nodes (LatticeWindElement's points), with its

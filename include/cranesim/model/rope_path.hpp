@@ -1,0 +1,74 @@
+#pragma once
+// The path points of a reeved rope (the winch, the sheaves' centres, the dead end) on the nodes
+// of the bodies and members they sit on, as the reeved rope elements see them: their positions
+// and velocities from the element's local coordinates, and the forces on them gathered back
+// onto the nodes as [f, p × Rᵀ f] (the force at the point p on a node's [ṙ, ω]).
+
+#include <array>
+#include <vector>
+
+#include "cranesim/math/rotation.hpp"
+
+namespace cranesim {
+
+struct RopePath {
+  /// Nodes one rope may run over; their rotations sit on the stack in every call.
+  static constexpr int kMaxNodes = 6;
+
+  /// One of the path's nodes: where its values start in the local vectors, how many, and
+  /// whether values 3…5 are a rotation (vector; body angular velocity).
+  struct Slot {
+    int at = 0;
+    int size = 3;
+    bool rotates = false;
+  };
+  /// A path point: `offset` in the axes of the node in `slot`, or with slot < 0 the point itself,
+  /// fixed.
+  struct Point {
+    int slot = -1;
+    Vec3 offset = Vec3::Zero();
+  };
+  template <class S> using Rotations = std::array<Mat3T<S>, kMaxNodes>;
+
+  std::vector<Point> points;
+  std::vector<Slot> slots;
+
+  /// The points x = r + R p and their velocities ẋ = ṙ + R (ω × p) (4-5), ω in body axes, from
+  /// the local q and v (into x[0 …), xd[0 …)), with the nodes' rotations R.
+  template <class S, class Local, class Points>
+  void place(const Local& q, const Local& v, Points& x, Points& xd, Rotations<S>& R) const {
+    for (std::size_t s = 0; s < slots.size(); ++s)
+      if (slots[s].rotates) R[s] = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(slots[s].at + 3)));
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      const Point& point = points[p];
+      if (point.slot < 0) {
+        x[p] = point.offset.cast<S>();
+        xd[p].setZero();
+        continue;
+      }
+      const Slot& slot = slots[point.slot];
+      x[p] = q.template segment<3>(slot.at);
+      xd[p] = v.template segment<3>(slot.at);
+      if (slot.rotates) {
+        const Vec3T<S> offset = point.offset.cast<S>();
+        x[p] += R[point.slot] * offset;
+        xd[p] += R[point.slot] * Vec3T<S>(Vec3T<S>(v.template segment<3>(slot.at + 3)).cross(offset));
+      }
+    }
+  }
+
+  /// Adds the forces f[p] on the path points to the local residual r as [f, p × Rᵀ f], R the
+  /// nodes' rotations (place).
+  template <class S, class Forces, class Local> void gather(const Rotations<S>& R, const Forces& f, Local& r) const {
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const Point& point = points[k];
+      if (point.slot < 0) continue;
+      const Slot& slot = slots[point.slot];
+      r.template segment<3>(slot.at) += f[k];
+      if (slot.rotates)
+        r.template segment<3>(slot.at + 3) += point.offset.cast<S>().cross(Vec3T<S>(R[point.slot].transpose() * f[k]));
+    }
+  }
+};
+
+}  // namespace cranesim
