@@ -7,8 +7,6 @@
 namespace cranesim {
 
 namespace {
-constexpr int kMaxNodeDirections = 7;
-using NodeDual = Dual<double, kMaxNodeDirections>;
 template <class S> using LocalT = Eigen::Matrix<S, Eigen::Dynamic, 1>;
 }  // namespace
 
@@ -85,8 +83,8 @@ void MassiveReevedRopeElement::residual(const ElementInput& in, double* r) const
 
 void MassiveReevedRopeElement::tangent(const ElementInput& in, bool velocities, double* J) const {
   const Local q = gather(in.q, q_), v = gather(in.v, v_), a = accelerations(in);
-  LocalT<NodeDual> qd = q.cast<NodeDual>(), vd = v.cast<NodeDual>();
-  LocalT<NodeDual>& seeded_values = velocities ? vd : qd;
+  LocalT<RopePath::SlotDual> qd = q.cast<RopePath::SlotDual>(), vd = v.cast<RopePath::SlotDual>();
+  LocalT<RopePath::SlotDual>& seeded_values = velocities ? vd : qd;
   const Local& values = velocities ? v : q;
   const int n = size();
   Eigen::Map<Eigen::MatrixXd> out(J, n, n);
@@ -94,10 +92,10 @@ void MassiveReevedRopeElement::tangent(const ElementInput& in, bool velocities, 
   for (int j = 0; j < innerNodes(); ++j) blocks.push_back({innerAt() + 3 * j, 3, false});
   for (int i = 1; i < kernel_.parts(); ++i) blocks.push_back({sheaveAt() + i - 1, 1, false});
   for (const RopePath::Slot& block : blocks) {
-    for (int k = 0; k < block.size; ++k) seeded_values(block.at + k) = seeded<double, kMaxNodeDirections>(values(block.at + k), k);
-    const LocalT<NodeDual> r = force<NodeDual>(qd, vd, a, in);
+    for (int k = 0; k < block.size; ++k) seeded_values(block.at + k) = seeded<double, RopePath::kMaxSlotValues>(values(block.at + k), k);
+    const LocalT<RopePath::SlotDual> r = force<RopePath::SlotDual>(qd, vd, a, in);
     for (int i = 0; i < n; ++i) out.row(i).segment(block.at, block.size) = r(i).derivatives().head(block.size).transpose();
-    for (int k = 0; k < block.size; ++k) seeded_values(block.at + k) = NodeDual(values(block.at + k));
+    for (int k = 0; k < block.size; ++k) seeded_values(block.at + k) = RopePath::SlotDual(values(block.at + k));
   }
 }
 

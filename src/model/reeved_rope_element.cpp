@@ -5,11 +5,6 @@
 
 namespace cranesim {
 
-namespace {
-constexpr int kMaxNodeDirections = 7;
-using NodeDual = Dual<double, kMaxNodeDirections>;
-}  // namespace
-
 ReevedRopeElement::ReevedRopeElement(std::string name, ReevedRopeKernel kernel, RopePath path, std::vector<int> nodes,
                                      std::vector<int> q_indices, std::vector<int> v_indices)
     : name_(std::move(name)), kernel_(std::move(kernel)), path_(std::move(path)), nodes_(std::move(nodes)),
@@ -44,16 +39,16 @@ void ReevedRopeElement::residual(const ElementInput& in, double* r) const {
 
 void ReevedRopeElement::tangent(const ElementInput& in, bool velocities, double* J) const {
   const Local<double> q = gather(in.q, q_), v = gather(in.v, v_);
-  Local<NodeDual> qd = q.cast<NodeDual>(), vd = v.cast<NodeDual>();
-  Local<NodeDual>& seeded_values = velocities ? vd : qd;
+  Local<RopePath::SlotDual> qd = q.cast<RopePath::SlotDual>(), vd = v.cast<RopePath::SlotDual>();
+  Local<RopePath::SlotDual>& seeded_values = velocities ? vd : qd;
   const Local<double>& values = velocities ? v : q;
   const int n = size();
   Eigen::Map<Eigen::MatrixXd> out(J, n, n);
   for (const RopePath::Slot& slot : path_.slots) {
-    for (int k = 0; k < slot.size; ++k) seeded_values(slot.at + k) = seeded<double, kMaxNodeDirections>(values(slot.at + k), k);
-    const Local<NodeDual> r = force<NodeDual>(qd, vd, in.t, in.rates);
+    for (int k = 0; k < slot.size; ++k) seeded_values(slot.at + k) = seeded<double, RopePath::kMaxSlotValues>(values(slot.at + k), k);
+    const Local<RopePath::SlotDual> r = force<RopePath::SlotDual>(qd, vd, in.t, in.rates);
     for (int i = 0; i < n; ++i) out.row(i).segment(slot.at, slot.size) = r(i).derivatives().head(slot.size).transpose();
-    for (int k = 0; k < slot.size; ++k) seeded_values(slot.at + k) = NodeDual(values(slot.at + k));
+    for (int k = 0; k < slot.size; ++k) seeded_values(slot.at + k) = RopePath::SlotDual(values(slot.at + k));
   }
 }
 

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "cranesim/model/member_force_elements.hpp"
-#include "cranesim/model/reeved_rope_element.hpp"
+#include "cranesim/model/reeved_rope.hpp"
 
 namespace cranesim {
 
@@ -18,8 +18,8 @@ std::string slackRopeEnds(const Scene& scene, const Model& model, const VecX& q,
   for (const MemberSpec& m : scene.members) {
     if (m.type != MemberType::Rope) continue;
     if (const int reeved = findReevedRope(model, m.name); reeved >= 0) {
-      const ReevedRopeElement& element = reevedRope(model, reeved);
-      std::vector<double> parts(static_cast<std::size_t>(element.kernel().parts()));
+      const ReevedRope& element = reevedRope(model, reeved);
+      std::vector<double> parts(static_cast<std::size_t>(element.parts()));
       element.partTensions(in, parts.data());
       report(m.name, parts.front(), parts.back());
       continue;

@@ -14,6 +14,10 @@ namespace cranesim {
 struct RopePath {
   /// Nodes one rope may run over; their rotations sit on the stack in every call.
   static constexpr int kMaxNodes = 6;
+  /// Values of one slot at most (a node's [r, φ], or a sheave's material coordinate): the
+  /// elements' tangents are differentiated one slot at a time in as many directions.
+  static constexpr int kMaxSlotValues = 7;
+  using SlotDual = Dual<double, kMaxSlotValues>;
 
   /// One of the path's nodes: where its values start in the local vectors, how many, and
   /// whether values 3…5 are a rotation (vector; body angular velocity).
