@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "cranesim/math/horizontal.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
 
@@ -35,8 +36,6 @@ InputSpec& luffingSpec(Scene& scene, const std::string& rope) {
     if (m.name == rope && m.length && m.length->input()) return m.length->input()->spec;
   throw std::invalid_argument(fmt::format("the luffing rope '{}' is not a rope length input", rope));
 }
-
-double horizontal(const Vec3& r) { return std::hypot(r.x(), r.y()); }
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cranesim/control/crane_sway.hpp"
+#include "cranesim/math/horizontal.hpp"
 #include "cranesim/planning/quasi_static_plan.hpp"
 #include "cranesim/session/session.hpp"
 
@@ -25,8 +26,6 @@ constexpr double kFeedForwardLead = 2.0 * kDriveLag;
 constexpr double kHoistGain = 1.0;
 // s: the initial sway's pull is let go over this time (short beside any sway period).
 constexpr double kRelease = 0.5;
-
-double horizontal(const Vec3& r) { return std::hypot(r.x(), r.y()); }
 
 /// The value and rate of a control spline at t.
 double valueAt(const TableProfile& spline, double t) { return Profile(spline)(t, Limit::Right); }
