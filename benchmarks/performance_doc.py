@@ -612,15 +612,48 @@ def setup_times(r: Results) -> str:
 The README's main command times its own phases into `out/main/main_command_times.csv`; copy them
 into `benchmarks/results/setup_times.csv` after a run on a fresh machine. The fresh machine is a
 minimal Debian bookworm (debootstrap minbase, with git) in a chroot on the 2-core machine, the
-packages from this machine's mirror; while its build ran, another build shared the machine for
-about its last three minutes. The CI time is the clean-clone run's log.
+packages from this machine's mirror; nothing else ran on the machine meanwhile. The CI time is
+the clean-clone run's log.
 
 {body}
 
 {r.source(None, "setup_times.csv", rows)}
 
+{build_cpu(r)}
+
 {compile_times(r)}
 """
+
+
+def build_cpu(r: Results) -> str:
+    rows = r.csv("build_cpu.csv")
+    cpu: dict[tuple[str, str], float] = {}
+    units: dict[tuple[str, str], int] = {}
+    for x in rows:
+        key = (x["part"], x["configuration"])
+        cpu[key] = cpu.get(key, 0.0) + num(x["user_s"]) + num(x["sys_s"])
+        units[key] = units.get(key, 0) + 1
+    parts = list(dict.fromkeys(x["part"] for x in rows))
+    total = {c: sum(v for (_, k), v in cpu.items() if k == c) for c in ("unity off", "unity on")}
+
+    def line(name, off, on, units_off, units_on):
+        return [name, f"{units_off} / {units_on}", seconds(off), seconds(on), f"{on / off - 1:+.0%}" if off else "–"]
+
+    body = table(["part of the build", "translation units (off / on)", "CPU, unity off", "CPU, unity on", "change"],
+                 [line(p, cpu.get((p, "unity off"), 0.0), cpu.get((p, "unity on"), 0.0),
+                       units.get((p, "unity off"), 0), units.get((p, "unity on"), 0)) for p in parts]
+                 + [line("**in all**", total["unity off"], total["unity on"],
+                         sum(v for (_, k), v in units.items() if k == "unity off"),
+                         sum(v for (_, k), v in units.items() if k == "unity on"))])
+    return f"""What the main command compiles (`crane-sim`, the Python extension and the libraries they
+link), from scratch, with and without the unity build (`CRANESIM_UNITY_BUILD`): user and system
+CPU time summed over the compilations, g++ 12 at `-O3`. The element kernels and the Python
+extension are not batched: their rows differ by the measurement's spread. On two cores the
+build's wall time is about half the total.
+
+{body}
+
+{r.source("python3 benchmarks/build_cpu.py", "build_cpu.csv", rows)}"""
 
 
 def compile_times(r: Results) -> str:
