@@ -19,6 +19,7 @@
 #include "guided_hook.hpp"
 #include "random_states.hpp"
 #include "scene_fixtures.hpp"
+#include "spread_blocks.hpp"
 
 using namespace cranesim;
 
@@ -207,44 +208,8 @@ TEST_CASE("As its density goes to zero the massive rope holds the hook as the ma
 
 namespace {
 
-/// A hook block on two spread falls under a free head block (both bodies, turned), each part
-/// of three massive elements, the winch on the ground: every part's ends move and turn. With
-/// `capstan` the rope slides over the head's first sheave (friction 0.15).
-Model spreadBlocks(double efficiency, bool capstan) {
-  return test::loadYaml(fmt::format(R"(
-name: spread blocks
-ground:
-  joints: [{{name: winch, position: [-6, 0, 21]}}]
-bodies:
-  - name: head
-    mass: 500
-    inertia: [50, 60, 70]
-    position: [0, 0, 20]
-    rotation: {{axis: [1, 2, 3], angle: 0.3}}
-    joints: [{{name: a, position: [0.3, 0.4, 0]}}, {{name: b, position: [-0.3, -0.2, 0.1]}}]
-  - name: hook
-    mass: 10000
-    inertia: [1000, 1200, 900]
-    position: [0.5, 0.2, 10]
-    joints: [{{name: a, position: [0.2, 0.3, 0.5]}}, {{name: b, position: [-0.3, 0.1, 0.4]}}]
-members:
-  - name: hoist
-    type: rope
-    element: reeved
-    path: [ground.winch, {{joint: head.a, radius: 0.3{}}}, {{joint: hook.a, radius: 0.3}}, {{joint: head.b, radius: 0.3}},
-           {{joint: hook.b, radius: 0.3}}, head.b]
-    fidelity: massive
-    elements_per_part: 3
-    efficiency: {}
-    speed_band: 0.05
-    section: {{radius: 0.01}}
-    material: {{density: 7800, youngs_modulus: 1.0e11, poisson_ratio: 0.3}}
-    damping: 0.02
-    length: {{type: ramp, value: 30, rate: -0.3}}
-solver: {{t_end: 1}}
-)",
-                                    capstan ? ", friction: 0.15" : "", efficiency));
-}
+/// The spread blocks' parts as massive chains of three cables each.
+const std::string kMassiveParts = "    fidelity: massive\n    elements_per_part: 3\n";
 
 /// A random state about the drawing: coordinates moved by 1e-2, velocities and accelerations 0.1.
 struct RandomState {
@@ -261,7 +226,7 @@ RandomState randomState(const Model& model, test::Rng& rng) {
 
 TEST_CASE("Massive reeved rope: Jacobian equals central differences of the residual", "[reeving][massive][jacobian]") {
   const bool capstan = GENERATE(false, true);
-  const Model model = spreadBlocks(0.96, capstan);
+  const Model model = test::spreadBlocks(0.96, capstan, kMassiveParts);
   const MassiveReevedRopeElement& rope = massiveRope(model);
   test::Rng rng(11);
   for (int trial = 0; trial < 3; ++trial) {
@@ -299,7 +264,7 @@ TEST_CASE("Massive reeved rope: Jacobian equals central differences of the resid
 TEST_CASE("Massive reeved rope keeps the books: dqᵀr = dE/dt − P_winch + P_sheaves + P_damping", "[reeving][massive][energy]") {
   const double efficiency = GENERATE(1.0, 0.96);
   const bool capstan = GENERATE(false, true);
-  const Model model = spreadBlocks(efficiency, capstan);
+  const Model model = test::spreadBlocks(efficiency, capstan, kMassiveParts);
   const MassiveReevedRopeElement& rope = massiveRope(model);
   const Assembler assembler(model);
   test::Rng rng(5);

@@ -17,6 +17,7 @@
 #include "random_states.hpp"
 #include "guided_hook.hpp"
 #include "scene_fixtures.hpp"
+#include "spread_blocks.hpp"
 
 using namespace cranesim;
 
@@ -117,52 +118,11 @@ TEST_CASE("Steady hoisting and lowering: the line pull of n falls over sheaves o
   if (efficiency < 1.0) CHECK(sink.recorder.dissipated().back() > 0.0);
 }
 
-namespace {
-
-/// A hook block on two spread falls under a free head block (both bodies, turned), the winch
-/// on the ground: every part's ends move and turn. With `capstan` the rope slides over the
-/// head's first sheave (friction 0.15, its wrap the drawn path's turn).
-Model spreadBlocks(double efficiency, bool capstan = false) {
-  return test::loadYaml(fmt::format(R"(
-name: spread blocks
-ground:
-  joints: [{{name: winch, position: [-6, 0, 21]}}]
-bodies:
-  - name: head
-    mass: 500
-    inertia: [50, 60, 70]
-    position: [0, 0, 20]
-    rotation: {{axis: [1, 2, 3], angle: 0.3}}
-    joints: [{{name: a, position: [0.3, 0.4, 0]}}, {{name: b, position: [-0.3, -0.2, 0.1]}}]
-  - name: hook
-    mass: 10000
-    inertia: [1000, 1200, 900]
-    position: [0.5, 0.2, 10]
-    joints: [{{name: a, position: [0.2, 0.3, 0.5]}}, {{name: b, position: [-0.3, 0.1, 0.4]}}]
-members:
-  - name: hoist
-    type: rope
-    element: reeved
-    path: [ground.winch, {{joint: head.a, radius: 0.3{}}}, {{joint: hook.a, radius: 0.3}}, {{joint: head.b, radius: 0.3}},
-           {{joint: hook.b, radius: 0.3}}, head.b]
-    efficiency: {}
-    speed_band: 0.05
-    section: {{radius: 0.01}}
-    material: {{density: 7800, youngs_modulus: 1.0e11, poisson_ratio: 0.3}}
-    damping: 0.02
-    length: {{type: ramp, value: 30, rate: -0.3}}
-solver: {{t_end: 1}}
-)",
-                                    capstan ? ", friction: 0.15" : "", efficiency));
-}
-
-}  // namespace
-
 TEST_CASE("Reeved rope: Jacobian equals central differences of the residual", "[reeving][jacobian]") {
   // η = 0.96 with a band of 5 cm/s and speeds of 0.1 m/s: the tension ratios turn with the
   // velocities, so the velocity columns are not constant; so do a capstan's.
   const bool capstan = GENERATE(false, true);
-  const Model model = spreadBlocks(0.96, capstan);
+  const Model model = test::spreadBlocks(0.96, capstan);
   const ReevedRopeElement& rope = reevedRopeNamed(model);
   test::Rng rng(11);
   for (int trial = 0; trial < 5; ++trial) {
@@ -199,7 +159,7 @@ TEST_CASE("Reeved rope: Jacobian equals central differences of the residual", "[
 TEST_CASE("Reeved rope keeps the books: dqᵀF = dV/dt − P_winch + P_sheaves + P_damping", "[reeving][energy]") {
   const double efficiency = GENERATE(1.0, 0.96);
   const bool capstan = GENERATE(false, true);
-  const Model model = spreadBlocks(efficiency, capstan);
+  const Model model = test::spreadBlocks(efficiency, capstan);
   const ReevedRopeElement& rope = reevedRopeNamed(model);
   test::Rng rng(5);
   for (int trial = 0; trial < 5; ++trial) {
