@@ -46,7 +46,7 @@ def unity_sources(build: Path, obj: str) -> list[str]:
     return [line.split('"')[1] for line in unit.read_text().splitlines() if line.startswith("#include")]
 
 
-def part_of(obj: str, sources: list[str]) -> str:
+def part_of(obj: str) -> str:
     """Which part of the build a translation unit belongs to, as the docs' table groups them."""
     target = obj.split("CMakeFiles/")[1].split(".dir/")[0] if "CMakeFiles/" in obj else "other"
     if target == "cranesim":
@@ -74,7 +74,7 @@ def measure(configuration: str, targets: list[str], jobs: int) -> list[dict]:
             obj = record["object"]
             sources = unity_sources(build, obj)
             unit = obj.split(".dir/")[-1].removesuffix(".o")
-            rows.append({"configuration": f"unity {configuration}", "part": part_of(obj, sources), "unit": unit,
+            rows.append({"configuration": f"unity {configuration}", "part": part_of(obj), "unit": unit,
                          "sources": len(sources) or 1, "user_s": f"{record['user']:.2f}", "sys_s": f"{record['sys']:.2f}",
                          "machine": f"{os.cpu_count()} cores, {platform.processor() or platform.machine()}"})
         return rows
