@@ -94,6 +94,16 @@ void writeControls(Hdf5File& file, const TargetSpec& target, const QuasiStaticPl
   writeVector(file, "/controls/hoist_change", change);
   writeVector(file, "/controls/luffing_length", luffing);
   writeVector(file, "/controls/hoist_length", hoist);
+  if (target.slewing_axis) {
+    std::vector<double> radius, height;
+    for (const ControlPoint& c : plan.controls) {
+      const Eigen::Vector2d at = radiusAndHeight(target, plan, c);
+      radius.push_back(at.x());
+      height.push_back(at.y());
+    }
+    writeVector(file, "/controls/radius", radius);
+    writeVector(file, "/controls/height", height);
+  }
   for (const auto& [name, spline] : {std::pair{"luffing_length", &plan.luffing_spline}, std::pair{"hoist_length", &plan.hoist_spline}}) {
     const std::string g = std::string("/controls/spline/") + name;
     writeVector(file, g + "/t", spline->t);

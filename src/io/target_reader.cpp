@@ -14,6 +14,7 @@
 #include "cranesim/model/closest_name.hpp"
 #include "cranesim/model/compile.hpp"
 #include "cranesim/planning/rest_to_rest_path.hpp"
+#include "cranesim/planning/slewing_axis.hpp"
 #include "sensor_reader.hpp"
 #include "solver_reader.hpp"
 #include "wind_reader.hpp"
@@ -175,17 +176,51 @@ SurfaceSpec readFit(const YamlField& f) {
   return s;
 }
 
+/// The slewing axis radii are measured from: the slewing target's constraint, else the one the
+/// scene's `crane:` block names; none without either.
+std::optional<SlewingAxis> radiusAxis(const TargetSpec& t) {
+  const std::string constraint = t.slewing ? t.slewing->constraint : t.scene.crane ? t.scene.crane->slewing : std::string();
+  if (constraint.empty()) return std::nullopt;
+  try {
+    return slewingAxisOf(t.scene, constraint, t.controls.end_point);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(t.slewing ? t.slewing->where : t.scene.crane->where_slewing, e.what());
+  }
+}
+
+/// `pick` or `set`: `{radius, height}` of the end point, m, as a state at rest in trajectory coordinates.
+EndState liftEnd(const YamlField& f, const TargetSpec& t) {
+  f.allowKeys({"radius", "height"});
+  if (!t.slewing_axis)
+    f.fail("a radius is measured from the slewing axis: give the target a slewing block or the scene a crane block naming "
+           "its slewing constraint");
+  const YamlField radius = f.at("radius");
+  double x = 0.0;
+  try {
+    x = t.slewing_axis->xAtRadius(radius.positive());
+  } catch (const std::domain_error& e) {
+    radius.fail(e.what());
+  }
+  return EndState(x - t.origin.x(), f.at("height").number() - t.origin.y(), 0.0, 0.0);
+}
+
 void readTrajectory(const YamlField& f, TargetSpec& t) {
-  f.allowKeys({"origin", "start", "target", "state_min", "state_max", "control_min", "control_max", "Q", "R", "P_end",
-               "steps", "sample_time", "receding_horizon", "tolerance"});
+  f.allowKeys({"origin", "start", "target", "pick", "set", "state_min", "state_max", "control_min", "control_max", "Q", "R",
+               "P_end", "steps", "sample_time", "receding_horizon", "tolerance"});
   QrProblem& p = t.trajectory;
   if (const auto o = f.find("origin")) t.origin = readVector<2>(*o);
-  p.start = readVector<4>(f.at("start"));
-  p.target = readVector<4>(f.at("target"));
-  t.where_start = f.at("start").where();
-  t.where_target = f.at("target").where();
-  p.state_min = readVector<4>(f.at("state_min"));
-  p.state_max = readVector<4>(f.at("state_max"));
+  for (const auto& [state, where, key, engineers] : {std::tuple{&p.start, &t.where_start, "start", "pick"},
+                                                     std::tuple{&p.target, &t.where_target, "target", "set"}}) {
+    const auto given = f.find(key), given_by_radius = f.find(engineers);
+    if (given && given_by_radius) given_by_radius->fail(fmt::format("give the {} or the {}, not both", key, engineers));
+    if (!given && !given_by_radius) f.fail(fmt::format("missing key '{}' (or '{}': {{radius, height}})", key, engineers));
+    *state = given ? readVector<4>(*given) : liftEnd(*given_by_radius, t);
+    *where = (given ? *given : *given_by_radius).where();
+  }
+  // Without bounds the end point may run 10 m beyond the box of its start and target, at 1 m/s.
+  const Eigen::Vector4d reach(10.0, 10.0, 1.0, 1.0);
+  p.state_min = f.find("state_min") ? readVector<4>(f.at("state_min")) : Eigen::Vector4d(p.start.cwiseMin(p.target) - reach);
+  p.state_max = f.find("state_max") ? readVector<4>(f.at("state_max")) : Eigen::Vector4d(p.start.cwiseMax(p.target) + reach);
   p.control_min = readVector<2>(f.at("control_min"));
   p.control_max = readVector<2>(f.at("control_max"));
   p.Q = readDiagonal<4>(f.at("Q"));
@@ -372,6 +407,7 @@ TargetSpec readTarget(const std::string& path) {
   if (t.method == PlanMethod::MinimumTime) checkMinimumTimeLimits(f, t);
   t.map = readMap(f.at("map"));
   if (const auto fit = f.find("fit")) t.fit = readFit(*fit);
+  t.slewing_axis = radiusAxis(t);
   const YamlField trajectory = f.at("trajectory");
   t.where_trajectory = trajectory.where();
   readTrajectory(trajectory, t);

@@ -507,6 +507,13 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
       say(fmt::format("minimum time: the lift's parts clear the obstacles by ≥ {:.3g} m at its nodes (asked {:.3g} m)",
                       *std::min_element(plan.lift->clearance.begin(), plan.lift->clearance.end()), problem.clearance_margin));
   }
+  if (target.slewing_axis) {
+    const Eigen::Vector2d pick = radiusAndHeight(target, plan, plan.controls.front()), set = radiusAndHeight(target, plan, plan.controls.back());
+    say(fmt::format("lift: from a radius of {:.3f} m and a height of {:.3f} m (boom {:.2f}°) to {:.3f} m and {:.3f} m (boom {:.2f}°), "
+                    "radii from the axis of '{}'",
+                    pick.x(), pick.y(), plan.controls.front().boom_angle_deg, set.x(), set.y(), plan.controls.back().boom_angle_deg,
+                    target.slewing_axis->constraint));
+  }
   if (target.drive_limits.any())
     say(fmt::format("drive limits: {} (largest peak / limit, as duration factor: {:.3g})",
                     plan.drive_limit_factor <= 1.0 ? "kept" : "EXCEEDED by the " + methodName(target.method) + " path",
@@ -522,6 +529,11 @@ QuasiStaticPlan planQuasiStatic(const TargetSpec& target, StaticMap map, const P
                     plan.slewing_peaks.jerk * deg));
   }
   return plan;
+}
+
+Eigen::Vector2d radiusAndHeight(const TargetSpec& target, const QuasiStaticPlan& plan, const ControlPoint& c) {
+  const double x = plan.fit.fx(c.boom_angle_deg, c.hoist_change), z = plan.fit.fz(c.boom_angle_deg, c.hoist_change);
+  return {target.slewing_axis->radiusAt(x), z};
 }
 
 Scene verificationScene(const TargetSpec& target, const QuasiStaticPlan& plan) {

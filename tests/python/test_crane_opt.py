@@ -308,6 +308,37 @@ def test_map_is_bitwise_identical_on_threads_and_ranks(tmp_path: Path):
             assert datasets[key].tobytes() == values.tobytes(), f"{key} differs with {name}"
 
 
+def test_pick_and_set_by_radius_and_height(tmp_path: Path):
+    """Table 8-2 given as a crane engineer reads it: the load picked at a radius of 10 m from the
+    thesis crane's slewing axis (the vertical through the origin) at the origin's height, set at
+    35 m and 10 m higher, without state bounds. The reader turns them into the plane's start and
+    target exactly, the default bounds reach 10 m and 1 m/s beyond them, and the plan reports its
+    ends as radius and height back, within the map's inversion (1e-5 m)."""
+    target = coarse_condensed_crane_target(tmp_path)
+    text = target.read_text(encoding="utf-8")
+    for line, replacement in [("  start: [-10, 0, 0, 0]", "  pick: {radius: 10, height: 2.041}"),
+                              ("  target: [-35, 10, 0, 0]", "  set: {radius: 35, height: 12.041}"),
+                              ("  state_min: [-50, 0, -1, -1]", ""), ("  state_max: [-5, 30, 1, 1]", "")]:
+        assert line in text, line
+        text = text.replace(line, replacement, 1)
+    target.write_text(text, encoding="utf-8")
+    out = tmp_path / "plan.h5"
+    result = crane_opt("plan", target, "-o", out, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    with h5py.File(out, "r") as f:
+        assert np.allclose(f["trajectory/start"][0], [-10, 0, 0, 0], rtol=0, atol=1e-12)
+        assert np.allclose(f["trajectory/target"][0], [-35, 10, 0, 0], rtol=0, atol=1e-12)
+        assert np.allclose(f["trajectory/state_bounds"][...], [[-45, -10, -1, -1], [0, 20, 1, 1]], rtol=0, atol=1e-12)
+        radius, height = f["controls/radius"][...], f["controls/height"][...]
+    assert abs(radius[0] - 10) < 1e-4 and abs(radius[-1] - 35) < 1e-4
+    assert abs(height[0] - 2.041) < 1e-4 and abs(height[-1] - 12.041) < 1e-4
+    assert np.all(radius >= 10 - 1e-4) and np.all(radius <= 35 + 1e-4)
+    line = re.search(r"lift: from a radius of (\S+) m and a height of (\S+) m \(boom (\S+)°\) to (\S+) m and (\S+) m", result.stderr)
+    assert line, result.stderr
+    assert [float(v) for v in line.groups()[:2]] == pytest.approx([10, 2.041], abs=1e-3)
+    assert [float(v) for v in line.groups()[3:]] == pytest.approx([35, 12.041], abs=1e-3)
+
+
 def test_plan_under_mpirun(tmp_path: Path):
     """Under mpirun the map's rows are farmed out and rank 0 alone plans, verifies and writes; a
     bad target is reported once, with exit code 2."""

@@ -134,4 +134,8 @@ void verifyPlan(const TargetSpec& target, QuasiStaticPlan& plan, const std::stri
 /// from t = 0 to the end of the splines plus the settle time.
 Scene verificationScene(const TargetSpec& target, const QuasiStaticPlan& plan);
 
+/// The end point's radius from the target's slewing axis and its height, m, where it rests under
+/// the controls c (the fitted map); the target must have a slewing axis.
+Eigen::Vector2d radiusAndHeight(const TargetSpec& target, const QuasiStaticPlan& plan, const ControlPoint& c);
+
 }  // namespace cranesim

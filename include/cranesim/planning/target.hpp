@@ -10,6 +10,7 @@
 #include "cranesim/planning/obstacle.hpp"
 #include "cranesim/planning/plan_tracking.hpp"
 #include "cranesim/planning/qr_trajectory.hpp"
+#include "cranesim/planning/slewing_axis.hpp"
 #include "cranesim/planning/static_map.hpp"
 #include "cranesim/planning/surface_fit.hpp"
 
@@ -84,6 +85,9 @@ struct TargetSpec {
   QrProblem trajectory;
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   SourceLocation where_start, where_target, where_trajectory;
+  /// The slewing axis the end point's radius is measured from (`pick`, `set`, /controls/radius),
+  /// when the target slews or the scene's crane block names its slewing constraint.
+  std::optional<SlewingAxis> slewing_axis;
   PlanMethod method = PlanMethod::QuasiStatic;
   std::optional<SlewingSpec> slewing;
   /// Flatness stretches its path's duration until every control spline keeps these, minimum_time
