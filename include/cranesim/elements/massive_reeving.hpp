@@ -14,7 +14,7 @@
 //   (the material's), tension T = EA max(ε + η ε̇, 0), the elastic T₀ = EA max(ε, 0).
 // - Energies: V = Σ_e ½ EA L_e max(ε, 0)² − ρA L_e g·(x_a + x_b)/2; T = ½ Σ_j μ_j |ẋ_j|² +
 //   ½ Σ_i m_i σ̇_i², the inner node's lumped mass μ_j = ρA L_e, the sheave's m_i (the rope's mass
-//   on half its circumference, ρA π r: the sheave's own rotary inertia is not modelled).
+//   on half its circumference, ρA π r, and the sheave's rotary inertia J/r²: sheaveMass).
 // - Equations: inner node μ_j ẍ_j + ∂V/∂x_j = 0 (material enters with the node's velocity);
 //   path point: ∂V/∂x_k on its body; sheave m_i σ̈_i + ∂V/∂σ_i − ½ Σ_j ∂μ_j/∂σ_i |ẋ_j|² + f_i = 0.
 //   ∂V/∂L_e = −T₀ (1 + ε/2) − ΔT (1 + ε) − ρA g·(x_a + x_b)/2, ΔT = T − T₀ (the damping stress'
@@ -72,8 +72,12 @@ struct MassiveReevingKernel : ReeledLength {
   int chainNodes() const { return parts() * elements_per_part + 1; }
   double lineDensity() const { return material.density * section.area; }
   double axialStiffness() const { return material.youngs_modulus * section.area; }
-  /// The sheave mass the scene gives a sheave of radius r: the rope on half its circumference.
-  double sheaveMass(double radius) const { return lineDensity() * std::numbers::pi * radius; }
+  /// The mass m_i on a sheave's material coordinate: the rope on half the circumference of a
+  /// sheave of radius r, and the sheave's rotary inertia J about its axle turned without slip
+  /// (½ J (σ̇/r)² = ½ (J/r²) σ̇²).
+  double sheaveMass(double radius, double inertia) const {
+    return lineDensity() * std::numbers::pi * radius + inertia / (radius * radius);
+  }
 
   /// One cable's share of the state, element e of part k: its end nodes (chain nodes k n + e and
   /// k n + e + 1), the start node's acceleration (read where it is an inner node), σ_k and σ_{k+1}
