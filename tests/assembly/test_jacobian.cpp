@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
 #include <array>
 #include <random>
 
@@ -131,6 +133,19 @@ TEST_CASE("A sparse element's blocks assemble to the Jacobian: the massive reeve
     const MatX Jq = denseJacobian(statics, t, cj, y, yp);
     CHECK((Jq.leftCols(model.nq) - J.leftCols(model.nq)).cwiseAbs().maxCoeff() == 0.0);
   }
+}
+
+TEST_CASE("A massive reeved rope's Jacobian grows with its cables, not with their square", "[jacobian][reeving][massive]") {
+  // Four parts on the spread blocks: 4 and 16 cables per part, 4 times the cables. One dense
+  // block of the rope's values would have about 16 times the non-zeros.
+  const auto nonZeros = [](int cables) {
+    const Model model = test::spreadBlocks(0.96, false, fmt::format("    fidelity: massive\n    elements_per_part: {}\n", cables));
+    return Assembler(model).pattern().nonZeros();
+  };
+  const int few = nonZeros(4), many = nonZeros(16);
+  INFO("non-zeros: " << few << " with 4 cables per part, " << many << " with 16");
+  CHECK(many < 4.5 * few);
+  CHECK(many > 2.5 * few);  // the cables, not the blocks and the winch, make most of them
 }
 
 TEST_CASE("Baumgarte Jacobian equals finite differences except for the documented ∂Γ/∂q term", "[jacobian]") {
