@@ -90,12 +90,21 @@ void Assembler::buildPattern() {
     node_blocks_.push_back(b);
   }
   for (const auto& e : model_.elements) {
-    std::vector<int> rows, cols;
-    for (int i : e->velocityIndices()) rows.push_back(nq + i);
-    for (int i : e->coordinateIndices()) cols.push_back(i);
-    for (int i : e->velocityIndices()) cols.push_back(nq + i);
-    element_blocks_.push_back(pattern_.addBlock(rows, cols));
-    mass_blocks_.push_back(mass_pattern_.addBlock(e->velocityIndices(), e->velocityIndices()));
+    const std::vector<int>& q = e->coordinateIndices();
+    const std::vector<int>& v = e->velocityIndices();
+    std::vector<std::vector<int>> blocks = e->jacobianBlocks();
+    sparse_element_.push_back(!blocks.empty());
+    if (blocks.empty()) blocks.push_back(range(0, static_cast<int>(v.size())));
+    std::vector<int>& ids = element_blocks_.emplace_back();
+    for (const std::vector<int>& block : blocks) {
+      std::vector<int> rows, cols;
+      for (int i : block) rows.push_back(nq + v[i]);
+      if (sparse_element_.back()) for (int i : block) cols.push_back(q[i]);
+      else cols = q;
+      for (int i : block) cols.push_back(nq + v[i]);
+      ids.push_back(pattern_.addBlock(rows, cols));
+    }
+    mass_blocks_.push_back(mass_pattern_.addBlock(v, v, sparse_element_.back()));
   }
   mass_pattern_.finalize(model_.nv);
   for (const Load& l : model_.loads) {
@@ -143,7 +152,12 @@ void Assembler::listJacobianBlocks() {
     b.qq_at = list(b.qq);
   }
   node_range_ = {0, end()};
-  for (int block : element_blocks_) element_range_.push_back({list(block), end()});
+  for (const std::vector<int>& blocks : element_blocks_) {
+    BufferRange range{end(), 0};
+    for (int block : blocks) list(block);
+    range.end = end();
+    element_range_.push_back(range);
+  }
   load_range_.begin = end();
   for (int block : load_blocks_) load_at_.push_back(list(block));
   load_range_.end = end();
@@ -282,7 +296,9 @@ void Assembler::jacobian(double t, double cj, const double* y, const double* yp,
     const auto& el = *model_.elements[item];
     const BufferRange& r = element_range_[item];
     double* out = buffer + r.begin;
-    if (coordinate_jacobian_only_) {
+    if (sparse_element_[item]) {
+      el.blockJacobian(in, cj, coordinate_jacobian_only_, out);
+    } else if (coordinate_jacobian_only_) {
       const std::size_t coordinates = el.size() * el.coordinateIndices().size();
       el.coordinateJacobian(in, out);
       std::fill(out + coordinates, buffer + r.end, 0.0);
@@ -389,7 +405,8 @@ Eigen::SparseMatrix<double> Assembler::massMatrix(double t, const double* q) con
     local.resize(e.size() * e.size());
     e.mass(in, local.data());
     const std::vector<int>& slots = mass_pattern_.slots(mass_blocks_[k]);
-    for (std::size_t i = 0; i < slots.size(); ++i) values[slots[i]] += local[i];
+    const std::size_t stride = sparse_element_[k] ? e.size() + 1 : 1;  // a sparse element's diagonal
+    for (std::size_t i = 0; i < slots.size(); ++i) values[slots[i]] += local[i * stride];
   }
   return patternedMatrix(mass_pattern_, model_.nv, values);
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <numbers>
+#include <string>
 
 namespace cranesim {
 namespace {
@@ -32,13 +33,23 @@ double readWrap(const YamlField& f) {
   return degrees * std::numbers::pi / 180.0;
 }
 
-/// `{joint: <body>.<joint>, radius: r, efficiency: η}`, η defaulting to the rope's, or a capstan
-/// `{joint, radius, friction: μ, wrap_deg: θ}`, θ defaulting to the drawn path's turn.
-SheaveSpec readSheave(const YamlField& f, double efficiency) {
+/// A turning sheave's rotary inertia J about its axle, kg·m², on a massive rope only: the
+/// massless rope has no coordinate of the material running over its sheaves to carry it.
+double readSheaveInertia(const YamlField& f, bool massive) {
+  if (!massive)
+    f.fail("a sheave's inertia needs fidelity: massive (the rope's speed over the sheave is a coordinate there; "
+           "massless parts have none to carry it)");
+  return f.nonNegative();
+}
+
+/// `{joint: <body>.<joint>, radius: r, efficiency: η, inertia: J}`, η defaulting to the rope's,
+/// J to 0, or a capstan `{joint, radius, friction: μ, wrap_deg: θ}`, θ defaulting to the drawn
+/// path's turn.
+SheaveSpec readSheave(const YamlField& f, double efficiency, bool massive) {
   if (!f.isMap())
-    f.fail("a sheave is {joint: <body>.<joint>, radius: r} (and optionally efficiency: η, or friction: μ and wrap_deg: θ "
-           "for a capstan); only the path's first point (the winch) and last (the dead end) are bare joints");
-  f.allowKeys({"joint", "radius", "efficiency", "friction", "wrap_deg"});
+    f.fail("a sheave is {joint: <body>.<joint>, radius: r} (and optionally efficiency: η and inertia: J, or friction: μ "
+           "and wrap_deg: θ for a capstan); only the path's first point (the winch) and last (the dead end) are bare joints");
+  f.allowKeys({"joint", "radius", "efficiency", "inertia", "friction", "wrap_deg"});
   SheaveSpec s;
   s.joint = f.at("joint").text();
   s.where = f.at("joint").where();
@@ -47,8 +58,10 @@ SheaveSpec readSheave(const YamlField& f, double efficiency) {
   if (!(s.radius > 0.0)) radius.fail(fmt::format("a sheave's radius must be positive, found {:g}", s.radius));
   if (s.radius > YamlField::kMaxCoordinate) radius.fail(fmt::format("a radius of {:g} m is beyond any crane's sheave", s.radius));
   if (const auto mu = f.find("friction")) {
-    if (f.has("efficiency"))
-      f.at("efficiency").fail("a capstan (a sheave with friction) does not turn: it has no bearing efficiency");
+    for (const char* turning : {"efficiency", "inertia"})
+      if (f.has(turning))
+        f.at(turning).fail(fmt::format("a capstan (a sheave with friction) does not turn: it has no {}",
+                                       turning == std::string("efficiency") ? "bearing efficiency" : "rotary inertia"));
     s.friction = readFriction(*mu);
     if (const auto wrap = f.find("wrap_deg")) s.wrap = readWrap(*wrap);
     return s;
@@ -56,6 +69,7 @@ SheaveSpec readSheave(const YamlField& f, double efficiency) {
   if (f.has("wrap_deg"))
     f.at("wrap_deg").fail("wrap_deg belongs to a capstan: give the rope's friction on it as friction: μ");
   s.efficiency = f.has("efficiency") ? readEfficiency(f.at("efficiency")) : efficiency;
+  if (const auto inertia = f.find("inertia")) s.inertia = readSheaveInertia(*inertia, massive);
   return s;
 }
 
@@ -97,7 +111,7 @@ ReevingSpec readReeving(const YamlField& f) {
       path->fail(fmt::format("a path has at most {} points, found {}", ReevedRopeKernel::kMaxPoints, points.size()));
     r.winch = jointName(points.front());
     r.where_winch = points.front().where();
-    for (std::size_t i = 1; i + 1 < points.size(); ++i) r.sheaves.push_back(readSheave(points[i], efficiency));
+    for (std::size_t i = 1; i + 1 < points.size(); ++i) r.sheaves.push_back(readSheave(points[i], efficiency, r.elements_per_part > 0));
     r.dead_end = jointName(points.back());
     r.where_dead_end = points.back().where();
   } else {
@@ -108,7 +122,8 @@ ReevingSpec readReeving(const YamlField& f) {
       n.fail(fmt::format("the falls (parts of line) between the blocks must be 1…{}, found {}", kMaxFalls, falls));
     r.winch = f.at("winch").text();
     r.where_winch = f.at("winch").where();
-    const SheaveSpec head = readSheave(f.at("head"), efficiency), hook = readSheave(f.at("hook"), efficiency);
+    const bool massive = r.elements_per_part > 0;
+    const SheaveSpec head = readSheave(f.at("head"), efficiency, massive), hook = readSheave(f.at("hook"), efficiency, massive);
     // winch → head → hook → head … : n falls over n sheaves, the dead end on the block the last
     // fall reaches.
     for (int i = 0; i < falls; ++i) r.sheaves.push_back(i % 2 == 0 ? head : hook);

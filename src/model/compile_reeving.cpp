@@ -95,7 +95,8 @@ void addMassive(Model& model, const MemberSpec& m) {
   k.points = static_cast<int>(placed.joints.size());
   k.elements_per_part = reeving.elements_per_part;
   setFriction(k, reeving);
-  for (std::size_t i = 0; i < reeving.sheaves.size(); ++i) k.sheave_mass[i] = k.sheaveMass(reeving.sheaves[i].radius);
+  for (std::size_t i = 0; i < reeving.sheaves.size(); ++i)
+    k.sheave_mass[i] = k.sheaveMass(reeving.sheaves[i].radius, reeving.sheaves[i].inertia);
 
   std::vector<Vec3> at;
   for (const int j : placed.joints) at.push_back(model.jointFrame(model.q0.data(), j).r);

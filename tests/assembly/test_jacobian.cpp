@@ -3,6 +3,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
 #include <array>
 #include <random>
 
@@ -10,6 +12,7 @@
 #include "cranesim/assembly/constraint_second_derivatives.hpp"
 #include "cranesim/model/compile.hpp"
 #include "scene_fixtures.hpp"
+#include "spread_blocks.hpp"
 
 using namespace cranesim;
 
@@ -110,6 +113,40 @@ void checkJacobian(const std::string& formulation) {
 }  // namespace
 
 TEST_CASE("GGL Jacobian equals finite differences of the residual", "[jacobian]") { checkJacobian("ggl"); }
+
+TEST_CASE("A sparse element's blocks assemble to the Jacobian: the massive reeved rope", "[jacobian][reeving][massive]") {
+  // The spread blocks (both bodies free, turned) on a massive rope with a capstan: every cable's
+  // block, summed where blocks share a block's node or a material coordinate.
+  const Model model = test::spreadBlocks(0.96, true, "    fidelity: massive\n    elements_per_part: 3\n");
+  const Assembler a(model);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 2; ++trial) {
+    VecX y(a.size()), yp(a.size());
+    for (int k = 0; k < a.size(); ++k) y(k) = (k < model.nq ? model.q0(k) + 1e-2 * u(rng) : 0.1 * u(rng)), yp(k) = 0.1 * u(rng);
+    const double t = 1.3, cj = 13.0;
+    const MatX J = denseJacobian(a, t, cj, y, yp), Jfd = finiteDifferenceJacobian(a, t, cj, y, yp);
+    INFO("max deviation " << (J - Jfd).cwiseAbs().maxCoeff() << " at scale " << Jfd.cwiseAbs().maxCoeff());
+    CHECK((J - Jfd).cwiseAbs().maxCoeff() < 1e-6 * Jfd.cwiseAbs().maxCoeff());
+    Assembler statics(model);
+    statics.setCoordinateJacobianOnly(true);
+    const MatX Jq = denseJacobian(statics, t, cj, y, yp);
+    CHECK((Jq.leftCols(model.nq) - J.leftCols(model.nq)).cwiseAbs().maxCoeff() == 0.0);
+  }
+}
+
+TEST_CASE("A massive reeved rope's Jacobian grows with its cables, not with their square", "[jacobian][reeving][massive]") {
+  // Four parts on the spread blocks: 4 and 16 cables per part, 4 times the cables. One dense
+  // block of the rope's values would have about 16 times the non-zeros.
+  const auto nonZeros = [](int cables) {
+    const Model model = test::spreadBlocks(0.96, false, fmt::format("    fidelity: massive\n    elements_per_part: {}\n", cables));
+    return Assembler(model).pattern().nonZeros();
+  };
+  const int few = nonZeros(4), many = nonZeros(16);
+  INFO("non-zeros: " << few << " with 4 cables per part, " << many << " with 16");
+  CHECK(many < 4.5 * few);
+  CHECK(many > 2.5 * few);  // the cables, not the blocks and the winch, make most of them
+}
 
 TEST_CASE("Baumgarte Jacobian equals finite differences except for the documented ∂Γ/∂q term", "[jacobian]") {
   checkJacobian("baumgarte");

@@ -138,7 +138,9 @@ class Assembler {
   int size_ = 0;
   SparsityPattern pattern_;
   std::vector<NodeBlocks> node_blocks_;
-  std::vector<int> element_blocks_;
+  /// Each element's blocks of the DAE Jacobian: one, or a sparse element's (Element::jacobianBlocks).
+  std::vector<std::vector<int>> element_blocks_;
+  std::vector<bool> sparse_element_;
   // Places in jacobian_buffer_: each element's block, each constraint's blocks (in
   // constraintTangent's order), all nodes' blocks and all loads' blocks; the qq block of each
   // node and the block of each load with a torque.

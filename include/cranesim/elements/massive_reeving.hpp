@@ -14,7 +14,7 @@
 //   (the material's), tension T = EA max(ε + η ε̇, 0), the elastic T₀ = EA max(ε, 0).
 // - Energies: V = Σ_e ½ EA L_e max(ε, 0)² − ρA L_e g·(x_a + x_b)/2; T = ½ Σ_j μ_j |ẋ_j|² +
 //   ½ Σ_i m_i σ̇_i², the inner node's lumped mass μ_j = ρA L_e, the sheave's m_i (the rope's mass
-//   on half its circumference, ρA π r: the sheave's own rotary inertia is not modelled).
+//   on half its circumference, ρA π r, and the sheave's rotary inertia J/r²: sheaveMass).
 // - Equations: inner node μ_j ẍ_j + ∂V/∂x_j = 0 (material enters with the node's velocity);
 //   path point: ∂V/∂x_k on its body; sheave m_i σ̈_i + ∂V/∂σ_i − ½ Σ_j ∂μ_j/∂σ_i |ẋ_j|² + f_i = 0.
 //   ∂V/∂L_e = −T₀ (1 + ε/2) − ΔT (1 + ε) − ρA g·(x_a + x_b)/2, ΔT = T − T₀ (the damping stress'
@@ -72,8 +72,33 @@ struct MassiveReevingKernel : ReeledLength {
   int chainNodes() const { return parts() * elements_per_part + 1; }
   double lineDensity() const { return material.density * section.area; }
   double axialStiffness() const { return material.youngs_modulus * section.area; }
-  /// The sheave mass the scene gives a sheave of radius r: the rope on half its circumference.
-  double sheaveMass(double radius) const { return lineDensity() * std::numbers::pi * radius; }
+  /// The mass m_i on a sheave's material coordinate: the rope on half the circumference of a
+  /// sheave of radius r, and the sheave's rotary inertia J about its axle turned without slip
+  /// (½ J (σ̇/r)² = ½ (J/r²) σ̇²).
+  double sheaveMass(double radius, double inertia) const {
+    return lineDensity() * std::numbers::pi * radius + inertia / (radius * radius);
+  }
+
+  /// One cable's share of the state, element e of part k: its end nodes (chain nodes k n + e and
+  /// k n + e + 1), the start node's acceleration (read where it is an inner node), σ_k and σ_{k+1}
+  /// with their rates, σ̈_{k+1}.
+  template <class S> struct Cable {
+    std::array<Vec3T<S>, 2> x, v;
+    Vec3 a = Vec3::Zero();
+    std::array<S, 2> sigma, sigma_rate;
+    double sigma_acceleration = 0.0;
+  };
+  /// A cable's share of the residual: on its end nodes and on σ_k, σ_{k+1}.
+  template <class S> struct CableResidual {
+    std::array<Vec3T<S>, 2> node;
+    std::array<S, 2> sigma;
+  };
+
+  template <class S> Cable<S> cable(const State<S>& s, int k, int e) const {
+    const int a = k * elements_per_part + e;
+    return {{s.x[a], s.x[a + 1]}, {s.v[a], s.v[a + 1]}, s.a[a], {s.sigma[k], s.sigma[k + 1]},
+            {s.sigma_rate[k], s.sigma_rate[k + 1]}, s.sigma_acceleration[k + 1]};
+  }
 
   /// One element's axial state: chord, direction, strain, rate, elastic tension, tension.
   template <class S> struct Axial {
@@ -81,65 +106,76 @@ struct MassiveReevingKernel : ReeledLength {
     S chord, strain, strain_rate, elastic, tension;
   };
 
-  /// Element `e` of part `k` (chain nodes k n + e, k n + e + 1).
-  template <class S> Axial<S> axial(const State<S>& s, int k, int e) const {
+  template <class S> Axial<S> axial(const Cable<S>& c) const {
     using std::sqrt;
-    const int a = k * elements_per_part + e;
-    const Vec3T<S> d = s.x[a + 1] - s.x[a];
+    const Vec3T<S> d = c.x[1] - c.x[0];
     Axial<S> out;
     out.chord = sqrt(d.squaredNorm());
     out.u = d / out.chord;
-    const S L = elementLength(s, k), L_rate = (s.sigma_rate[k] - s.sigma_rate[k + 1]) / double(elements_per_part);
+    const S L = elementLength(c), L_rate = (c.sigma_rate[0] - c.sigma_rate[1]) / double(elements_per_part);
     out.strain = out.chord / L - 1.0;
-    out.strain_rate = out.u.dot(Vec3T<S>(s.v[a + 1] - s.v[a])) / L - out.chord * L_rate / (L * L);
+    out.strain_rate = out.u.dot(Vec3T<S>(c.v[1] - c.v[0])) / L - out.chord * L_rate / (L * L);
     const double EA = axialStiffness();
     out.elastic = out.strain > 0.0 ? S(EA * out.strain) : S(0.0);
     const S damped = out.strain + damping * out.strain_rate;
     out.tension = damping > 0.0 ? (damped > 0.0 ? S(EA * damped) : S(0.0)) : out.elastic;
     return out;
   }
+  /// Element `e` of part `k`.
+  template <class S> Axial<S> axial(const State<S>& s, int k, int e) const { return axial(cable(s, k, e)); }
 
+  template <class S> S elementLength(const Cable<S>& c) const { return (c.sigma[0] - c.sigma[1]) / double(elements_per_part); }
   template <class S> S elementLength(const State<S>& s, int k) const {
     return (s.sigma[k] - s.sigma[k + 1]) / double(elements_per_part);
   }
 
-  /// The residual at the state s (file comment), α = mass_damping.
-  template <class S> Residual<S> residual(const State<S>& s, const Vec3& gravity, double mass_damping) const {
-    const int n = elements_per_part, m = parts();
+  /// Element e of part k's share of the residual (file comment), α = mass_damping: its pull and
+  /// weight on its ends, its ∂V/∂L_e on σ_k and σ_{k+1}; the inertia of its start node where that
+  /// is an inner node (and the node's kinetic term on σ); the last element before a sheave adds
+  /// the sheave's inertia and friction, its own tension T_{i−1}^end.
+  template <class S>
+  CableResidual<S> cableResidual(const Cable<S>& c, int k, int e, const Vec3& gravity, double mass_damping) const {
+    const int n = elements_per_part;
     const double rhoA = lineDensity();
+    const S L = elementLength(c);
+    const Axial<S> ax = axial(c);
+    const Vec3T<S> pull = ax.tension * ax.u;
+    const Vec3T<S> half_weight = (0.5 * rhoA * gravity).cast<S>() * L;
+    CableResidual<S> r;
+    r.node[0] = -pull - half_weight;
+    r.node[1] = pull - half_weight;
+    const S spent = ax.tension - ax.elastic;
+    S length_force = -ax.elastic * (1.0 + 0.5 * ax.strain) - spent * (1.0 + ax.strain) -
+                     (0.5 * rhoA) * Vec3T<S>(c.x[0] + c.x[1]).dot(gravity.cast<S>());
+    if (e > 0) {
+      r.node[0] += (rhoA * L) * (c.a + mass_damping * c.v[0]).template cast<S>();
+      length_force -= 0.5 * rhoA * c.v[0].squaredNorm();
+    }
+    length_force /= double(n);
+    r.sigma[0] = length_force;
+    r.sigma[1] = -length_force;
+    if (e == n - 1 && k + 1 < parts()) {  // the sheave at path point k + 1, between part k and part k + 1
+      const int i = k + 1;
+      r.sigma[1] += sheave_mass[i - 1] * (c.sigma_acceleration + mass_damping * c.sigma_rate[1]);
+      r.sigma[1] += friction(i, ax.tension, c.sigma_rate[1]);
+    }
+    return r;
+  }
+
+  /// The residual at the state s (file comment), α = mass_damping: the cables' shares summed.
+  template <class S> Residual<S> residual(const State<S>& s, const Vec3& gravity, double mass_damping) const {
     Residual<S> r;
     r.chain.assign(static_cast<std::size_t>(chainNodes()), Vec3T<S>::Zero());
-    r.sigma.assign(static_cast<std::size_t>(m + 1), S(0.0));
-    S end_tension(0.0);  // T_{k−1}^end for the sheave at the start of part k
-    for (int k = 0; k < m; ++k) {
-      const S L = elementLength(s, k);
-      S length_force(0.0);  // Σ_e ∂V/∂L_e over the part, then less the kinetic term
-      for (int e = 0; e < n; ++e) {
-        const int a = k * n + e;
-        const Axial<S> ax = axial(s, k, e);
-        const Vec3T<S> pull = ax.tension * ax.u;
-        const Vec3T<S> half_weight = (0.5 * rhoA * gravity).cast<S>() * L;
-        r.chain[a] += -pull - half_weight;
-        r.chain[a + 1] += pull - half_weight;
-        const S spent = ax.tension - ax.elastic;
-        length_force += -ax.elastic * (1.0 + 0.5 * ax.strain) - spent * (1.0 + ax.strain) -
-                        (0.5 * rhoA) * Vec3T<S>(s.x[a] + s.x[a + 1]).dot(gravity.cast<S>());
-        if (e == n - 1 && k + 1 < m) end_tension = ax.tension;
+    r.sigma.assign(static_cast<std::size_t>(parts() + 1), S(0.0));
+    for (int k = 0; k < parts(); ++k)
+      for (int e = 0; e < elements_per_part; ++e) {
+        const CableResidual<S> c = cableResidual(cable(s, k, e), k, e, gravity, mass_damping);
+        const int a = k * elements_per_part + e;
+        r.chain[a] += c.node[0];
+        r.chain[a + 1] += c.node[1];
+        r.sigma[k] += c.sigma[0];
+        r.sigma[k + 1] += c.sigma[1];
       }
-      for (int e = 1; e < n; ++e) {
-        const int j = k * n + e;
-        r.chain[j] += (rhoA * L) * (s.a[j] + mass_damping * s.v[j]).template cast<S>();
-        length_force -= 0.5 * rhoA * s.v[j].squaredNorm();
-      }
-      length_force /= double(n);
-      r.sigma[k] += length_force;
-      r.sigma[k + 1] -= length_force;
-      if (k + 1 < m) {  // the sheave at path point k + 1, between part k and part k + 1
-        const int i = k + 1;
-        r.sigma[i] += sheave_mass[i - 1] * (s.sigma_acceleration[i] + mass_damping * s.sigma_rate[i]);
-        r.sigma[i] += friction(i, end_tension, s.sigma_rate[i]);
-      }
-    }
     return r;
   }
 

@@ -98,6 +98,14 @@ class Element {
   virtual void coordinateJacobian(const ElementInput& in, double* J) const = 0;
   /// Local mass matrix M(q), column-major, size() × size().
   virtual void mass(const ElementInput& in, double* M) const = 0;
+  /// A sparse element's Jacobian as small dense blocks, each given by the local indices (of
+  /// velocityIndices and coordinateIndices alike, which then have equal sizes) its rows and its
+  /// columns share; a sparse element's mass matrix is diagonal. Empty, the default: one dense
+  /// block of all (`jacobian`).
+  virtual std::vector<std::vector<int>> jacobianBlocks() const { return {}; }
+  /// A sparse element's blocks side by side, each b × 2b column-major over its b indices,
+  /// [∂r/∂q | ∂r/∂dq + cj M]; with `coordinates_only` its dq columns 0.
+  virtual void blockJacobian(const ElementInput&, double /*cj*/, bool /*coordinates_only*/, double* /*values*/) const {}
   virtual double kineticEnergy(const ElementInput& in) const = 0;
   virtual double potentialEnergy(const ElementInput& in) const = 0;
   /// Power the element's explicit time dependence puts into it at (q, dq, t) (the winch's

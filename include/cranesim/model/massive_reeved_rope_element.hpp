@@ -2,9 +2,13 @@
 // A massive reeved rope (elements/massive_reeving.hpp) as an element: its path points on the
 // nodes of the bodies and members they sit on (model/rope_path.hpp), its parts' inner nodes
 // (Point nodes) and its sheaves' material coordinates (Material nodes), local coordinates in
-// that order. Both tangents come from forward AD of the residual, one node at a time.
+// that order. The element is sparse (model/element.hpp): its Jacobian is one small block per
+// cable, the cable's two end nodes and the material coordinates of its part, both tangents by
+// forward AD of the cable's share of the residual; so its cost grows with its cables, not with
+// their square.
 //   residual   r = M(σ) (a + α dq) + F(q, dq, t)
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -33,6 +37,8 @@ class MassiveReevedRopeElement final : public ReevedRope {
   void jacobian(const ElementInput& in, double cj, double* J) const override;
   void coordinateJacobian(const ElementInput& in, double* J) const override;
   void mass(const ElementInput& in, double* M) const override;
+  std::vector<std::vector<int>> jacobianBlocks() const override;
+  void blockJacobian(const ElementInput& in, double cj, bool coordinates_only, double* values) const override;
   double kineticEnergy(const ElementInput& in) const override;
   double potentialEnergy(const ElementInput& in) const override;
   double explicitTimePower(const ElementInput& in) const override;
@@ -60,14 +66,31 @@ class MassiveReevedRopeElement final : public ReevedRope {
 
  private:
   using Local = Eigen::VectorXd;
+  /// A cable's values: a path point's node (7 at most) at one end, an inner node at the other,
+  /// two material coordinates.
+  static constexpr int kMaxCableValues = RopePath::kMaxSlotValues + 3 + 2;
+  using CableDual = Dual<double, kMaxCableValues>;
+  template <class S> using CableValues = Eigen::Matrix<S, Eigen::Dynamic, 1, 0, kMaxCableValues, 1>;
+  /// Element e of part k as a block of the local values (`locals`): each end a path point
+  /// (`point`, its node's values from `end_at` in the block, none for the ground) or an inner
+  /// node (point −1, its position from `end_at`); σ_k and σ_{k+1} at `sigma_at` (−1: the winch's
+  /// σ_0, the dead end's σ_m, no coordinates).
+  struct CableBlock {
+    int k = 0, e = 0;
+    std::array<int, 2> point{-1, -1}, end_at{0, 0}, sigma_at{-1, -1};
+    std::vector<int> locals;
+  };
+  void listCables();
+  /// Cable b's share of the residual on its block, from the block's q, v and a.
+  template <class S> CableValues<S> cableForce(const CableBlock& b, const CableValues<S>& q, const CableValues<S>& v,
+                                               const CableValues<double>& a, const ElementInput& in) const;
   template <class S> MassiveReevingKernel::State<S> state(const Eigen::Matrix<S, Eigen::Dynamic, 1>& q,
                                                           const Eigen::Matrix<S, Eigen::Dynamic, 1>& v,
                                                           const Local& a, const ElementInput& in) const;
-  template <class S> Eigen::Matrix<S, Eigen::Dynamic, 1> force(const Eigen::Matrix<S, Eigen::Dynamic, 1>& q,
-                                                               const Eigen::Matrix<S, Eigen::Dynamic, 1>& v,
-                                                               const Local& a, const ElementInput& in) const;
-  /// ∂r/∂q (or ∂r/∂dq with `velocities`) into J, column-major, size() × size().
-  void tangent(const ElementInput& in, bool velocities, double* J) const;
+  /// The blocks' Jacobians (blockJacobian) added into the dense J = [∂r/∂q | ∂r/∂dq + cj M],
+  /// or its ∂r/∂q alone.
+  void denseJacobian(const ElementInput& in, double cj, bool coordinates_only, double* J) const;
+  static CableValues<double> gather(const Local& x, const std::vector<int>& at);
   Local gather(const double* x, const std::vector<int>& at) const;
   /// The local d(dq)/dt, zero where the input has none (a static state).
   Local accelerations(const ElementInput& in) const;
@@ -80,6 +103,7 @@ class MassiveReevedRopeElement final : public ReevedRope {
   RopePath path_;
   int inner_at_ = 0;
   std::vector<int> nodes_, q_, v_;
+  std::vector<CableBlock> cables_;
 };
 
 }  // namespace cranesim

@@ -44,34 +44,54 @@ struct RopePath {
     for (std::size_t s = 0; s < slots.size(); ++s)
       if (slots[s].rotates) R[s] = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(slots[s].at + 3)));
     for (std::size_t p = 0; p < points.size(); ++p) {
-      const Point& point = points[p];
-      if (point.slot < 0) {
-        x[p] = point.offset.cast<S>();
-        xd[p].setZero();
-        continue;
-      }
-      const Slot& slot = slots[point.slot];
-      x[p] = q.template segment<3>(slot.at);
-      xd[p] = v.template segment<3>(slot.at);
-      if (slot.rotates) {
-        const Vec3T<S> offset = point.offset.cast<S>();
-        x[p] += R[point.slot] * offset;
-        xd[p] += R[point.slot] * Vec3T<S>(Vec3T<S>(v.template segment<3>(slot.at + 3)).cross(offset));
-      }
+      const int slot = points[p].slot;
+      if (slot < 0) movePoint<S>(p, q, v, 0, R[0], x[p], xd[p]);
+      else movePoint<S>(p, q, v, slots[slot].at, R[slot], x[p], xd[p]);
     }
+  }
+
+  /// Point p alone, its node's values from `at` on in q and v (elsewhere than its slot's place:
+  /// a massive rope's cable sees that one node), its node's rotation into R (untouched for a
+  /// point without one).
+  template <class S, class Local>
+  void placePoint(std::size_t p, const Local& q, const Local& v, int at, Vec3T<S>& x, Vec3T<S>& xd, Mat3T<S>& R) const {
+    const int slot = points[p].slot;
+    if (slot >= 0 && slots[slot].rotates) R = rotationMatrix<S>(Vec3T<S>(q.template segment<3>(at + 3)));
+    movePoint<S>(p, q, v, at, R, x, xd);
+  }
+
+  /// Point p's position and velocity, its node's values from `at` on, R its node's rotation.
+  template <class S, class Local>
+  void movePoint(std::size_t p, const Local& q, const Local& v, int at, const Mat3T<S>& R, Vec3T<S>& x, Vec3T<S>& xd) const {
+    const Point& point = points[p];
+    if (point.slot < 0) {
+      x = point.offset.cast<S>();
+      xd.setZero();
+      return;
+    }
+    x = q.template segment<3>(at);
+    xd = v.template segment<3>(at);
+    if (!slots[point.slot].rotates) return;
+    const Vec3T<S> offset = point.offset.cast<S>();
+    x += R * offset;
+    xd += R * Vec3T<S>(Vec3T<S>(v.template segment<3>(at + 3)).cross(offset));
   }
 
   /// Adds the forces f[p] on the path points to the local residual r as [f, p × Rᵀ f], R the
   /// nodes' rotations (place).
   template <class S, class Forces, class Local> void gather(const Rotations<S>& R, const Forces& f, Local& r) const {
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const Point& point = points[k];
-      if (point.slot < 0) continue;
-      const Slot& slot = slots[point.slot];
-      r.template segment<3>(slot.at) += f[k];
-      if (slot.rotates)
-        r.template segment<3>(slot.at + 3) += point.offset.cast<S>().cross(Vec3T<S>(R[point.slot].transpose() * f[k]));
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      const int slot = points[p].slot;
+      if (slot >= 0) gatherPoint<S>(p, R[slot], f[p], r, slots[slot].at);
     }
+  }
+
+  /// The force f on point p added to r from `at` on (placePoint), R its node's rotation.
+  template <class S, class Local> void gatherPoint(std::size_t p, const Mat3T<S>& R, const Vec3T<S>& f, Local& r, int at) const {
+    const Point& point = points[p];
+    if (point.slot < 0) return;
+    r.template segment<3>(at) += f;
+    if (slots[point.slot].rotates) r.template segment<3>(at + 3) += point.offset.cast<S>().cross(Vec3T<S>(R.transpose() * f));
   }
 };
 

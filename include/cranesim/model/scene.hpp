@@ -58,6 +58,7 @@ struct SheaveSpec {
   double radius = 0.0;      // m
   double efficiency = 1.0;  // η ∈ (0, 1]
   double friction = 0.0;    // μ of a capstan; 0: a turning sheave
+  double inertia = 0.0;     // J of a turning sheave about its axle, kg·m² (massive ropes)
   std::optional<double> wrap;  // θ of a capstan, rad; empty: the drawn path's turn at the sheave
   SourceLocation where;
 };
