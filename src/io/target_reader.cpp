@@ -324,15 +324,12 @@ Obstacle readObstacle(const YamlField& f) {
   const std::string shape = f.at("shape").choice({"box", "cylinder", "prism"});
   if (shape == "box") {
     f.allowKeys({"name", "shape", "centre", "size", "yaw"});
-    BoxShape box;
-    box.centre = f.at("centre").vec3();
     const YamlField size = f.at("size");
-    box.size = size.vec3();
-    if (!(box.size.array() > 0.0).all())
-      size.fail(fmt::format("a box's edge lengths must be positive, found [{:g}, {:g}, {:g}]", box.size.x(), box.size.y(),
-                            box.size.z()));
-    if (const auto yaw = f.find("yaw")) box.yaw = yaw->number() * std::numbers::pi / 180.0;
-    o.shape = box;
+    const Vec3 edges = size.vec3();
+    if (!(edges.array() > 0.0).all())
+      size.fail(fmt::format("a box's edge lengths must be positive, found [{:g}, {:g}, {:g}]", edges.x(), edges.y(), edges.z()));
+    const auto yaw = f.find("yaw");
+    o.shape = BoxShape(f.at("centre").vec3(), edges, yaw ? yaw->number() * std::numbers::pi / 180.0 : 0.0);
   } else if (shape == "cylinder") {
     f.allowKeys({"name", "shape", "base", "radius", "height"});
     o.shape = CylinderShape{f.at("base").vec3(), f.at("radius").positive(), f.at("height").positive()};

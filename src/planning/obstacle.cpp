@@ -52,15 +52,17 @@ Distance polygonDistance(const std::vector<Eigen::Vector2d>& polygon, const Eige
 struct PointDistance {
   const Vec3& p;
   Distance operator()(const BoxShape& box) const {
-    const Eigen::Matrix3d turn = Eigen::AngleAxisd(box.yaw, Vec3::UnitZ()).toRotationMatrix();
-    const Vec3 local = turn.transpose() * (p - box.centre);
+    const double c = box.cos_yaw, s = box.sin_yaw;
+    const auto toWorld = [&](const Vec3& v) { return Vec3(c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()); };
+    const Vec3 r = p - box.centre;
+    const Vec3 local(c * r.x() + s * r.y(), -s * r.x() + c * r.y(), r.z());
     const Vec3 side = local.unaryExpr([](double x) { return x < 0.0 ? -1.0 : 1.0; });
     const Vec3 q = local.cwiseAbs() - 0.5 * box.size;
     const Vec3 out = q.cwiseMax(0.0);
-    if (out.norm() > 0.0) return {out.norm(), turn * side.cwiseProduct(out / out.norm())};
+    if (const double d = out.norm(); d > 0.0) return {d, toWorld(side.cwiseProduct(out / d))};
     Eigen::Index face = 0;
     const double d = q.maxCoeff(&face);
-    return {d, turn * (side(face) * Vec3::Unit(face))};
+    return {d, toWorld(side(face) * Vec3::Unit(face))};
   }
   Distance operator()(const CylinderShape& cylinder) const {
     const Eigen::Vector2d radial = (p - cylinder.base).head<2>();

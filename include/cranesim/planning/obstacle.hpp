@@ -3,6 +3,7 @@
 // "Obstacles and clearance"): boxes, vertical cylinders and convex prisms against points,
 // spheres, segments and capsules. Negative distances are penetration depths.
 
+#include <cmath>
 #include <string>
 #include <variant>
 #include <vector>
@@ -14,9 +15,12 @@ namespace cranesim {
 
 /// A box of edge lengths `size` about `centre`, turned by `yaw` (rad) about the vertical.
 struct BoxShape {
+  BoxShape() = default;
+  BoxShape(const Vec3& centre_, const Vec3& size_, double yaw)
+      : centre(centre_), size(size_), cos_yaw(std::cos(yaw)), sin_yaw(std::sin(yaw)) {}
   Vec3 centre = Vec3::Zero();
   Vec3 size = Vec3::Ones();
-  double yaw = 0.0;
+  double cos_yaw = 1.0, sin_yaw = 0.0;  // the yaw's, taken once: a lift's clearances ask for millions of distances
 };
 
 /// A vertical cylinder standing on `base` (the centre of its bottom face).
