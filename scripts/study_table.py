@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Prints the case table of a `crane-sim study` file (docs/study-format.md): one row per case with
 its parameter values, its figures, its status, with criteria whether it is admissible and with a
-capacity search the capacity found and what limits it.
+capacity search the capacity found and what limits it, with a least stable angle search the angle
+found and the grid angle that was worst.
 
     python3 scripts/study_table.py TABLE.h5                    # every case, aligned columns
     python3 scripts/study_table.py TABLE.h5 --status complete  # only the complete cases
@@ -25,7 +26,8 @@ class NotAStudy(Exception):
 
 def read_table(path: str) -> tuple[list, list]:
     """(header, rows): case number, parameters, figures, admissible (with criteria), the capacity
-    and what limits it (with capacity), status, message."""
+    and what limits it (with capacity), the least stable angle found and the grid's worst (with
+    least_stable_angle), status, message."""
     try:
         f = h5py.File(path, "r")
     except OSError as e:
@@ -42,6 +44,9 @@ def read_table(path: str) -> tuple[list, list]:
             columns.append(("capacity", f["capacity/load"][()]))
             columns.append(("inadmissible_load", f["capacity/inadmissible_load"][()]))
             texts.append(("limited_by", f["capacity/limited_by"].asstr()[()]))
+        if "least_stable" in f:
+            columns.append(("least_stable_angle", f["least_stable/angle"][()]))
+            columns.append(("worst_grid_angle", f["least_stable/grid_angle"][()]))
         status = f["cases/status"].asstr()[()]
         message = f["cases/message"].asstr()[()]
     header = ["case"] + [name for name, _ in columns] + [name for name, _ in texts] + ["status", "message"]

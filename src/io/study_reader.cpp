@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <mutex>
 #include <set>
 
@@ -22,6 +23,7 @@ struct StudySceneSource {
   std::vector<ComposedScene> bases;        // `scene`, or each of `scenes`, with the study's `modify`
   std::vector<YamlField> parameter_paths;  // where each parameter is named in the study file
   std::vector<YamlField> capacity_paths;   // capacity: where its load, then each follower, is named
+  std::vector<YamlField> angle_path;       // least_stable_angle: where its angle is named
   mutable std::mutex lock;
 };
 
@@ -274,14 +276,18 @@ FigureSpec readFigure(const YamlField& f, const Study& study, const Scene& scene
   return fig;
 }
 
-StudyCriterion readCriterion(const YamlField& f, const std::vector<FigureSpec>& figures) {
-  f.allowKeys({"figure", "min", "max", "source"});
-  StudyCriterion c;
-  const YamlField figure = f.at("figure");
+/// The index of the study's figure that `figure` names.
+std::size_t readFigureName(const YamlField& figure, const std::vector<FigureSpec>& figures) {
   const std::string name = figure.text();
   const auto named = std::find_if(figures.begin(), figures.end(), [&](const FigureSpec& s) { return s.name == name; });
   if (named == figures.end()) figure.fail(fmt::format("no figure named '{}' in figures", name));
-  c.figure = static_cast<std::size_t>(named - figures.begin());
+  return static_cast<std::size_t>(named - figures.begin());
+}
+
+StudyCriterion readCriterion(const YamlField& f, const std::vector<FigureSpec>& figures) {
+  f.allowKeys({"figure", "min", "max", "source"});
+  StudyCriterion c;
+  c.figure = readFigureName(f.at("figure"), figures);
   if (!f.has("min") && !f.has("max")) f.fail("a criterion needs min, max or both");
   if (const auto min = f.find("min")) c.min = min->number();
   if (const auto max = f.find("max")) c.max = max->number();
@@ -409,6 +415,53 @@ CapacitySpec readCapacity(const YamlField& f, const Study& study, const std::vec
   return c;
 }
 
+/// `least_stable_angle: {angle, values | range, figure, worst, tolerance}`: the field searched
+/// for the angle at which the figure is worst, the grid of angles every case computes, and the
+/// search's tolerance; `path` gets where the angle is named. The angle must be a number of every
+/// scene that no parameter and no capacity sets.
+LeastStableAngleSpec readLeastStableAngle(const YamlField& f, const Study& study, const std::vector<ComposedScene>& scenes,
+                                          std::vector<YamlField>& path) {
+  f.allowKeys({"angle", "values", "range", "figure", "worst", "tolerance"});
+  LeastStableAngleSpec spec;
+  const YamlField angle = f.at("angle");
+  spec.angle = angle.text();
+  for (const StudyParameter& p : study.parameters)
+    if (p.path == spec.angle) angle.fail(fmt::format("'{}' is varied by a parameter: the search sets it in each case itself", p.path));
+  if (study.capacity && (study.capacity->load == spec.angle ||
+                         std::find(study.capacity->scales.begin(), study.capacity->scales.end(), spec.angle) != study.capacity->scales.end()))
+    angle.fail(fmt::format("'{}' is set by the capacity: the search needs a field of its own", spec.angle));
+  for (const ComposedScene& scene : scenes) {
+    double base = 0.0;
+    const YAML::Node value = sceneField(scene.root, angle, spec.angle);
+    if (!value.IsScalar() || !YAML::convert<double>::decode(value, base) || !std::isfinite(base))
+      angle.fail(fmt::format("the scene's '{}' must be a number: the angle searched", spec.angle));
+  }
+  path.push_back(angle);
+  if (f.has("values") == f.has("range")) f.fail("give the grid of angles every case computes first: one of values or range");
+  if (const auto values = f.find("values")) {
+    if (!values->isSequence()) values->fail("expected a list of angles");
+    spec.grid = values->numbers();
+  } else {
+    spec.grid = readRange(f.at("range"));
+  }
+  const YamlField grid = f.has("values") ? f.at("values") : f.at("range");
+  if (spec.grid.size() < 2) grid.fail("a search between grid angles needs at least two of them");
+  if (static_cast<double>(spec.grid.size()) > kMaxGridValues) grid.fail(fmt::format("{} angles: at most {:g}", spec.grid.size(), kMaxGridValues));
+  double step = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 1; k < spec.grid.size(); ++k) {
+    if (!(spec.grid[k] > spec.grid[k - 1]))
+      grid.fail(fmt::format("the angles must increase: {:g} follows {:g}", spec.grid[k], spec.grid[k - 1]));
+    step = std::min(step, spec.grid[k] - spec.grid[k - 1]);
+  }
+  spec.figure = readFigureName(f.at("figure"), study.figures);
+  spec.worst_is_max = f.at("worst").choice({"max", "min"}) == std::string("max");
+  const YamlField tolerance = f.at("tolerance");
+  spec.tolerance = tolerance.positive();
+  if (spec.tolerance >= step)
+    tolerance.fail(fmt::format("the grid's angles lie {:g} apart: a search to {:g} would not refine them", step, spec.tolerance));
+  return spec;
+}
+
 /// The study's scenes: `scene`, or each of `scenes`, composed as scene files are, with the
 /// study's `modify` set in each, and read; their paths and texts go into `study`.
 std::vector<Scene> readStudyScenes(const YamlField& f, const std::string& path, Study& study, std::vector<ComposedScene>& bases) {
@@ -479,7 +532,7 @@ Study readStudy(const std::string& path) {
   const YamlField f(root, "");
   if (!f.isMap()) f.fail("a study file is a mapping (scene, analysis, parameters, figures, …)");
   f.allowKeys({"name", "scene", "scenes", "modify", "analysis", "modes", "parameters", "samples", "seed", "figures",
-               "criteria", "capacity", "keep_results"});
+               "criteria", "capacity", "least_stable_angle", "keep_results"});
 
   auto source = std::make_shared<StudySceneSource>();
   const std::vector<Scene> scenes = readStudyScenes(f, path, study, source->bases);
@@ -555,12 +608,15 @@ Study readStudy(const std::string& path) {
     for (const YamlField& c : criteria->items()) study.criteria.push_back(readCriterion(c, study.figures));
   if (const auto capacity = f.find("capacity"))
     study.capacity = readCapacity(*capacity, study, source->bases, source->capacity_paths);
+  if (const auto search = f.find("least_stable_angle"))
+    study.least_stable = readLeastStableAngle(*search, study, source->bases, source->angle_path);
   if (const auto keep = f.find("keep_results")) study.keep_results = keep->boolean();
   study.source = std::move(source);
   return study;
 }
 
-Scene caseScene(const Study& study, long index, std::optional<double> load) {
+Scene caseScene(const Study& study, long index, const CaseSetting& setting) {
+  const std::optional<double>& load = setting.load;
   const std::vector<double> values = study.parameterValues(index);
   const StudySceneSource& source = *study.source;
   std::size_t scene = 0;
@@ -570,6 +626,7 @@ Scene caseScene(const Study& study, long index, std::optional<double> load) {
     if (study.parameters[k].scene_index) scene = static_cast<std::size_t>(values[k]);
   }
   if (load) header += fmt::format(" {} = {} (capacity)", study.capacity->load, *load);
+  if (setting.angle) header += fmt::format(" {} = {} (least stable angle search)", study.least_stable->angle, *setting.angle);
   const std::lock_guard<std::mutex> lock(source.lock);
   const ComposedScene& base = source.bases[scene];
   ComposedScene composed{YAML::Clone(base.root), header + "\n" + base.text};
@@ -590,6 +647,8 @@ Scene caseScene(const Study& study, long index, std::optional<double> load) {
                   scaled(sceneField(base.root, paths[k + 1], study.capacity->scales[k]), factor));
     modifyScene(composed.root, paths[0], study.capacity->load, YAML::Node(fmt::format("{}", *load)));
   }
+  if (setting.angle)
+    modifyScene(composed.root, source.angle_path.front(), study.least_stable->angle, YAML::Node(fmt::format("{}", *setting.angle)));
   return sceneFromComposed(composed, study.scene_paths[scene]);
 }
 

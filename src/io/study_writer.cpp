@@ -108,6 +108,21 @@ void writeStudyResults(const std::string& path, const Study& study, const std::v
       for (std::size_t i = 0; i < n; ++i) limited_by[i] = rows[i].limited_by;
       file.writeStrings("/capacity/limited_by", {n}, limited_by);
     }
+    if (study.least_stable) {
+      const LeastStableAngleSpec& search = *study.least_stable;
+      file.ensureGroup("/least_stable");
+      file.attribute("/least_stable", "angle_path", search.angle);
+      file.attribute("/least_stable", "grid", fmt::format("{}", fmt::join(search.grid, ", ")));
+      file.attribute("/least_stable", "figure", study.figures[search.figure].name);
+      file.attribute("/least_stable", "worst", std::string(search.worst_is_max ? "max" : "min"));
+      file.attribute("/least_stable", "tolerance", search.tolerance);
+      for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].least_stable_angle;
+      file.writeDoubles("/least_stable/angle", {n}, column.data());
+      for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].worst_grid_angle;
+      file.writeDoubles("/least_stable/grid_angle", {n}, column.data());
+      for (std::size_t i = 0; i < n; ++i) column[i] = rows[i].least_stable_value;
+      file.writeDoubles("/least_stable/value", {n}, column.data());
+    }
     std::vector<std::string> status(n), messages(n), workers(n);
     for (std::size_t i = 0; i < n; ++i) status[i] = rows[i].status, messages[i] = rows[i].message, workers[i] = rows[i].worker;
     file.writeStrings("/cases/status", {n}, status);

@@ -49,6 +49,7 @@ std::string encodeRow(const CaseRow& row) {
       fmt::format("{}\t{}\t{}\t{}\t{}", row.index, row.status, bitsOf(row.steps), bitsOf(row.wall_time_s), escaped(row.worker));
   for (const double f : row.figures) line += "\t" + bitsOf(f);
   line += fmt::format("\t{}\t{}\t{}", bitsOf(row.capacity), bitsOf(row.inadmissible_load), escaped(row.limited_by));
+  line += fmt::format("\t{}\t{}\t{}", bitsOf(row.least_stable_angle), bitsOf(row.worst_grid_angle), bitsOf(row.least_stable_value));
   return line + "\t" + escaped(row.message);
 }
 
@@ -57,7 +58,7 @@ std::optional<CaseRow> decodeRow(const std::string& line, std::size_t figures) {
   std::stringstream in(line);
   for (std::string field; std::getline(in, field, '\t');) fields.push_back(field);
   if (!line.empty() && line.back() == '\t') fields.emplace_back();  // an empty message
-  if (fields.size() != 9 + figures) return std::nullopt;
+  if (fields.size() != 12 + figures) return std::nullopt;
   CaseRow row;
   try {
     std::size_t used = 0;
@@ -82,6 +83,11 @@ std::optional<CaseRow> decodeRow(const std::string& line, std::size_t figures) {
   row.capacity = *capacity;
   row.inadmissible_load = *inadmissible;
   row.limited_by = unescaped(fields[7 + figures]);
+  const auto angle = doubleOf(fields[8 + figures]), grid_angle = doubleOf(fields[9 + figures]), value = doubleOf(fields[10 + figures]);
+  if (!angle || !grid_angle || !value) return std::nullopt;
+  row.least_stable_angle = *angle;
+  row.worst_grid_angle = *grid_angle;
+  row.least_stable_value = *value;
   row.message = unescaped(fields.back());
   return row;
 }

@@ -14,14 +14,15 @@
 #include "cranesim/solvers/scene_equilibrium.hpp"
 #include "cranesim/study/capacity_search.hpp"
 #include "cranesim/study/case_figures.hpp"
+#include "cranesim/study/least_stable_angle.hpp"
 
 namespace cranesim {
 namespace {
 
-/// The analysis of one case (at `load`, with a capacity search); fills the row's status, message
-/// and steps and, when complete, its figures.
-void analyse(const Study& study, long index, std::optional<double> load, const CaseOptions& options, CaseRow& row) {
-  const Scene scene = sceneAtStatedEquilibrium(caseScene(study, index, load), true);
+/// The analysis of one case (at a load of a capacity search, at an angle of a least stable angle
+/// search); fills the row's status, message and steps and, when complete, its figures.
+void analyse(const Study& study, long index, const CaseSetting& setting, const CaseOptions& options, CaseRow& row) {
+  const Scene scene = sceneAtStatedEquilibrium(caseScene(study, index, setting), true);
   const Model model = compileModel(scene);
   if (study.analysis == StudyAnalysis::Run) requireResultsFit(scene, model);
   const Assembler assembler(model);
@@ -69,13 +70,13 @@ void analyse(const Study& study, long index, std::optional<double> load, const C
   row.figures = caseFigures(study, scene, model, session ? *session->recorder() : recorder, modal ? &*modal : nullptr);
 }
 
-/// The row of case `index` analysed once (at `load`, with a capacity search).
-CaseRow analysedCase(const Study& study, long index, std::optional<double> load, const CaseOptions& options) {
+/// The row of case `index` analysed once (at a load or an angle of a search).
+CaseRow analysedCase(const Study& study, long index, const CaseSetting& setting, const CaseOptions& options) {
   CaseRow row;
   row.index = index;
   row.figures.assign(study.figures.size(), std::numeric_limits<double>::quiet_NaN());
   try {
-    analyse(study, index, load, options, row);
+    analyse(study, index, setting, options, row);
   } catch (const SceneError& e) {
     row.status = kCaseBadInput;
     row.message = e.what();
@@ -86,20 +87,43 @@ CaseRow analysedCase(const Study& study, long index, std::optional<double> load,
   return row;
 }
 
+/// The case at `angle` (none: the scene's): analysed once, or with `capacity` its capacity
+/// by bisection.
+CaseRow caseAtAngle(const Study& study, long index, std::optional<double> angle, const CaseOptions& options) {
+  if (!study.capacity) return analysedCase(study, index, {std::nullopt, angle}, options);
+  CaseOptions bisecting = options;
+  bisecting.results_path.clear();
+  CaseRow row = searchCapacity(study, [&](double load) { return analysedCase(study, index, {load, angle}, bisecting); });
+  // The full results of the row's load: the capacity, or the bracket's end the row is of.
+  if (!options.results_path.empty() && row.status == kCaseComplete)
+    analysedCase(study, index, {std::isnan(row.capacity) ? study.capacity->from : row.capacity, angle}, options);
+  return row;
+}
+
 }  // namespace
 
 CaseRow runCase(const Study& study, long index, const CaseOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   CaseRow row;
-  if (!study.capacity) {
-    row = analysedCase(study, index, std::nullopt, options);
+  if (!study.least_stable) {
+    row = caseAtAngle(study, index, std::nullopt, options);
   } else {
-    CaseOptions bisecting = options;
-    bisecting.results_path.clear();
-    row = searchCapacity(study, [&](double load) { return analysedCase(study, index, load, bisecting); });
-    // The full results of the row's load: the capacity, or the bracket's end the row is of.
-    if (!options.results_path.empty() && row.status == kCaseComplete)
-      analysedCase(study, index, std::isnan(row.capacity) ? study.capacity->from : row.capacity, options);
+    // The search at the case's load (with `capacity`, the bracket's light end), then the case
+    // at the angle found: that search's row, or with `capacity` the bisection there.
+    CaseOptions searching = options;
+    searching.results_path.clear();
+    const std::optional<double> load = study.capacity ? std::optional<double>(study.capacity->from) : std::nullopt;
+    const CaseRow worst = searchLeastStableAngle(study, [&](double angle) { return analysedCase(study, index, {load, angle}, searching); });
+    if (worst.status != kCaseComplete || !study.capacity) {
+      row = worst;
+      if (!options.results_path.empty() && row.status == kCaseComplete) analysedCase(study, index, {load, row.least_stable_angle}, options);
+    } else {
+      row = caseAtAngle(study, index, worst.least_stable_angle, options);
+      if (row.status != kCaseInterrupted) row.steps += worst.steps;
+      row.least_stable_angle = worst.least_stable_angle;
+      row.worst_grid_angle = worst.worst_grid_angle;
+      row.least_stable_value = worst.least_stable_value;
+    }
   }
   row.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return row;

@@ -58,3 +58,16 @@ def test_a_file_that_is_not_a_study_is_refused(study_table, tmp_path, capsys):
     assert study_table.main([str(tmp_path / "results.h5")]) == 2
     assert study_table.main([str(tmp_path / "absent.h5")]) == 2
     assert capsys.readouterr().err.count("study_table.py: error:") == 2
+
+
+def test_the_least_stable_angle_columns(study_table, tmp_path, capsys):
+    path = write_table(tmp_path / "table.h5")
+    with h5py.File(path, "a") as f:
+        f["least_stable/angle"] = [14.04, 0.0, np.nan]
+        f["least_stable/grid_angle"] = [22.5, 0.0, 45.0]
+        f["least_stable/value"] = [0.52, 0.61, np.nan]
+    assert study_table.main([str(path)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].split()[4:6] == ["least_stable_angle", "worst_grid_angle"]
+    assert lines[1].split()[4:6] == ["14.04", "22.5"]
+    assert lines[3].split()[4:6] == ["nan", "45"]

@@ -265,7 +265,7 @@ criteria: [{{figure: top, max: 2.0e4, source: "a test's limit"}}]
 )", CRANESIM_SOURCE_DIR);
   const Study study = readStudy(path.string());
   REQUIRE(study.capacity);
-  const Scene scene = caseScene(study, 0, 2500.0);
+  const Scene scene = caseScene(study, 0, {2500.0});
   CHECK(scene.bodies[0].mass == 2500.0);
   for (int axis = 0; axis < 3; ++axis) CHECK(scene.bodies[0].inertia(axis, axis) == Approx(39.14 * 2.5).epsilon(1e-15));
   // The rope's tension at its top carries the ball and the rope: W = (m + m_rope) g reaches

@@ -34,6 +34,11 @@ struct CaseRow {
   double capacity = std::numeric_limits<double>::quiet_NaN();
   double inadmissible_load = std::numeric_limits<double>::quiet_NaN();
   std::string limited_by;
+  /// A study with `least_stable_angle` (study/least_stable_angle.hpp): the angle found, the grid
+  /// angle that was worst, and the searched figure's value at the angle found (NaN without it).
+  double least_stable_angle = std::numeric_limits<double>::quiet_NaN();
+  double worst_grid_angle = std::numeric_limits<double>::quiet_NaN();
+  double least_stable_value = std::numeric_limits<double>::quiet_NaN();
 };
 
 std::string encodeRow(const CaseRow& row);

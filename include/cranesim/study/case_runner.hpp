@@ -1,8 +1,9 @@
 #pragma once
 // One case of a study: its scene built, its analysis run by the solvers crane-sim's verbs use
 // (solvers/scene_equilibrium.hpp, simulate, computeModes), its figures taken; with a study's
-// `capacity`, once per load of the bisection (study/capacity_search.hpp). Every failure is the
-// row's status and message, never an exception: the study goes on.
+// `capacity`, once per load of the bisection (study/capacity_search.hpp); with a
+// `least_stable_angle`, once per angle of the search (study/least_stable_angle.hpp). Every
+// failure is the row's status and message, never an exception: the study goes on.
 
 #include <atomic>
 #include <string>

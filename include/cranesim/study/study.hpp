@@ -100,6 +100,17 @@ struct CapacitySpec {
   std::vector<std::string> scales;  // fields that follow the load in proportion to their scene's values
 };
 
+/// A study's `least_stable_angle`: each case's slewing angle at which a figure is worst, found on
+/// a grid of angles and refined between the worst grid angle's neighbours by golden-section
+/// search (study/least_stable_angle.hpp), instead of read off a grid parameter.
+struct LeastStableAngleSpec {
+  std::string angle;            // a `modify` path to a number every scene gives, e.g. constraints.slewing.drive.value
+  std::vector<double> grid;     // the angles every case computes first, increasing
+  std::size_t figure = 0;       // index into Study::figures: the figure whose worst value is searched
+  bool worst_is_max = true;     // worst: max (a stability fraction) or min (a tipping load, a margin)
+  double tolerance = 0.0;       // the search's bracket width at which it stops, in the angle's unit
+};
+
 /// The base scene's YAML, from which each case's scene is built (io/study_reader.cpp).
 struct StudySceneSource;
 
@@ -116,6 +127,7 @@ struct Study {
   std::vector<FigureSpec> figures;
   std::vector<StudyCriterion> criteria;
   std::optional<CapacitySpec> capacity;
+  std::optional<LeastStableAngleSpec> least_stable;
   bool keep_results = false;
   long cases = 1;          // the product of the grids' sizes × samples
   std::shared_ptr<const StudySceneSource> source;
@@ -133,10 +145,16 @@ inline constexpr double kMaxStudyCases = 1e7;
 /// SceneError naming the study file's YAML path and line (a problem in the base scene names it).
 Study readStudy(const std::string& path);
 
+/// What a case's scene sets besides its parameters: with `capacity` the load, with
+/// `least_stable_angle` the angle.
+struct CaseSetting {
+  std::optional<double> load, angle;
+};
+
 /// The scene of case `index`: the base scene with the case's parameter values set (and with
-/// `capacity`, the load `load` and its followers), its text prefixed by the case's values. Throws
-/// SceneError (naming the parameter's path in the study file) when those values make a bad
-/// scene. Safe to call from several threads.
-Scene caseScene(const Study& study, long index, std::optional<double> load = std::nullopt);
+/// `capacity`, the load and its followers; with `least_stable_angle`, the angle), its text
+/// prefixed by the case's values. Throws SceneError (naming the parameter's path in the study
+/// file) when those values make a bad scene. Safe to call from several threads.
+Scene caseScene(const Study& study, long index, const CaseSetting& setting = {});
 
 }  // namespace cranesim
