@@ -399,6 +399,31 @@ measured while other builds ran (load average 5–8, so ±30 %). The CSV and the
 """
 
 
+def reeving_cost(r: Results) -> str:
+    rows = r.csv("reeving_cost.csv")
+    build = {"before": "one dense element", "after": "a block per cable"}
+    body = table(["scene", "coordinates", "Jacobian of the massive rope", "steps", "residual evaluations", "wall",
+                  "CPU", "real-time factor (CPU)"],
+                 [[x["case"], x["coordinates"], build[x["binary"]] if x["elements_per_part"] != "0" else "massless",
+                   x["steps"], x["residual_evaluations"], seconds(x["wall_median_s"]), seconds(x["cpu_median_s"]),
+                   f"{sig(num(x['simulated_s']) / num(x['cpu_median_s']), 3)}×"] for x in rows])
+    apart = next((x["load_distance_max_m"] for x in rows if x.get("load_distance_max_m")), "nan")
+    return f"""## Reeved ropes: massless and massive
+
+What a massive reeved rope costs against the massless one on the same path, and how it grows with
+its cables per part ([massless or massive](elements.md#massless-or-massive-what-each-costs)):
+the hook block on 4 falls (12 s) and the reeved thesis crane (60 s), rows of one session with the
+massive rope assembled as one dense element (before) and as a block per cable (after),
+alternating run by run. Wall: the integration's; CPU: the whole process's; medians of the runs.
+On the combined motion the massive hoist rope moves the load at most {metres(apart)} from the
+massless one's path.
+
+{body}
+
+{r.source("python3 benchmarks/reeving_cost.py --before-bin OTHER_BUILD/crane-sim --reps 3", "reeving_cost.csv", rows)}
+"""
+
+
 def session_stepping(r: Results) -> str:
     rows = r.csv("session_stepping.csv")
     method = {"profiles": "the scene's profiles (`crane-sim run`)", "inputs": "inputs, commanded every sample",
@@ -672,7 +697,7 @@ for parsing it, no longer for its tangents.
 
 
 SECTIONS = [combined_motion, fidelities, equilibrium_grid, map_parallel, jacobian_ratio, truss_reduction,
-            element_bending, slender_statics, element_vibration, pendulum_chain, session_stepping, anti_sway,
+            element_bending, slender_statics, element_vibration, pendulum_chain, reeving_cost, session_stepping, anti_sway,
             operator_assistance, plan_tracking, sway_sensor, setup_times]
 
 
