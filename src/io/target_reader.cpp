@@ -177,14 +177,14 @@ SurfaceSpec readFit(const YamlField& f) {
 }
 
 /// The slewing axis radii are measured from: the slewing target's constraint, else the one the
-/// scene's `crane:` block names; none without either.
+/// scene's `crane:` block names; none without either, or where that one turns about no vertical.
 std::optional<SlewingAxis> radiusAxis(const TargetSpec& t) {
   const std::string constraint = t.slewing ? t.slewing->constraint : t.scene.crane ? t.scene.crane->slewing : std::string();
   if (constraint.empty()) return std::nullopt;
   try {
     return slewingAxisOf(t.scene, constraint, t.controls.end_point);
-  } catch (const std::invalid_argument& e) {
-    throw SceneError(t.slewing ? t.slewing->where : t.scene.crane->where_slewing, e.what());
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;  // readSlewing has checked a slewing target's; a crane block's serves radii only
   }
 }
 
@@ -193,7 +193,7 @@ EndState liftEnd(const YamlField& f, const TargetSpec& t) {
   f.allowKeys({"radius", "height"});
   if (!t.slewing_axis)
     f.fail("a radius is measured from the slewing axis: give the target a slewing block or the scene a crane block naming "
-           "its slewing constraint");
+           "its slewing constraint (a revolute constraint about the vertical)");
   const YamlField radius = f.at("radius");
   double x = 0.0;
   try {
