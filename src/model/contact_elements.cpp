@@ -38,7 +38,7 @@ void ContactElement::mass(const ElementInput&, double* M) const { std::fill(M, M
 
 double ContactElement::dissipatedPower(const ElementInput& in) const {
   const Local q = gather(in.q, q_), v = gather(in.v, v_);
-  double moving[12], resting[12];
+  double moving[12] = {}, resting[12] = {};  // force() fills the first size()
   force(q, v, moving);
   force(q, Local::Zero(v.size()), resting);
   double p = 0.0;
