@@ -70,8 +70,8 @@ CraneControls readControls(const YamlField& f) {
 }
 
 /// `slewing: {constraint, turn}`: a driven revolute constraint of the scene about the vertical
-/// (at the drawn state), and the turn in degrees.
-SlewingSpec readSlewing(const YamlField& f, const Scene& scene) {
+/// (at the drawn state), and the turn in degrees; sets the target's slewing and its axis.
+void readSlewing(const YamlField& f, TargetSpec& t) {
   f.allowKeys({"constraint", "turn"});
   SlewingSpec s;
   s.where = f.where();
@@ -81,21 +81,18 @@ SlewingSpec readSlewing(const YamlField& f, const Scene& scene) {
   s.turn = degrees * std::numbers::pi / 180.0;
   const YamlField name = f.at("constraint");
   s.constraint = name.text();
-  const auto c = std::find_if(scene.constraints.begin(), scene.constraints.end(),
+  const auto c = std::find_if(t.scene.constraints.begin(), t.scene.constraints.end(),
                               [&](const ConstraintSpec& spec) { return spec.name == s.constraint; });
-  if (c == scene.constraints.end()) name.fail(fmt::format("the scene has no constraint '{}'", s.constraint));
+  if (c == t.scene.constraints.end()) name.fail(fmt::format("the scene has no constraint '{}'", s.constraint));
   if (c->type != ConstraintType::Revolute || !c->drive)
     name.fail(fmt::format("'{}' is no driven revolute constraint: the slewing needs one (type: revolute, with a drive)", s.constraint));
-  s.start = (*c->drive)(scene.solver.t_start);
-  const Model model = compileModel(scene);
-  const Constraint& compiled = *std::find_if(model.constraints.begin(), model.constraints.end(),
-                                             [&](const Constraint& k) { return k.name == s.constraint; });
-  const Vec3 axis = model.jointFrame(model.q0.data(), compiled.joint1).R.col(compiled.axis);
-  if (axis.cross(scene.gravity.normalized()).norm() > 1e-6)
-    name.fail(fmt::format("'{}' turns about ({:.3g}, {:.3g}, {:.3g}) in the drawing, which is not vertical: the slewing "
-                          "turns the crane about the vertical",
-                          s.constraint, axis.x(), axis.y(), axis.z()));
-  return s;
+  s.start = (*c->drive)(t.scene.solver.t_start);
+  try {
+    t.slewing_axis = slewingAxisOf(t.scene, s.constraint, t.controls.end_point);
+  } catch (const std::invalid_argument& e) {
+    name.fail(std::string(e.what()) + ": the slewing turns the crane about the vertical");
+  }
+  t.slewing = s;
 }
 
 /// `drive_limits: {luffing, hoist, slewing}`, each `{speed, acceleration, jerk}` (any of them;
@@ -176,15 +173,14 @@ SurfaceSpec readFit(const YamlField& f) {
   return s;
 }
 
-/// The slewing axis radii are measured from: the slewing target's constraint, else the one the
-/// scene's `crane:` block names; none without either, or where that one turns about no vertical.
-std::optional<SlewingAxis> radiusAxis(const TargetSpec& t) {
-  const std::string constraint = t.slewing ? t.slewing->constraint : t.scene.crane ? t.scene.crane->slewing : std::string();
-  if (constraint.empty()) return std::nullopt;
+/// The slewing axis of a target that does not slew, for radii: the one the scene's `crane:` block
+/// names; none without it, or where that one turns about no vertical (it serves radii only).
+std::optional<SlewingAxis> craneBlockAxis(const TargetSpec& t) {
+  if (!t.scene.crane) return std::nullopt;
   try {
-    return slewingAxisOf(t.scene, constraint, t.controls.end_point);
+    return slewingAxisOf(t.scene, t.scene.crane->slewing, t.controls.end_point);
   } catch (const std::invalid_argument&) {
-    return std::nullopt;  // readSlewing has checked a slewing target's; a crane block's serves radii only
+    return std::nullopt;
   }
 }
 
@@ -399,12 +395,12 @@ TargetSpec readTarget(const std::string& path) {
   t.controls = readControls(crane);
   t.where_controls = crane.where();
   checkControls(t.scene, t.controls, t.where_controls);
-  if (const auto s = f.find("slewing")) t.slewing = readSlewing(*s, t.scene);
+  if (const auto s = f.find("slewing")) readSlewing(*s, t);
   if (const auto l = f.find("drive_limits")) t.drive_limits = readDriveLimits(*l, t.slewing.has_value());
   if (t.method == PlanMethod::MinimumTime) checkMinimumTimeLimits(f, t);
   t.map = readMap(f.at("map"));
   if (const auto fit = f.find("fit")) t.fit = readFit(*fit);
-  t.slewing_axis = radiusAxis(t);
+  if (!t.slewing) t.slewing_axis = craneBlockAxis(t);
   const YamlField trajectory = f.at("trajectory");
   t.where_trajectory = trajectory.where();
   readTrajectory(trajectory, t);
