@@ -11,6 +11,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 #include "cranesim/math/autodiff.hpp"
 #include "cranesim/planning/ipopt_application.hpp"
 #include "final_time_tnlp.hpp"
@@ -254,33 +256,30 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
   }
 
   bool eval_g(Ipopt::Index, const Ipopt::Number* z, bool, Ipopt::Index, Ipopt::Number* g) override {
-    std::vector<NodeEvaluation<double>> nodes;
-    std::vector<std::array<double, kStateSize>> rates;
-    for (int k = 0; k <= N_; ++k) {
+    std::vector<NodeEvaluation<double>> nodes(N_ + 1);
+    std::vector<std::array<double, kStateSize>> rates(N_ + 1);
+    const int drive_rows = static_cast<int>(rows_.size());
+    eachNode([&](int k) {
       const double* node = z + kNodeSize * k;
-      nodes.push_back(evaluateNode(p_.crane, statesOf(nodeOf(node))));
-      std::array<double, kStateSize> f{};
-      for (int c = 0; c < kStateSize; ++c) f[c] = rateVariable(c) >= 0 ? node[rateVariable(c)] : nodes.back().swing_acceleration[c - 11];
-      rates.push_back(f);
-    }
+      nodes[k] = evaluateNode(p_.crane, statesOf(nodeOf(node)));
+      for (int c = 0; c < kStateSize; ++c) rates[k][c] = rateVariable(c) >= 0 ? node[rateVariable(c)] : nodes[k].swing_acceleration[c - 11];
+      double* drive = g + kStateSize * N_ + drive_rows * k;
+      for (const DriveRow& row : rows_) *drive++ = row.acceleration ? nodes[k].acceleration[row.drive] : nodes[k].speed[row.drive];
+      if (luffingJerkRows() > 0) {
+        const LuffingJerk<double> j = luffingJerk(p_.crane, statesOf(nodeOf(node)));
+        g[firstLuffingJerkRow() + k] = j.rest + j.slope_u * node[kJerk] + j.slope_v * node[kJerk + 1];
+      }
+      if (clearance_rows_ > 0 && k > 0 && k < N_) {
+        double* clearance = g + firstClearanceRow() + clearance_rows_ * (k - 1);
+        for (double c : clearances(p_, sampling_, node[0], node[2], nodes[k].load)) *clearance++ = c;
+      }
+    });
     const double h = z[finalTimeIndex()] / N_;
     for (int k = 0; k < N_; ++k)
       for (int c = 0; c < kStateSize; ++c) {
         const int i = stateVariable(c);
         g[kStateSize * k + c] = z[kNodeSize * (k + 1) + i] - z[kNodeSize * k + i] - 0.5 * h * (rates[k][c] + rates[k + 1][c]);
       }
-    int r = kStateSize * N_;
-    for (int k = 0; k <= N_; ++k)
-      for (const DriveRow& row : rows_) g[r++] = row.acceleration ? nodes[k].acceleration[row.drive] : nodes[k].speed[row.drive];
-    if (luffingJerkRows() > 0)
-      for (int k = 0; k <= N_; ++k) {
-        const double* node = z + kNodeSize * k;
-        const LuffingJerk<double> j = luffingJerk(p_.crane, statesOf(nodeOf(node)));
-        g[r++] = j.rest + j.slope_u * node[kJerk] + j.slope_v * node[kJerk + 1];
-      }
-    if (clearance_rows_ > 0)
-      for (int k = 1; k < N_; ++k)
-        for (double c : clearances(p_, sampling_, z[kNodeSize * k], z[kNodeSize * k + 2], nodes[k].load)) g[r++] = c;
     return true;
   }
 
@@ -306,15 +305,17 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
           for (int c = 0; c < kStateSize; ++c) rows[e] = r, cols[e++] = kNodeSize * k + stateVariable(c);
       return true;
     }
-    // ∂f_c/∂(node variables) and f_c at every node.
+    // Per node: its rates f_c and their gradients in its variables, and the rows of the drives,
+    // the luffing rope's jerk and the clearances, written where the structure above puts them.
     std::vector<std::array<std::array<double, kNodeSize>, kStateSize>> rate_gradients(N_ + 1);
     std::vector<std::array<double, kStateSize>> rates(N_ + 1);
-    std::vector<NodeEvaluation<Gradient>> nodes;
-    std::vector<std::array<Gradient, kStateSize>> states;
-    for (int k = 0; k <= N_; ++k) {
+    const int defect_entries = kStateSize * N_ * (2 * kNodeSize + 1), drive_rows = static_cast<int>(rows_.size());
+    const int jerk_entries = kStateSize + 2, first_jerk_entry = defect_entries + drive_rows * (N_ + 1) * kStateSize;
+    const int first_clearance_entry = first_jerk_entry + luffingJerkRows() * jerk_entries;
+    eachNode([&](int k) {
       const double* node = z + kNodeSize * k;
-      states.push_back(gradientStates(node));
-      nodes.push_back(evaluateNode(p_.crane, states.back()));
+      const std::array<Gradient, kStateSize> states = gradientStates(node);
+      const NodeEvaluation<Gradient> evaluation = evaluateNode(p_.crane, states);
       for (int c = 0; c < kStateSize; ++c) {
         auto& gradient = rate_gradients[k][c];
         gradient.fill(0.0);
@@ -323,11 +324,29 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
           rates[k][c] = node[rateVariable(c)];
           continue;
         }
-        const Gradient& f = nodes.back().swing_acceleration[c - 11];
+        const Gradient& f = evaluation.swing_acceleration[c - 11];
         rates[k][c] = f.value();
         for (int i = 0; i < kStateSize; ++i) gradient[stateVariable(i)] = f.derivatives()(i);
       }
-    }
+      double* value = values + defect_entries + drive_rows * kStateSize * k;
+      for (const DriveRow& row : rows_) {
+        const Gradient& drive = row.acceleration ? evaluation.acceleration[row.drive] : evaluation.speed[row.drive];
+        for (int c = 0; c < kStateSize; ++c) *value++ = drive.derivatives()(c);
+      }
+      if (luffingJerkRows() > 0) {
+        const LuffingJerk<Gradient> j = luffingJerk(p_.crane, states);
+        value = values + first_jerk_entry + jerk_entries * k;
+        for (int c = 0; c < kStateSize; ++c)
+          *value++ = j.rest.derivatives()(c) + j.slope_u.derivatives()(c) * node[kJerk] + j.slope_v.derivatives()(c) * node[kJerk + 1];
+        *value++ = j.slope_u.value();
+        *value++ = j.slope_v.value();
+      }
+      if (clearance_rows_ > 0 && k > 0 && k < N_) {
+        value = values + first_clearance_entry + clearance_rows_ * kStateSize * (k - 1);
+        for (const Gradient& clearance : clearanceGradients(p_, sampling_, states, evaluation.load))
+          for (int c = 0; c < kStateSize; ++c) *value++ = clearance.derivatives()(c);
+      }
+    });
     const double h = z[finalTimeIndex()] / N_;
     for (int k = 0; k < N_; ++k)
       for (int c = 0; c < kStateSize; ++c) {
@@ -336,28 +355,16 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
             values[e++] = (i == stateVariable(c) ? (j == k ? -1.0 : 1.0) : 0.0) - 0.5 * h * rate_gradients[j][c][i];
         values[e++] = -0.5 / N_ * (rates[k][c] + rates[k + 1][c]);
       }
-    for (int k = 0; k <= N_; ++k)
-      for (const DriveRow& row : rows_) {
-        const Gradient& value = row.acceleration ? nodes[k].acceleration[row.drive] : nodes[k].speed[row.drive];
-        for (int c = 0; c < kStateSize; ++c) values[e++] = value.derivatives()(c);
-      }
-    if (luffingJerkRows() > 0)
-      for (int k = 0; k <= N_; ++k) {
-        const double* node = z + kNodeSize * k;
-        const LuffingJerk<Gradient> j = luffingJerk(p_.crane, states[k]);
-        for (int c = 0; c < kStateSize; ++c)
-          values[e++] = j.rest.derivatives()(c) + j.slope_u.derivatives()(c) * node[kJerk] + j.slope_v.derivatives()(c) * node[kJerk + 1];
-        values[e++] = j.slope_u.value();
-        values[e++] = j.slope_v.value();
-      }
-    if (clearance_rows_ > 0)
-      for (int k = 1; k < N_; ++k)
-        for (const Gradient& value : clearanceGradients(p_, sampling_, states[k], nodes[k].load))
-          for (int c = 0; c < kStateSize; ++c) values[e++] = value.derivatives()(c);
     return true;
   }
 
  private:
+  /// Runs `body` on every node 0 … N on TBB's threads. Each node writes only its own results,
+  /// so they are the same, bit for bit, on any number of threads.
+  template <class Body> void eachNode(const Body& body) const {
+    tbb::parallel_for(0, N_ + 1, [&](int k) { body(k); });
+  }
+
   int finalTimeIndex() const { return kNodeSize * (N_ + 1); }
   int firstLuffingJerkRow() const { return kStateSize * N_ + static_cast<int>(rows_.size()) * (N_ + 1); }
   int luffingJerkRows() const { return std::isfinite(p_.luffing_jerk_limit) ? N_ + 1 : 0; }
@@ -496,6 +503,11 @@ LiftTrajectory solveMinimumTimeLift(const LiftProblem& problem, const LiftGuess&
   Ipopt::SmartPtr<Ipopt::IpoptApplication> ipopt =
       ipoptApplication({problem.print_level, problem.tolerance, problem.max_iterations});
   ipopt->Options()->SetStringValue("hessian_approximation", "limited-memory");
+  // L-BFGS's low-rank term goes into the KKT matrix that MUMPS factors (2m more rows) instead of
+  // being applied by Sherman–Morrison–Woodbury, which costs 2m more solves per factorisation; on
+  // these matrices MUMPS' solves took longer than its factorisations. Measured on the shipped
+  // lifts: the same iterates, Ipopt's linear algebra 2.3–3.3× faster (docs/planning.md).
+  ipopt->Options()->SetStringValue("limited_memory_aug_solver", "extended");
   // Around obstacles the soft minima's curvature leaves L-BFGS creeping: t_f settles while the
   // dual infeasibility keeps jumping back above 1e-3. So the solve stops once t_f has changed by
   // less than 1e-5 of itself over 10 iterations, the constraints met to 1e-6 and complementarity
