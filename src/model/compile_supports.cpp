@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cranesim/model/anchored_pad_element.hpp"
 #include "cranesim/model/support_elements.hpp"
 
 namespace cranesim {
@@ -120,11 +121,21 @@ void compileSupports(Model& model, const Scene& scene) {
         points.push_back({p.point, bed});
       }
       std::vector<int> q, v;
-      for (int i = 0; i < 6; ++i) q.push_back(node->q + i), v.push_back(node->v + i);
+      for (int i = 0; i < 6; ++i) q.push_back(model.nodes[body].q + i), v.push_back(model.nodes[body].v + i);
+      const std::vector<SupportPoint> sheared = points;
+      for (SupportPoint& p : points) p.bed.shear_stiffness = 0.0, p.bed.shear_damping = 0.0;
       s.element = static_cast<int>(model.elements.size());
-      model.elements.push_back(std::make_unique<SupportElement>(std::move(points), body, std::move(q), std::move(v)));
+      model.elements.push_back(std::make_unique<SupportElement>(std::move(points), body, q, v));
+      for (std::size_t k = 0; k < sheared.size(); ++k) {
+        // q: how far the point's anchor has slid from where the point was drawn.
+        const int anchor = model.addNode(fmt::format("supports.{}.anchor{}", s.name, k), NodeKind::Point);
+        std::vector<int> qa = q, va = v;
+        for (int i = 0; i < 3; ++i) qa.push_back(model.nodes[anchor].q + i), va.push_back(model.nodes[anchor].v + i);
+        model.elements.push_back(std::make_unique<AnchoredPadElement>(sheared[k], body, anchor, std::move(qa), std::move(va)));
+      }
     }
   model.envelope.node_in_contact[static_cast<std::size_t>(body)] = true;
+  model.envelope.node_in_contact.resize(model.nodes.size(), true);  // the pads' anchors lie on the ground
   model.envelope.supports = std::move(supports);
 }
 

@@ -1,8 +1,10 @@
-// The supports' horizontal forces held within friction (elements/friction_bound.hpp): a pad off
-// the ground carries nothing; a carriage pushed sideways at its pads' level stands while the
-// push stays below μ W, displaced by the bounded springs' hand statics, has no equilibrium
-// beyond it, and slides under a larger push with the acceleration (P − μ W)/m; a carriage whose
-// load tips it falls over its front edge in a run instead of hanging on its lifted pads.
+// The supports' horizontal forces: friction with memory (model/anchored_pad_element.hpp). A pad
+// off the ground carries nothing; a carriage pushed sideways at its pads' level stands while the
+// push stays below μ W, displaced by the held law's hand statics, has no equilibrium beyond it,
+// sticks on its pads' shear springs in a run, slides under a larger push with the acceleration
+// (P − μ W)/m less the slip law's band, and, released, stays where it slid, at rest, with the
+// push's work dissipated; a carriage whose load tips it falls over its front edge in a run
+// instead of hanging on its lifted pads; the element's Jacobian is its residual's derivative.
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -11,8 +13,10 @@
 #include <cmath>
 
 #include "carriage_on_pads.hpp"
+#include "cranesim/model/anchored_pad_element.hpp"
 #include "cranesim/model/support_elements.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
+#include "element_differences.hpp"
 #include "scene_fixtures.hpp"
 
 using namespace cranesim;
@@ -25,7 +29,8 @@ constexpr double kShearStiffness = 0.8 * kSubgradeModulus * kPadArea;  // N/m pe
 
 /// A 20 t carriage on four pads at (±2.5, ±2) m pushed along x by `push` N at its origin, the
 /// pads' level: the push puts no moment on it, each pad carries W/4 and a quarter of the push.
-std::string pushedCarriage(double push, double t_end) {
+/// `scale` is the push's profile.
+std::string pushedCarriage(double push, double t_end, const std::string& scale = "1") {
   return fmt::format(R"(
 name: carriage pushed sideways
 gravity: [0, 0, -{g}]
@@ -50,12 +55,37 @@ bodies:
       - {{name: rear_right, position: [-2.5, -2, 0]}}
       - {{name: front_right, position: [2.5, -2, 0]}}
 loads:
-  - {{name: push, joint: carriage.origin, force: [{push}, 0, 0]}}
+  - {{name: push, joint: carriage.origin, force: [{push}, 0, 0], scale: {scale}}}
 solver: {{t_end: {t_end}, rtol: 1.0e-7, atol: 1.0e-9}}
 output: {{interval: 0.25}}
 )",
                      fmt::arg("g", kGravity), fmt::arg("k_s", kSubgradeModulus), fmt::arg("mu", kFriction), fmt::arg("area", kPadArea),
-                     fmt::arg("mass", kMass), fmt::arg("push", push), fmt::arg("t_end", t_end));
+                     fmt::arg("mass", kMass), fmt::arg("push", push), fmt::arg("t_end", t_end),
+                     fmt::arg("scale", scale));
+}
+
+/// The bed under the test carriage's front-left pad, its level at z = 0.
+SupportBed frontLeftBed() {
+  SupportBed bed;
+  bed.level = 0.0;
+  bed.anchor = Vec3(2.5, 2.0, 0.0);
+  bed.law = {5.0e8, 4.0e5, 1e-5};
+  bed.shear_stiffness = 4.0e8;
+  bed.shear_damping = 3.6e5;
+  bed.friction = kFriction;
+  return bed;
+}
+
+/// The carriage's acceleration sliding under `push` > μ W, by the fixed point of the test below.
+double slidingAcceleration(double push) {
+  const double weight = kMass * kGravity, floor = AnchoredPadElement::kSlipBandFloor;
+  const double width = AnchoredPadElement::kCatchUpFraction * kFriction * weight / 4.0 + floor;
+  double acceleration = (push - kFriction * weight) / kMass;
+  for (int k = 0; k < 20; ++k) {
+    const double over = std::sqrt(2.0 * width * kShearStiffness * AnchoredPadElement::kCatchUpTime * AnchoredPadElement::kAnchorLag * acceleration);
+    acceleration = (push - kFriction * weight - 4.0 * (floor + over)) / kMass;
+  }
+  return acceleration;
 }
 
 /// The carriage's move along x from where it was drawn at the equilibrium.
@@ -67,12 +97,7 @@ double equilibriumShift(const Model& model, const StaticResult& eq) {
 }  // namespace
 
 TEST_CASE("A pad off the ground carries nothing, however far it has moved across the bed", "[supports][friction]") {
-  SupportBed bed;
-  bed.level = 0.0;
-  bed.anchor = Vec3(2.5, 2.0, 0.0);
-  bed.law = {5.0e8, 4.0e5, 1e-5};
-  bed.shear_stiffness = 4.0e8;
-  bed.shear_damping = 3.6e5;
+  const SupportBed bed = frontLeftBed();
   const SupportElement pad({{Vec3(2.5, 2.0, 0.0), bed}}, 0, {0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4, 5});
   // 1 mm above the bed, 5 cm and a few degrees off its drawn place, moving and turning.
   VecX q(6), v(6), a = VecX::Zero(6), r(6);
@@ -109,15 +134,18 @@ TEST_CASE("A pad off the ground carries nothing, however far it has moved across
 
 TEST_CASE("A carriage pushed sideways stands below μ W, displaced as hand statics say, and not beyond", "[supports][friction][statics]") {
   const double weight = kMass * kGravity, limit = kFriction * weight;
-  // Each pad carries N = W/4 and P/4 across: P/4 = k u μN / √((μN)² + (k u)²), so
-  // k u = (P/4) / √(1 − (P/(μ W))²): the elastic shift P/(4k) grown as the push nears μ W.
+  // Each pad carries N = W/4 and T = P/4 across. Statics holds the anchors where they were drawn:
+  // T = k u up to the stick's onset ς μN, then ς μN + w y/√(1 + y²) with y = (k u − ς μN)/w,
+  // w = (1 − ς) μN: k u = μN (ς + (1 − ς) y), y = z/√(1 − z²), z = (s − ς)/(1 − ς), s = P/(μ W).
+  const double stick = AnchoredPadElement::kStickFraction;
   for (const double share : {0.1, 0.5, 0.9, 0.98}) {
     CAPTURE(share);
     const Scene scene = parseScene(pushedCarriage(share * limit, 1.0), "<test>");
     const Model model = compileModel(scene);
     const StaticResult eq = solveEquilibrium(scene, model, 0.0);
     REQUIRE(eq.converged);
-    const double hand = share * limit / 4.0 / (kShearStiffness * std::sqrt(1.0 - share * share));
+    const double z = std::max(share - stick, 0.0) / (1.0 - stick), y = z / std::sqrt(1.0 - z * z);
+    const double hand = share <= stick ? share * limit / 4.0 / kShearStiffness : limit / 4.0 * (stick + (1.0 - stick) * y) / kShearStiffness;
     CHECK(equilibriumShift(model, eq) == Approx(hand).epsilon(1e-6));
   }
   for (const double share : {1.02, 1.2}) {
@@ -128,11 +156,34 @@ TEST_CASE("A carriage pushed sideways stands below μ W, displaced as hand stati
   }
 }
 
-TEST_CASE("A carriage pushed past μ W slides with the acceleration (P − μ W)/m", "[supports][friction][dynamics]") {
+TEST_CASE("A carriage pushed below μ W sticks: the shear springs' k law holds, the anchors stay", "[supports][friction][dynamics]") {
+  // 0.3 μ W switched on at t = 0 on the drawn carriage: it overshoots to at most 0.6 μ W, below
+  // the stick's onset (0.9 μ N per pad), rings down on its dampers and rests at P/(4k); the
+  // anchors do not move at all (the slip law is exactly zero below the onset).
+  const double push = 0.3 * kFriction * kMass * kGravity;
+  const test::SimulationRun run(parseScene(pushedCarriage(push, 1.0), "<test>"));
+  REQUIRE(run.outcome.complete);
+  const std::vector<double>& x = run.jointPositions("carriage.origin");
+  const std::size_t last = run.recorder.time().size() - 1;
+  CHECK(x[3 * last] - x[0] == Approx(push / (4.0 * kShearStiffness)).epsilon(1e-6));
+  int anchors = 0;
+  for (const Node& n : run.model.nodes) {
+    if (n.name.find(".anchor") == std::string::npos) continue;
+    ++anchors;
+    for (int k = 0; k < 2; ++k)
+      for (const double slid : run.recorder.stateColumn(n.q + k)) CHECK(slid == 0.0);
+  }
+  CHECK(anchors == 4);
+}
+
+TEST_CASE("A carriage pushed past μ W slides with the acceleration (P − μ W)/m less the slip band", "[supports][friction][dynamics]") {
   // From rest under P = 1.5 μ W: its pads stick on their shear springs for a few milliseconds,
-  // then slide, and the carriage's x gains a·h² in each second difference over h = 0.25 s.
+  // then slide, and the carriage's x gains a·h² in each second difference over h = 0.25 s. At
+  // full slip each pad pulls its anchor along with k|e| = μN + b (b = kSlipBandFloor) plus the
+  // over-pull o that makes the anchor's catch-up rate o²/(2 w k τ) (w = 0.05 μN + b, τ = 0.01 s)
+  // match its lag ε a: m a = P − μ W − 4 (b + o).
   const double weight = kMass * kGravity, push = 1.5 * kFriction * weight;
-  const double acceleration = (push - kFriction * weight) / kMass;
+  const double acceleration = slidingAcceleration(push);
   const test::SimulationRun run(parseScene(pushedCarriage(push, 1.0), "<test>"));
   REQUIRE(run.outcome.complete);
   const std::vector<double>& times = run.recorder.time();
@@ -143,9 +194,38 @@ TEST_CASE("A carriage pushed past μ W slides with the acceleration (P − μ W)
     CAPTURE(times[i]);
     CHECK((x[3 * i] - 2 * x[3 * (i - 1)] + x[3 * (i - 2)]) / (0.25 * 0.25) == Approx(acceleration).epsilon(1e-4));
   }
-  // The books close: the push's work is the carriage's kinetic energy and the pads' bounded
-  // springs' (their slide μ N |u| is held in Φ, elements/friction_bound.hpp).
   CHECK(run.recorder.relativeBalanceDrift() <= 1e-5);
+}
+
+TEST_CASE("A carriage pushed past μ W for 1 s and released stays where it slid, at rest, its push dissipated", "[supports][friction][dynamics]") {
+  // 1.5 μ W for 1 s: the carriage slides with a₁ (the test above) and, released, brakes with
+  // (μ W + 4 b)/m to rest after x = v₁²/2 (1/a₁ + 1/a₂), v₁ = a₁ · 1 s less the few milliseconds
+  // it sticks. It stays there: its last two samples agree, its speed is gone, and the push's
+  // work is dissipated, the books closing at rtol 1e-9.
+  const double weight = kMass * kGravity, push = 1.5 * kFriction * weight;
+  Scene scene = parseScene(pushedCarriage(push, 3.0, "{type: table, t: [0, 1], value: [1, 0], interpolation: step}"), "<test>");
+  scene.solver.rtol = 1e-9;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-11);
+  const test::SimulationRun run(scene);
+  REQUIRE(run.outcome.complete);
+  const std::vector<double>& times = run.recorder.time();
+  const std::vector<double>& x = run.jointPositions("carriage.origin");
+  const std::size_t last = times.size() - 1;
+  REQUIRE(times[last] == Approx(3.0));
+  const double slide = x[3 * last] - x[0];
+  const double a1 = slidingAcceleration(push);
+  const double a2 = (kFriction * weight + 4.0 * AnchoredPadElement::kSlipBandFloor) / kMass;
+  CAPTURE(slide);
+  CHECK(slide == Approx(0.5 * a1 * a1 * (1.0 / a1 + 1.0 / a2)).epsilon(5e-3));
+  CHECK(std::abs(x[3 * last] - x[3 * (last - 1)]) <= 1e-9);
+  const int origin = run.model.findJoint("carriage.origin");
+  const int carriage = run.model.joints[static_cast<std::size_t>(origin)].node;
+  const double speed = run.recorder.stateColumn(run.assembler.vOffset() + run.model.nodes[static_cast<std::size_t>(carriage)].v).back();
+  CHECK(std::abs(speed) <= 1e-6);
+  const double work = push * (x[3 * 4] - x[0]);  // the push's work up to its release at 1 s (sample 4)
+  REQUIRE(times[4] == Approx(1.0));
+  CHECK(run.recorder.dissipated().back() == Approx(work).epsilon(1e-6));
+  CHECK(run.recorder.relativeBalanceDrift() <= 1e-6);
 }
 
 TEST_CASE("A carriage whose load tips it falls over its front edge in a run", "[supports][friction][dynamics]") {
@@ -173,4 +253,40 @@ TEST_CASE("A carriage whose load tips it falls over its front edge in a run", "[
   CAPTURE(rise_at[0], rise_at[1], rise_at[2], rise_at[3]);
   for (std::size_t k = 1; k + 1 < rise_at.size(); ++k) CHECK(rise_at[k + 1] - rise_at[k] > rise_at[k] - rise_at[k - 1]);
   CHECK(rise_at.back() > 0.5);
+}
+
+TEST_CASE("An anchored pad's Jacobian is its residual's derivative: sticking, slipping, sliding, lifted, held", "[supports][friction]") {
+  const SupportBed bed = frontLeftBed();
+  const AnchoredPadElement pad({Vec3(2.5, 2.0, 0.0), bed}, 0, 1, {0, 1, 2, 3, 4, 5, 6, 7, 8}, {0, 1, 2, 3, 4, 5, 6, 7, 8});
+  // Settled 0.2 mm (N ≈ 1e5 N, μN ≈ 4e4 N), the anchor slid 0.2 m along x and 1 cm along y, the
+  // pad k|e| = 2e4 N (sticking), 3.8e4 N (in the slip band), 4.1e4 N (full slip) ahead of it, or
+  // 1 mm above the bed; moving along its offset and turning a little.
+  for (const double pull : {2.0e4, 3.8e4, 4.1e4}) {
+    for (const double lift : {-2e-4, 1e-3}) {
+      for (const bool held : {false, true}) {
+        CAPTURE(pull, lift, held);
+        Eigen::Matrix<double, 9, 1> q, v, a;
+        q << 0.2 + 0.8 * pull / bed.shear_stiffness, 0.01 + 0.6 * pull / bed.shear_stiffness, lift, 1e-8, -2e-8, 3e-8, 0.2, 0.01, 0.0;
+        v << 0.3, 0.2, 0.001, 0.02, -0.01, 0.03, 0.28, 0.19, 0.0;
+        a << 1.0, 0.5, 0.0, 0.1, 0.0, 0.2, 0.9, 0.4, 0.1;
+        ElementInput in{q.data(), v.data(), a.data(), 0.0, Vec3(0, 0, -kGravity)};
+        if (held) in.rates = ParameterRates::Held, v.setZero(), a.setZero();
+        const double cj = 1e3;
+        Eigen::Matrix<double, 9, 18> J;
+        pad.jacobian(in, cj, J.data());
+        MatX fd = test::residualDifferences(pad, in, 1e-9);
+        Eigen::Matrix<double, 9, 9> M;
+        pad.mass(in, M.data());
+        if (!held) fd.rightCols(9) += cj * M;
+        const double q_error = (J.leftCols(9) - fd.leftCols(9)).norm() / std::max(fd.leftCols(9).norm(), 1.0);
+        const double v_error = (J.rightCols(9) - fd.rightCols(9)).norm() / std::max(fd.rightCols(9).norm(), 1.0);
+        CAPTURE(q_error, v_error, fd.leftCols(9).norm(), fd.rightCols(9).norm());
+        CHECK(q_error <= 1e-6);
+        CHECK(v_error <= 1e-6);
+        Eigen::Matrix<double, 9, 9> Jq;
+        pad.coordinateJacobian(in, Jq.data());
+        CHECK((Jq - J.leftCols(9)).norm() <= 1e-14 * std::max(J.leftCols(9).norm(), 1.0));
+      }
+    }
+  }
 }

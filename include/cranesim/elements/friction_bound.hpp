@@ -26,13 +26,14 @@ template <class S> Vec3T<S> frictionBounded(const Vec3T<S>& trial, const S& boun
 
 /// Φ(u; B) of a spring of stiffness k displaced by |u| = `displacement` under the bound B.
 inline double frictionBoundedEnergy(double displacement, double stiffness, double bound) {
-  if (bound <= 0.0) return 0.0;
+  if (bound <= 0.0 || stiffness <= 0.0) return 0.0;
   const double ku = stiffness * displacement;
   return (bound * std::sqrt(bound * bound + ku * ku) - bound * bound) / stiffness;
 }
 
 /// ∂Φ/∂B of the same spring.
 inline double frictionBoundedEnergyPerBound(double displacement, double stiffness, double bound) {
+  if (stiffness <= 0.0) return 0.0;
   if (bound <= 0.0) return displacement;
   const double ku = stiffness * displacement, root = std::sqrt(bound * bound + ku * ku);
   return (root + bound * bound / root - 2.0 * bound) / stiffness;

@@ -13,6 +13,8 @@
 //   Q = [F, p × Rᵀ F],  F = up N + bounded(−k_h u_h − c_h u̇_h; μ N),  N = (f(δ) + c h(δ) δ̇)₊,
 // u_h the point's horizontal displacement from its drawn position. The energy is
 // Σ V(δ) + Φ(u_h; μ f(δ)). One element per support computes the body's rotation once.
+// A scene's supports build it with k_h = c_h = 0 and carry each point's horizontal force in an
+// AnchoredPadElement instead (model/anchored_pad_element.hpp: friction with memory).
 
 #include "cranesim/model/contact_elements.hpp"
 
