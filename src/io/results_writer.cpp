@@ -110,6 +110,7 @@ void writeEnvelope(Hdf5File& file, const Model& model, const EnvelopeMonitor& en
     file.attribute(path, "limit", e.limit);
     file.attribute(path, "unit", e.unit);
     if (!e.depth_unit.empty()) file.attribute(path, "depth", e.depth), file.attribute(path, "depth_unit", e.depth_unit);
+    if (!e.why.empty()) file.attribute(path, "why", e.why);
   }
 }
 
@@ -143,6 +144,7 @@ void writeSupports(Hdf5File& file, const EnvelopeSupports& supports, const Envel
     write(path + "/peak_at", [&](const SupportReading& r) { return r.tracks[t].peak_at; });
     write(path + "/contact_length", [&](const SupportReading& r) { return r.tracks[t].contact_length; });
   }
+  file.writeDoubles("/supports/tipped", {N}, envelope.tipped().data());
   std::vector<double> resultant, line;
   for (const SupportReading& r : readings) {
     resultant.insert(resultant.end(), {r.resultant.x(), r.resultant.y()});
