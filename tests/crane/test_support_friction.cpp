@@ -1,19 +1,22 @@
-// The supports' horizontal forces: friction with memory (model/anchored_pad_element.hpp). A pad
+// The supports' horizontal forces: friction with memory (model/anchored_support_element.hpp). A pad
 // off the ground carries nothing; a carriage pushed sideways at its pads' level stands while the
 // push stays below μ W, displaced by the held law's hand statics, has no equilibrium beyond it,
 // sticks on its pads' shear springs in a run, slides under a larger push with the acceleration
 // (P − μ W)/m less the slip law's band, and, released, stays where it slid, at rest, with the
 // push's work dissipated; a carriage whose load tips it falls over its front edge in a run
-// instead of hanging on its lifted pads; the element's Jacobian is its residual's derivative.
+// instead of hanging on its lifted pads, and the run's envelope says it tipped when its rear
+// pads lift; a track's anchor slides and turns within the ellipse of its friction; the
+// element's Jacobian is its residual's derivative.
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "carriage_on_pads.hpp"
-#include "cranesim/model/anchored_pad_element.hpp"
+#include "cranesim/model/anchored_support_element.hpp"
 #include "cranesim/model/support_elements.hpp"
 #include "cranesim/solvers/equilibrium_path.hpp"
 #include "element_differences.hpp"
@@ -78,11 +81,11 @@ SupportBed frontLeftBed() {
 
 /// The carriage's acceleration sliding under `push` > μ W, by the fixed point of the test below.
 double slidingAcceleration(double push) {
-  const double weight = kMass * kGravity, floor = AnchoredPadElement::kSlipBandFloor;
-  const double width = AnchoredPadElement::kCatchUpFraction * kFriction * weight / 4.0 + floor;
+  const double weight = kMass * kGravity, floor = AnchoredSupportElement::kSlipBandFloor;
+  const double width = AnchoredSupportElement::kCatchUpFraction * kFriction * weight / 4.0 + floor;
   double acceleration = (push - kFriction * weight) / kMass;
   for (int k = 0; k < 20; ++k) {
-    const double over = std::sqrt(2.0 * width * kShearStiffness * AnchoredPadElement::kCatchUpTime * AnchoredPadElement::kAnchorLag * acceleration);
+    const double over = std::sqrt(2.0 * width * kShearStiffness * AnchoredSupportElement::kCatchUpTime * AnchoredSupportElement::kAnchorLag * acceleration);
     acceleration = (push - kFriction * weight - 4.0 * (floor + over)) / kMass;
   }
   return acceleration;
@@ -128,6 +131,13 @@ TEST_CASE("A pad off the ground carries nothing, however far it has moved across
     VecX force(element.size());
     element.residual(at, force.data());
     CHECK(force.norm() <= 1e-12 * weight);
+    // Nor across the bed: statics bounds its shear spring by μ N = 0.
+    const auto& anchored = dynamic_cast<const AnchoredSupportElement&>(*model.elements[static_cast<std::size_t>(support.element) + 1]);
+    ElementInput held = at;
+    held.rates = ParameterRates::Held;
+    Eigen::Matrix<double, 9, 1> rows;
+    anchored.residual(held, rows.data());
+    CHECK(rows.head<6>().norm() <= 1e-12 * weight);
   }
   CHECK(lifted == 1);
 }
@@ -137,7 +147,7 @@ TEST_CASE("A carriage pushed sideways stands below μ W, displaced as hand stati
   // Each pad carries N = W/4 and T = P/4 across. Statics holds the anchors where they were drawn:
   // T = k u up to the stick's onset ς μN, then ς μN + w y/√(1 + y²) with y = (k u − ς μN)/w,
   // w = (1 − ς) μN: k u = μN (ς + (1 − ς) y), y = z/√(1 − z²), z = (s − ς)/(1 − ς), s = P/(μ W).
-  const double stick = AnchoredPadElement::kStickFraction;
+  const double stick = AnchoredSupportElement::kStickFraction;
   for (const double share : {0.1, 0.5, 0.9, 0.98}) {
     CAPTURE(share);
     const Scene scene = parseScene(pushedCarriage(share * limit, 1.0), "<test>");
@@ -214,7 +224,7 @@ TEST_CASE("A carriage pushed past μ W for 1 s and released stays where it slid,
   REQUIRE(times[last] == Approx(3.0));
   const double slide = x[3 * last] - x[0];
   const double a1 = slidingAcceleration(push);
-  const double a2 = (kFriction * weight + 4.0 * AnchoredPadElement::kSlipBandFloor) / kMass;
+  const double a2 = (kFriction * weight + 4.0 * AnchoredSupportElement::kSlipBandFloor) / kMass;
   CAPTURE(slide);
   CHECK(slide == Approx(0.5 * a1 * a1 * (1.0 / a1 + 1.0 / a2)).epsilon(5e-3));
   CHECK(std::abs(x[3 * last] - x[3 * (last - 1)]) <= 1e-9);
@@ -253,40 +263,140 @@ TEST_CASE("A carriage whose load tips it falls over its front edge in a run", "[
   CAPTURE(rise_at[0], rise_at[1], rise_at[2], rise_at[3]);
   for (std::size_t k = 1; k + 1 < rise_at.size(); ++k) CHECK(rise_at[k + 1] - rise_at[k] > rise_at[k] - rise_at[k - 1]);
   CHECK(rise_at.back() > 0.5);
+  // The envelope says it tipped from the first sample on which only the front pads carry, the
+  // rear pads' lift-off, and names the edge it stands on.
+  const std::vector<EnvelopeEvent> events = run.recorder.envelope().events();
+  const auto event = [&](const std::string& what, const std::string& part) {
+    return std::find_if(events.begin(), events.end(), [&](const EnvelopeEvent& e) { return e.what == what && e.part == part; });
+  };
+  const auto tipped = event("tipped", "carriage"), lifted = event("lifted off", "rear_left");
+  REQUIRE(tipped != events.end());
+  REQUIRE(lifted != events.end());
+  CHECK(tipped->leaves_envelope);
+  CHECK(tipped->first_time == lifted->first_time);
+  CHECK(tipped->why.find("front_left, front_right") != std::string::npos);
+  CHECK(tipped->why.find("an edge") != std::string::npos);
 }
 
-TEST_CASE("An anchored pad's Jacobian is its residual's derivative: sticking, slipping, sliding, lifted, held", "[supports][friction]") {
-  const SupportBed bed = frontLeftBed();
-  const AnchoredPadElement pad({Vec3(2.5, 2.0, 0.0), bed}, 0, 1, {0, 1, 2, 3, 4, 5, 6, 7, 8}, {0, 1, 2, 3, 4, 5, 6, 7, 8});
-  // Settled 0.2 mm (N ≈ 1e5 N, μN ≈ 4e4 N), the anchor slid 0.2 m along x and 1 cm along y, the
-  // pad k|e| = 2e4 N (sticking), 3.8e4 N (in the slip band), 4.1e4 N (full slip) ahead of it, or
-  // 1 mm above the bed; moving along its offset and turning a little.
-  for (const double pull : {2.0e4, 3.8e4, 4.1e4}) {
-    for (const double lift : {-2e-4, 1e-3}) {
-      for (const bool held : {false, true}) {
-        CAPTURE(pull, lift, held);
-        Eigen::Matrix<double, 9, 1> q, v, a;
-        q << 0.2 + 0.8 * pull / bed.shear_stiffness, 0.01 + 0.6 * pull / bed.shear_stiffness, lift, 1e-8, -2e-8, 3e-8, 0.2, 0.01, 0.0;
-        v << 0.3, 0.2, 0.001, 0.02, -0.01, 0.03, 0.28, 0.19, 0.0;
-        a << 1.0, 0.5, 0.0, 0.1, 0.0, 0.2, 0.9, 0.4, 0.1;
-        ElementInput in{q.data(), v.data(), a.data(), 0.0, Vec3(0, 0, -kGravity)};
-        if (held) in.rates = ParameterRates::Held, v.setZero(), a.setZero();
-        const double cj = 1e3;
-        Eigen::Matrix<double, 9, 18> J;
-        pad.jacobian(in, cj, J.data());
-        MatX fd = test::residualDifferences(pad, in, 1e-9);
-        Eigen::Matrix<double, 9, 9> M;
-        pad.mass(in, M.data());
-        if (!held) fd.rightCols(9) += cj * M;
-        const double q_error = (J.leftCols(9) - fd.leftCols(9)).norm() / std::max(fd.leftCols(9).norm(), 1.0);
-        const double v_error = (J.rightCols(9) - fd.rightCols(9)).norm() / std::max(fd.rightCols(9).norm(), 1.0);
-        CAPTURE(q_error, v_error, fd.leftCols(9).norm(), fd.rightCols(9).norm());
-        CHECK(q_error <= 1e-6);
-        CHECK(v_error <= 1e-6);
-        Eigen::Matrix<double, 9, 9> Jq;
-        pad.coordinateJacobian(in, Jq.data());
-        CHECK((Jq - J.leftCols(9)).norm() <= 1e-14 * std::max(J.leftCols(9).norm(), 1.0));
+TEST_CASE("A track's anchor slides and turns within the ellipse of its friction, sticks inside it", "[supports][friction]") {
+  // A rigid strip of 12 points 1 m apart along x on a level bed, each settled to carry N, its
+  // anchor at rest where it was drawn. The body is moved by u across the strip (y) and turned
+  // by β about its centre (z), so that point x_i pulls its anchor with k (u + β x_i) along y:
+  // F = 12 k u, M = k β Σ x_i². With uniform N the centre of friction is the strip's centre and
+  // the lever ρ = mean √(x_i² + r₀²), r₀ = ⅔ √(A/π); the anchor stays put while
+  // √(F² + (M/ρ)²) < 0.9 μN (12 points) and slides beyond μN + b, along the pull's direction
+  // in (F, M/ρ) (associated flow), following the body's motion projected on it.
+  SupportBed bed = frontLeftBed();
+  const double k = bed.shear_stiffness, area = 0.5, n = 12.0;
+  std::vector<SupportPoint> points;
+  double lever = 0.0, arm2 = 0.0;
+  for (int i = 0; i < 12; ++i) {
+    const double x = i - 5.5;
+    bed.anchor = Vec3(x, 0.0, 0.0);
+    points.push_back({Vec3(x, 0.0, 0.0), bed});
+    lever += std::sqrt(x * x + std::pow(2.0 / 3.0 * std::sqrt(area / std::numbers::pi), 2)) / n;
+    arm2 += x * x;
+  }
+  const AnchoredSupportElement strip(points, std::vector<double>(12, area), 0, 1, {0, 1, 2, 3, 4, 5, 6, 7, 8}, {0, 1, 2, 3, 4, 5, 6, 7, 8});
+  const double settle = 2e-4;
+  const double normal = penaltyForce<double>(settle, 0.0, bed.law), bound = kFriction * normal * n;
+  for (const double share : {0.5, 0.89, 1.2}) {
+    for (const double turn_part : {0.0, 0.6, 1.0}) {
+      CAPTURE(share, turn_part);
+      // |g| = share μN split between the slide (F) and the turn (M/ρ).
+      const double F = share * bound * std::sqrt(1.0 - turn_part * turn_part), M = share * bound * turn_part * lever;
+      const double u = F / (n * k), beta = M / (k * arm2);
+      Eigen::Matrix<double, 9, 1> q = Eigen::Matrix<double, 9, 1>::Zero(), v = q, a = q, r;
+      q << 0.0, u, -settle, 0.0, 0.0, beta, 0.0, 0.0, 0.0;
+      v << 0.0, 0.3, 0.0, 0.0, 0.0, 0.05, 0.0, 0.0, 0.0;  // the body slides on and turns (rad/s)
+      const ElementInput in{q.data(), v.data(), a.data(), 0.0, Vec3(0, 0, -kGravity)};
+      strip.residual(in, r.data());
+      // The anchor's rows are ṡ − w with ṡ = 0: −w.
+      const Eigen::Vector3d w = -r.tail<3>();
+      if (share < AnchoredSupportElement::kStickFraction) {
+        CHECK(w.norm() == 0.0);
+        continue;
       }
+      // Beyond μN + b: full slip, w = ĝ (ĝ · Ẇ) + catch-up along ĝ, Ẇ = (0, 0.3, ρ · 0.05).
+      const Eigen::Vector3d direction(0.0, std::sqrt(1.0 - turn_part * turn_part), turn_part);
+      const Eigen::Vector3d scaled(w(0), w(1), w(2) * lever);  // (ν, ρ θ̇)
+      const double along = 0.3 * direction(1) + lever * 0.05 * direction(2);
+      const double over = share * bound - bound - AnchoredSupportElement::kSlipBandFloor;
+      const double width = AnchoredSupportElement::kCatchUpFraction * bound + AnchoredSupportElement::kSlipBandFloor;
+      const double catching = (over - 0.5 * width) / (n * k * AnchoredSupportElement::kCatchUpTime);
+      CHECK(direction.dot(scaled) == Approx(0.5 * (along + std::sqrt(along * along + 1e-8)) + catching).epsilon(1e-9));
+      CHECK((scaled - direction * direction.dot(scaled)).norm() <= 1e-9 * scaled.norm());
     }
+  }
+}
+
+namespace {
+
+/// The element's Jacobians against central differences of its residual at q, v, a.
+void checkAnchoredJacobian(const AnchoredSupportElement& element, Eigen::Matrix<double, 9, 1> q, Eigen::Matrix<double, 9, 1> v,
+                           Eigen::Matrix<double, 9, 1> a, bool held) {
+  ElementInput in{q.data(), v.data(), a.data(), 0.0, Vec3(0, 0, -kGravity)};
+  if (held) in.rates = ParameterRates::Held, v.setZero(), a.setZero();
+  const double cj = 1e3;
+  Eigen::Matrix<double, 9, 18> J;
+  element.jacobian(in, cj, J.data());
+  MatX fd = test::residualDifferences(element, in, 1e-9);
+  Eigen::Matrix<double, 9, 9> M;
+  element.mass(in, M.data());
+  if (!held) fd.rightCols(9) += cj * M;
+  const double q_error = (J.leftCols(9) - fd.leftCols(9)).norm() / std::max(fd.leftCols(9).norm(), 1.0);
+  const double v_error = (J.rightCols(9) - fd.rightCols(9)).norm() / std::max(fd.rightCols(9).norm(), 1.0);
+  CAPTURE(q_error, v_error, fd.leftCols(9).norm(), fd.rightCols(9).norm());
+  CHECK(q_error <= 1e-6);
+  CHECK(v_error <= 1e-6);
+  Eigen::Matrix<double, 9, 9> Jq;
+  element.coordinateJacobian(in, Jq.data());
+  CHECK((Jq - J.leftCols(9)).norm() <= 1e-14 * std::max(J.leftCols(9).norm(), 1.0));
+}
+
+}  // namespace
+
+TEST_CASE("An anchored support's Jacobian is its residual's derivative: sticking, slipping, sliding, lifted, held", "[supports][friction]") {
+  const std::vector<int> local{0, 1, 2, 3, 4, 5, 6, 7, 8};
+  SECTION("a pad") {
+    const SupportBed bed = frontLeftBed();
+    const AnchoredSupportElement pad({{Vec3(2.5, 2.0, 0.0), bed}}, {4.0}, 0, 1, local, local);
+    // Settled 0.2 mm (N ≈ 1e5 N, μN ≈ 4e4 N), the anchor slid 0.2 m along x and 1 cm along y, the
+    // pad k|e| = 2e4 N (sticking), 3.8e4 N (in the slip band), 4.1e4 N (full slip) ahead of it, or
+    // 1 mm above the bed; moving along its offset and turning a little.
+    for (const double pull : {2.0e4, 3.8e4, 4.1e4})
+      for (const double lift : {-2e-4, 1e-3})
+        for (const bool held : {false, true}) {
+          CAPTURE(pull, lift, held);
+          Eigen::Matrix<double, 9, 1> q, v, a;
+          q << 0.2 + 0.8 * pull / bed.shear_stiffness, 0.01 + 0.6 * pull / bed.shear_stiffness, lift, 1e-8, -2e-8, 3e-8, 0.2, 0.01, 0.0;
+          v << 0.3, 0.2, 0.001, 0.02, -0.01, 0.03, 0.28, 0.19, 0.0;
+          a << 1.0, 0.5, 0.0, 0.1, 0.0, 0.2, 0.9, 0.4, 0.1;
+          checkAnchoredJacobian(pad, q, v, a, held);
+        }
+  }
+  SECTION("a track of five stretches, its anchor slid and turned") {
+    // Points 1 m apart along x, each settled about 0.2 mm (the body tilted a little: N varies by
+    // 2 % along the track; μN ≈ 2e5 N), the anchor slid (0.2, 0.01) m and turned 0.02 rad, the
+    // body off it by δ (|g| ≈ 5 k |δ|: 1e5 N sticking, 1.9e5 N in the band, 2.1e5 N sliding)
+    // and turned 2e-7 rad further (a moment), or 1 mm above the bed.
+    SupportBed bed = frontLeftBed();
+    std::vector<SupportPoint> points;
+    for (int i = 0; i < 5; ++i) {
+      bed.anchor = Vec3(i - 2.0, 0.0, 0.0);
+      points.push_back({bed.anchor, bed});
+    }
+    const AnchoredSupportElement track(points, std::vector<double>(5, 1.0), 0, 1, local, local);
+    for (const double pull : {1.0e5, 1.9e5, 2.1e5})
+      for (const double lift : {-2e-4, 1e-3})
+        for (const bool held : {false, true}) {
+          CAPTURE(pull, lift, held);
+          const double shift = pull / (5.0 * bed.shear_stiffness);
+          Eigen::Matrix<double, 9, 1> q, v, a;
+          q << 0.2 + 0.8 * shift, 0.01 + 0.6 * shift, lift, 2e-8, 1e-6, 0.02 + 2e-7, 0.2, 0.01, 0.02;
+          v << 0.3, 0.2, 0.001, 0.02, -0.01, 0.03, 0.28, 0.19, 0.025;
+          a << 1.0, 0.5, 0.0, 0.1, 0.0, 0.2, 0.9, 0.4, 0.1;
+          checkAnchoredJacobian(track, q, v, a, held);
+        }
   }
 }
