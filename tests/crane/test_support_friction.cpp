@@ -3,10 +3,11 @@
 // push stays below μ W, displaced by the held law's hand statics, has no equilibrium beyond it,
 // sticks on its pads' shear springs in a run, slides under a larger push with the acceleration
 // (P − μ W)/m less the slip law's band, and, released, stays where it slid, at rest, with the
-// push's work dissipated; a carriage whose load tips it falls over its front edge in a run
-// instead of hanging on its lifted pads, and the run's envelope says it tipped when its rear
-// pads lift; a track's anchor slides and turns within the ellipse of its friction; the
-// element's Jacobian is its residual's derivative.
+// push's work dissipated; a carriage on two tracks turned past their friction turns as the
+// anchors' ellipse says and, released, stays turned with the work dissipated; a carriage
+// whose load tips it falls over its front edge in a run instead of hanging on its lifted pads,
+// and the run's envelope says it tipped when its rear pads lift; a track's anchor slides and
+// turns within the ellipse of its friction; the element's Jacobian is its residual's derivative.
 
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
@@ -65,6 +66,69 @@ output: {{interval: 0.25}}
                      fmt::arg("g", kGravity), fmt::arg("k_s", kSubgradeModulus), fmt::arg("mu", kFriction), fmt::arg("area", kPadArea),
                      fmt::arg("mass", kMass), fmt::arg("push", push), fmt::arg("t_end", t_end),
                      fmt::arg("scale", scale));
+}
+
+/// The test carriage on two tracks 6 m long (6 stretches of 0.5 m² each, the pads' area) at
+/// y = ±2 m, turned about z by `torque` N·m at its origin, the tracks' level: by symmetry it turns
+/// about z without sliding, each stretch carrying W/12. `scale` is the torque's profile.
+std::string turnedCarriage(double torque, double t_end, const std::string& scale) {
+  return fmt::format(R"(
+name: carriage on tracks turned about z
+gravity: [0, 0, -{g}]
+ground:
+  supports:
+    body: carriage
+    soil: {{subgrade_modulus: {k_s}, allowable_pressure: 1.0e6}}
+    friction: {mu}
+    tracks:
+      - {{name: left, from: carriage.left_rear, to: carriage.left_front, width: {width}, segments: 6}}
+      - {{name: right, from: carriage.right_rear, to: carriage.right_front, width: {width}, segments: 6}}
+bodies:
+  - name: carriage
+    mass: {mass}
+    centroid: [0, 0, 0.6]
+    inertia: [30000, 40000, 60000]
+    joints:
+      - {{name: left_rear, position: [-3, 2, 0]}}
+      - {{name: left_front, position: [3, 2, 0]}}
+      - {{name: right_rear, position: [-3, -2, 0]}}
+      - {{name: right_front, position: [3, -2, 0]}}
+loads:
+  - {{name: turn, joint: carriage.origin, torque: [0, 0, {torque}], scale: {scale}}}
+solver: {{t_end: {t_end}, rtol: 1.0e-9, atol: 1.0e-11}}
+output: {{interval: 0.25}}
+)",
+                     fmt::arg("g", kGravity), fmt::arg("k_s", kSubgradeModulus), fmt::arg("mu", kFriction), fmt::arg("width", kPadArea),
+                     fmt::arg("mass", kMass), fmt::arg("torque", torque), fmt::arg("t_end", t_end), fmt::arg("scale", scale));
+}
+
+/// The lever ρ of a test track's friction: the mean √(x_i² + r₀²) of its stretches, r₀ = ⅔ √(A/π).
+double trackLever() {
+  const double r0 = 2.0 / 3.0 * std::sqrt(kPadArea / std::numbers::pi);
+  double lever = 0.0;
+  for (const double x : {0.5, 1.5, 2.5}) lever += std::sqrt(x * x + r0 * r0) / 3.0;
+  return lever;
+}
+
+/// The friction torque of one track turning about the carriage's centre, 2 m off its own, with
+/// the angular acceleration α: at full slip its pull g lies along its scaled motion
+/// (2 ω, 0, ρ ω), |g| = μN + b + o, so T = (μN + b + o) √(2² + ρ²); o is the over-pull whose
+/// catch-up rate o²/(2 w Σk τ) (w = 0.05 μN + b) matches the anchor lag ε times the anchor's
+/// scaled acceleration α √(2² + ρ²) (the pads' slidingAcceleration, on Σk of six stretches).
+double trackTurningTorque(double acceleration) {
+  const double bound = kFriction * kMass * kGravity / 2.0, arm = std::sqrt(4.0 + std::pow(trackLever(), 2));
+  const double width = AnchoredSupportElement::kCatchUpFraction * bound + AnchoredSupportElement::kSlipBandFloor;
+  const double over = std::sqrt(2.0 * width * 6.0 * kShearStiffness * AnchoredSupportElement::kCatchUpTime *
+                                AnchoredSupportElement::kAnchorLag * std::max(acceleration, 0.0) * arm);
+  return (bound + AnchoredSupportElement::kSlipBandFloor + over) * arm;
+}
+
+/// The carriage's turn about z from its joint at (3, 2, 0) m, sample by sample.
+std::vector<double> turnAngles(const test::SimulationRun& run) {
+  const std::vector<double>& p = run.jointPositions("carriage.left_front");
+  std::vector<double> out;
+  for (std::size_t i = 0; i < p.size() / 3; ++i) out.push_back(std::atan2(p[3 * i + 1], p[3 * i]) - std::atan2(2.0, 3.0));
+  return out;
 }
 
 /// The bed under the test carriage's front-left pad, its level at z = 0.
@@ -235,6 +299,39 @@ TEST_CASE("A carriage pushed past μ W for 1 s and released stays where it slid,
   const double work = push * (x[3 * 4] - x[0]);  // the push's work up to its release at 1 s (sample 4)
   REQUIRE(times[4] == Approx(1.0));
   CHECK(run.recorder.dissipated().back() == Approx(work).epsilon(1e-6));
+  CHECK(run.recorder.relativeBalanceDrift() <= 1e-6);
+}
+
+TEST_CASE("A carriage on tracks turned past friction and released stays where it turned, its work dissipated", "[supports][friction][dynamics]") {
+  // 1.5 times the tracks' friction torque at rest 2 T(0) for 1 s: the carriage turns with
+  // α₁ = (1.5 · 2 T(0) − 2 T(α₁)) / I_z in each second difference over h = 0.25 s (after it
+  // sticks for a few milliseconds; T(α) grows by the anchor lag's over-pull, 1.6 % here), then
+  // brakes with 2 T(0) / I_z to rest and stays. Coulomb's law at each stretch,
+  // Σ μN_i √(x_i² + 2²), would turn 5 % slower. The torque's work is dissipated.
+  const double inertia = 60000.0, torque = 1.5 * 2.0 * trackTurningTorque(0.0);
+  double accelerating = (torque - 2.0 * trackTurningTorque(0.0)) / inertia;
+  for (int k = 0; k < 20; ++k) accelerating = (torque - 2.0 * trackTurningTorque(accelerating)) / inertia;
+  const double braking = -2.0 * trackTurningTorque(0.0) / inertia;
+  const test::SimulationRun run(parseScene(turnedCarriage(torque, 3.0, "{type: table, t: [0, 1], value: [1, 0], interpolation: step}"), "<test>"));
+  REQUIRE(run.outcome.complete);
+  const std::vector<double>& times = run.recorder.time();
+  const std::vector<double> turn = turnAngles(run);
+  REQUIRE(times[4] == Approx(1.0));
+  for (std::size_t i = 2; i <= 4; ++i) {
+    CAPTURE(times[i]);
+    CHECK((turn[i] - 2 * turn[i - 1] + turn[i - 2]) / (0.25 * 0.25) == Approx(accelerating).epsilon(2e-3));
+  }
+  CAPTURE(turn[4], turn[5], turn[6]);
+  CHECK((turn[6] - 2 * turn[5] + turn[4]) / (0.25 * 0.25) == Approx(braking).epsilon(2e-3));
+  const std::size_t last = times.size() - 1;
+  REQUIRE(times[last] == Approx(3.0));
+  CHECK(std::abs(turn[last] - turn[last - 1]) <= 1e-9);
+  const double stop = turn[4] + 0.5 * std::pow(accelerating * 1.0, 2) / -braking;
+  CHECK(turn[last] == Approx(stop).epsilon(1e-2));
+  // Neither slid: the carriage's origin stays on the turn's axis.
+  const std::vector<double>& origin = run.jointPositions("carriage.origin");
+  CHECK(std::hypot(origin[3 * last], origin[3 * last + 1]) <= 1e-9);
+  CHECK(run.recorder.dissipated().back() == Approx(torque * turn[4]).epsilon(1e-6));
   CHECK(run.recorder.relativeBalanceDrift() <= 1e-6);
 }
 
