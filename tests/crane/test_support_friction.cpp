@@ -31,75 +31,72 @@ constexpr double kMass = 20000.0, kGravity = 9.81, kFriction = 0.4;  // kg, m/s�
 constexpr double kSubgradeModulus = 1.0e9, kPadArea = 0.5;          // N/m³, m²
 constexpr double kShearStiffness = 0.8 * kSubgradeModulus * kPadArea;  // N/m per pad (shear_ratio 0.8)
 
-/// A 20 t carriage on four pads at (±2.5, ±2) m pushed along x by `push` N at its origin, the
-/// pads' level: the push puts no moment on it, each pad carries W/4 and a quarter of the push.
-/// `scale` is the push's profile.
-std::string pushedCarriage(double push, double t_end, const std::string& scale = "1") {
+/// The tests' 20 t carriage on a bed of the constants above: `supports` under ground.supports,
+/// `joints` its joints (all at the supports' level z = 0, its centroid 0.6 m above), `load` its
+/// one load at its origin.
+std::string testCarriage(const std::string& supports, const std::string& joints, const std::string& load, double t_end) {
   return fmt::format(R"(
-name: carriage pushed sideways
+name: test carriage
 gravity: [0, 0, -{g}]
 ground:
   supports:
     body: carriage
     soil: {{subgrade_modulus: {k_s}, allowable_pressure: 1.0e6}}
     friction: {mu}
-    pads:
-      - {{name: front_left, joint: carriage.front_left, area: {area}}}
-      - {{name: rear_left, joint: carriage.rear_left, area: {area}}}
-      - {{name: rear_right, joint: carriage.rear_right, area: {area}}}
-      - {{name: front_right, joint: carriage.front_right, area: {area}}}
+{supports}
 bodies:
   - name: carriage
     mass: {mass}
     centroid: [0, 0, 0.6]
     inertia: [30000, 40000, 60000]
     joints:
-      - {{name: front_left, position: [2.5, 2, 0]}}
-      - {{name: rear_left, position: [-2.5, 2, 0]}}
-      - {{name: rear_right, position: [-2.5, -2, 0]}}
-      - {{name: front_right, position: [2.5, -2, 0]}}
+{joints}
 loads:
-  - {{name: push, joint: carriage.origin, force: [{push}, 0, 0], scale: {scale}}}
+  - {load}
 solver: {{t_end: {t_end}, rtol: 1.0e-7, atol: 1.0e-9}}
 output: {{interval: 0.25}}
 )",
-                     fmt::arg("g", kGravity), fmt::arg("k_s", kSubgradeModulus), fmt::arg("mu", kFriction), fmt::arg("area", kPadArea),
-                     fmt::arg("mass", kMass), fmt::arg("push", push), fmt::arg("t_end", t_end),
-                     fmt::arg("scale", scale));
+                     fmt::arg("g", kGravity), fmt::arg("k_s", kSubgradeModulus), fmt::arg("mu", kFriction), fmt::arg("supports", supports),
+                     fmt::arg("mass", kMass), fmt::arg("joints", joints), fmt::arg("load", load), fmt::arg("t_end", t_end));
+}
+
+/// A 20 t carriage on four pads at (±2.5, ±2) m pushed along x by `push` N at its origin, the
+/// pads' level: the push puts no moment on it, each pad carries W/4 and a quarter of the push.
+/// `scale` is the push's profile.
+std::string pushedCarriage(double push, double t_end, const std::string& scale = "1") {
+  std::string pads = "    pads:\n";
+  for (const char* pad : {"front_left", "rear_left", "rear_right", "front_right"})
+    pads += fmt::format("      - {{name: {0}, joint: carriage.{0}, area: {1}}}\n", pad, kPadArea);
+  return testCarriage(pads, R"(      - {name: front_left, position: [2.5, 2, 0]}
+      - {name: rear_left, position: [-2.5, 2, 0]}
+      - {name: rear_right, position: [-2.5, -2, 0]}
+      - {name: front_right, position: [2.5, -2, 0]})",
+                      fmt::format("{{name: push, joint: carriage.origin, force: [{}, 0, 0], scale: {}}}", push, scale), t_end);
 }
 
 /// The test carriage on two tracks 6 m long (6 stretches of 0.5 m² each, the pads' area) at
 /// y = ±2 m, turned about z by `torque` N·m at its origin, the tracks' level: by symmetry it turns
 /// about z without sliding, each stretch carrying W/12. `scale` is the torque's profile.
 std::string turnedCarriage(double torque, double t_end, const std::string& scale) {
-  return fmt::format(R"(
-name: carriage on tracks turned about z
-gravity: [0, 0, -{g}]
-ground:
-  supports:
-    body: carriage
-    soil: {{subgrade_modulus: {k_s}, allowable_pressure: 1.0e6}}
-    friction: {mu}
-    tracks:
-      - {{name: left, from: carriage.left_rear, to: carriage.left_front, width: {width}, segments: 6}}
-      - {{name: right, from: carriage.right_rear, to: carriage.right_front, width: {width}, segments: 6}}
-bodies:
-  - name: carriage
-    mass: {mass}
-    centroid: [0, 0, 0.6]
-    inertia: [30000, 40000, 60000]
-    joints:
-      - {{name: left_rear, position: [-3, 2, 0]}}
-      - {{name: left_front, position: [3, 2, 0]}}
-      - {{name: right_rear, position: [-3, -2, 0]}}
-      - {{name: right_front, position: [3, -2, 0]}}
-loads:
-  - {{name: turn, joint: carriage.origin, torque: [0, 0, {torque}], scale: {scale}}}
-solver: {{t_end: {t_end}, rtol: 1.0e-9, atol: 1.0e-11}}
-output: {{interval: 0.25}}
-)",
-                     fmt::arg("g", kGravity), fmt::arg("k_s", kSubgradeModulus), fmt::arg("mu", kFriction), fmt::arg("width", kPadArea),
-                     fmt::arg("mass", kMass), fmt::arg("torque", torque), fmt::arg("t_end", t_end), fmt::arg("scale", scale));
+  std::string tracks = "    tracks:\n";
+  for (const char* track : {"left", "right"})
+    tracks += fmt::format("      - {{name: {0}, from: carriage.{0}_rear, to: carriage.{0}_front, width: {1}, segments: 6}}\n", track, kPadArea);
+  return testCarriage(tracks, R"(      - {name: left_rear, position: [-3, 2, 0]}
+      - {name: left_front, position: [3, 2, 0]}
+      - {name: right_rear, position: [-3, -2, 0]}
+      - {name: right_front, position: [3, -2, 0]})",
+                      fmt::format("{{name: turn, joint: carriage.origin, torque: [0, 0, {}], scale: {}}}", torque, scale), t_end);
+}
+
+/// A load's profile that holds it for the first second only.
+constexpr const char* kFirstSecond = "{type: table, t: [0, 1], value: [1, 0], interpolation: step}";
+
+/// The scene of `yaml` at rtol 1e-9, for books that close to 1e-6.
+Scene booksScene(const std::string& yaml) {
+  Scene scene = parseScene(yaml, "<test>");
+  scene.solver.rtol = 1e-9;
+  scene.solver.atol = AbsoluteTolerance::uniform(1e-11);
+  return scene;
 }
 
 /// The lever ρ of a test track's friction: the mean √(x_i² + r₀²) of its stretches, r₀ = ⅔ √(A/π).
@@ -277,10 +274,7 @@ TEST_CASE("A carriage pushed past μ W for 1 s and released stays where it slid,
   // it sticks. It stays there: its last two samples agree, its speed is gone, and the push's
   // work is dissipated, the books closing at rtol 1e-9.
   const double weight = kMass * kGravity, push = 1.5 * kFriction * weight;
-  Scene scene = parseScene(pushedCarriage(push, 3.0, "{type: table, t: [0, 1], value: [1, 0], interpolation: step}"), "<test>");
-  scene.solver.rtol = 1e-9;
-  scene.solver.atol = AbsoluteTolerance::uniform(1e-11);
-  const test::SimulationRun run(scene);
+  const test::SimulationRun run(booksScene(pushedCarriage(push, 3.0, kFirstSecond)));
   REQUIRE(run.outcome.complete);
   const std::vector<double>& times = run.recorder.time();
   const std::vector<double>& x = run.jointPositions("carriage.origin");
@@ -312,7 +306,7 @@ TEST_CASE("A carriage on tracks turned past friction and released stays where it
   double accelerating = (torque - 2.0 * trackTurningTorque(0.0)) / inertia;
   for (int k = 0; k < 20; ++k) accelerating = (torque - 2.0 * trackTurningTorque(accelerating)) / inertia;
   const double braking = -2.0 * trackTurningTorque(0.0) / inertia;
-  const test::SimulationRun run(parseScene(turnedCarriage(torque, 3.0, "{type: table, t: [0, 1], value: [1, 0], interpolation: step}"), "<test>"));
+  const test::SimulationRun run(booksScene(turnedCarriage(torque, 3.0, kFirstSecond)));
   REQUIRE(run.outcome.complete);
   const std::vector<double>& times = run.recorder.time();
   const std::vector<double> turn = turnAngles(run);
