@@ -123,3 +123,9 @@ def test_a_run_stops_where_the_carriage_tips(tmp_path):
         assert abs(f["supports/margin"][-1]) < 1e-3
         right_contact = f["supports/tracks/right/contact_length"][...]
         assert right_contact[-1] == 0.0 and right_contact[-2] > 0.0
+        # The left track stuck: its anchor has not moved from where it was drawn. The right one's
+        # caught up with the track as it unloaded, by less than a millimetre.
+        left, right = (f[f"supports/tracks/{track}/slide"][...] for track in ("left", "right"))
+        assert left.shape == right.shape == (time.size, 3)
+        assert not left.any()
+        assert 0.0 < np.abs(right[-1, :2]).max() < 1e-3
