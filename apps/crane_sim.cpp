@@ -161,22 +161,28 @@ int run(const std::string& scene_path, std::string out, bool quiet) {
   ProgressLine progress(!quiet && isatty(STDERR_FILENO), model.solver.t_start, model.solver.t_end);
   CheckpointClock checkpoints;
   SimulationControl control;
-  // A scene that asks to stop outside the envelope is stopped as a signal would stop it.
+  // A scene that asks to stop outside the envelope is stopped as a signal would stop it; so is
+  // a carriage that has tipped (past its tipping point a run follows a crash the model does not
+  // describe, and slowly).
   std::atomic<bool> stop{false};
-  bool left_envelope_at_step = false;
+  bool left_envelope_at_step = false, tipped_at_step = false;
   control.on_step = [&](double t) {
     progress.update(t);
     if (recorder.samples() > 0 && checkpoints.due()) checkpoints.write([&](double wall) { recorder.writeCheckpoint(out, meta, wall); });
     if (model.solver.stop_outside_envelope && recorder.envelope().lastSampleOutside()) left_envelope_at_step = stop = true;
+    if (recorder.envelope().lastSampleTipped()) tipped_at_step = stop = true;
     if (g_interrupted) stop = true;
   };
   control.stop_requested = &stop;
   SimulationOutcome outcome = session ? runClosedLoop(*session, *scene.feedback, control)
                                       : simulate(assembler, runInitialState(scene, model, assembler, quiet), open_loop, control);
   progress.finish();
-  if (left_envelope_at_step && !g_interrupted)
-    outcome.message = fmt::format("stopped at t = {:.6g} s: the run left the crane's envelope (solver.outside_envelope: stop)",
-                                  recorder.time().empty() ? outcome.t_reached : recorder.time().back());
+  const double stopped_at = recorder.time().empty() ? outcome.t_reached : recorder.time().back();
+  if (tipped_at_step && !g_interrupted)
+    outcome.message = fmt::format("stopped at t = {:.6g} s: the carriage '{}' has tipped; a run ends where its carriage tips", stopped_at,
+                                  model.envelope.supports->body);
+  else if (left_envelope_at_step && !g_interrupted)
+    outcome.message = fmt::format("stopped at t = {:.6g} s: the run left the crane's envelope (solver.outside_envelope: stop)", stopped_at);
   recorder.write(out, meta, outcome);
 
   const SolverStatistics& st = outcome.statistics;

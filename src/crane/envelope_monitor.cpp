@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "cranesim/model/carriage_tipping.hpp"
 #include "cranesim/model/contact_elements.hpp"
 #include "cranesim/model/reeved_rope.hpp"
 
@@ -119,9 +120,13 @@ void EnvelopeMonitor::sample(double t, const double* q, const double* v) {
     for (const int n : part_nodes_[p]) lowest = std::min(lowest, e.up.dot(model_.nodeFrame(q, n).r));
     lowest_[p].values.push_back(lowest);
   }
-  if (const auto& supports = e.supports) supports_.push_back(readSupports(model_, *supports, in));
+  if (const auto& supports = e.supports) {
+    supports_.push_back(readSupports(model_, *supports, in));
+    tipped_why_.push_back(carriageTipped(model_, Eigen::Map<const VecX>(q, model_.nq), t));
+    tipped_.push_back(tipped_why_.back().empty() ? 0.0 : 1.0);
+  }
   last_outside_ = false;
-  if (e.supports) last_outside_ |= supportsOutside(supports_.back(), e.supports->allowable_pressure);
+  if (e.supports) last_outside_ |= supportsOutside(supports_.back(), e.supports->allowable_pressure) || lastSampleTipped();
   for (std::size_t r = 0; r < e.ropes.size(); ++r) last_outside_ |= rope_tension_[r].values.back() > e.ropes[r].breaking_force;
   if (e.boom) last_outside_ |= boom_angle_.back() > e.boom->limit_deg;
   for (const EnvelopeSeries& s : lowest_) last_outside_ |= s.values.back() < *e.ground_height;
@@ -130,7 +135,7 @@ void EnvelopeMonitor::sample(double t, const double* q, const double* v) {
 void EnvelopeMonitor::keep(std::size_t kept) {
   if (kept >= time_.size()) return;
   time_.resize(kept);
-  if (!supports_.empty()) supports_.resize(kept);
+  if (!supports_.empty()) supports_.resize(kept), tipped_.resize(kept), tipped_why_.resize(kept);
   for (auto* series : {&boom_angle_, &backstop_moment_, &backstop_compression_})
     if (!series->empty()) series->resize(kept);
   for (auto* group : {&rope_tension_, &lowest_, &contact_force_, &contact_depth_})
@@ -197,6 +202,12 @@ std::vector<EnvelopeEvent> EnvelopeMonitor::events() const {
     }
     add(eventOf(time_, series([](const SupportReading& r) { return r.tipping.margin; }), [](double x) { return x < 0.0; }, smaller),
         "stability margin below zero", supports->body, true, 0.0, "N·m");
+    const std::size_t before = out.size();
+    add(eventOf(time_, tipped_, [](double x) { return x > 0.0; }, larger), "tipped", supports->body, true, 0.0, "");
+    if (out.size() > before) {
+      const auto first = std::find_if(tipped_why_.begin(), tipped_why_.end(), [](const std::string& why) { return !why.empty(); });
+      out.back().why = *first;
+    }
   }
   std::stable_sort(out.begin(), out.end(), [](const EnvelopeEvent& a, const EnvelopeEvent& b) { return a.first_time < b.first_time; });
   return out;
@@ -224,6 +235,8 @@ std::string describeEnvelopeEvents(const std::vector<EnvelopeEvent>& events) {
     else if (e.what == "stability margin below zero")
       out += fmt::format("stability margin below zero: {} at t = {:.4g} s, the supports' resultant outside their polygon (from t = {:.4g} s)\n",
                          withUnit(e.peak, e.unit), e.peak_time, e.first_time);
+    else if (e.what == "tipped")
+      out += fmt::format("tipped: from t = {:.4g} s, {}\n", e.first_time, e.why);
     else if (e.what == "lifted off" && e.unit == "m")
       out += fmt::format("{} lifted off: from t = {:.4g} s, down to {} of its {} in contact at t = {:.4g} s\n", e.part, e.first_time,
                          withUnit(e.peak, e.unit), withUnit(e.limit, e.unit), e.peak_time);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 
 #include "cranesim/assembly/constraint_reaction.hpp"
@@ -110,18 +111,33 @@ void writeEnvelope(Hdf5File& file, const Model& model, const EnvelopeMonitor& en
     file.attribute(path, "limit", e.limit);
     file.attribute(path, "unit", e.unit);
     if (!e.depth_unit.empty()) file.attribute(path, "depth", e.depth), file.attribute(path, "depth_unit", e.depth_unit);
+    if (!e.why.empty()) file.attribute(path, "why", e.why);
   }
 }
 
 /// /supports: what each pad and track carries, and the carriage's stability, per sample
 /// (crane/support_reading.hpp).
-void writeSupports(Hdf5File& file, const EnvelopeSupports& supports, const EnvelopeMonitor& envelope) {
+/// Each support's anchor (model/anchored_support_element.hpp, the node supports.<name>.anchor):
+/// `column(k)` gives coordinate k of the state per sample.
+void writeSupports(Hdf5File& file, const Model& model, const EnvelopeSupports& supports, const EnvelopeMonitor& envelope,
+                   const std::function<std::vector<double>(int)>& column) {
   const std::vector<SupportReading>& readings = envelope.supports();
   const hsize_t N = readings.size();
   const auto write = [&](const std::string& path, const auto& value) {
     std::vector<double> values;
     for (const SupportReading& r : readings) values.push_back(value(r));
     file.writeDoubles(path, {N}, values.data());
+  };
+  const auto writeSlide = [&](const std::string& path, const std::string& support) {
+    const auto anchor = std::find_if(model.nodes.begin(), model.nodes.end(),
+                                     [&](const Node& n) { return n.name == fmt::format("supports.{}.anchor", support); });
+    if (anchor == model.nodes.end()) return;
+    std::vector<std::vector<double>> coordinates;
+    for (int k = 0; k < 3; ++k) coordinates.push_back(column(anchor->q + k));
+    std::vector<double> slide;
+    for (hsize_t i = 0; i < N; ++i)
+      for (int k = 0; k < 3; ++k) slide.push_back(coordinates[static_cast<std::size_t>(k)][i]);
+    file.writeDoubles(path + "/slide", {N, 3}, slide.data());
   };
   file.ensureGroup("/supports");
   file.attribute("/supports", "body", supports.body);
@@ -132,6 +148,7 @@ void writeSupports(Hdf5File& file, const EnvelopeSupports& supports, const Envel
     file.attribute(path, "area", supports.pads[p].bearing_area);
     write(path + "/force", [&](const SupportReading& r) { return r.pads[p].force; });
     write(path + "/pressure", [&](const SupportReading& r) { return r.pads[p].pressure; });
+    writeSlide(path, supports.pads[p].name);
   }
   for (std::size_t t = 0; t < supports.tracks.size(); ++t) {
     const EnvelopeSupport& track = supports.tracks[t];
@@ -142,7 +159,9 @@ void writeSupports(Hdf5File& file, const EnvelopeSupports& supports, const Envel
     write(path + "/peak_pressure", [&](const SupportReading& r) { return r.tracks[t].peak_pressure; });
     write(path + "/peak_at", [&](const SupportReading& r) { return r.tracks[t].peak_at; });
     write(path + "/contact_length", [&](const SupportReading& r) { return r.tracks[t].contact_length; });
+    writeSlide(path, track.name);
   }
+  file.writeDoubles("/supports/tipped", {N}, envelope.tipped().data());
   std::vector<double> resultant, line;
   for (const SupportReading& r : readings) {
     resultant.insert(resultant.end(), {r.resultant.x(), r.resultant.y()});
@@ -427,7 +446,7 @@ void ResultsRecorder::write(const std::string& path, const Metadata& meta, const
     }
     if (meta.crane) writeCraneFigures(file, *meta.crane);
     if (!envelope_.empty()) writeEnvelope(file, model, envelope_);
-    if (const auto& supports = model.envelope.supports) writeSupports(file, *supports, envelope_);
+    if (const auto& supports = model.envelope.supports) writeSupports(file, model, *supports, envelope_, [&](int k) { return stateColumn(k); });
     file.writeDoubles("/residual/position", {N}, residual_position_.data());
     file.writeDoubles("/residual/velocity", {N}, residual_velocity_.data());
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cranesim/model/anchored_support_element.hpp"
 #include "cranesim/model/support_elements.hpp"
 
 namespace cranesim {
@@ -106,6 +107,7 @@ void compileSupports(Model& model, const Scene& scene) {
   for (auto* list : {&supports.pads, &supports.tracks})
     for (EnvelopeSupport& s : *list) {
       std::vector<SupportPoint> points;
+      std::vector<double> footprints;
       for (const BedPoint& p : beds[support++]) {
         const double k = k_s * p.area;
         const double damping = 2.0 * spec.damping_ratio * std::sqrt(k * mass * k / total_stiffness);
@@ -118,13 +120,20 @@ void compileSupports(Model& model, const Scene& scene) {
         bed.shear_damping = std::sqrt(spec.shear_ratio) * damping;
         bed.friction = spec.friction;
         points.push_back({p.point, bed});
+        footprints.push_back(p.area);
       }
       std::vector<int> q, v;
-      for (int i = 0; i < 6; ++i) q.push_back(node->q + i), v.push_back(node->v + i);
+      for (int i = 0; i < 6; ++i) q.push_back(model.nodes[body].q + i), v.push_back(model.nodes[body].v + i);
       s.element = static_cast<int>(model.elements.size());
-      model.elements.push_back(std::make_unique<SupportElement>(std::move(points), body, std::move(q), std::move(v)));
+      model.elements.push_back(std::make_unique<SupportElement>(points, body, q, v));
+      // The support's anchor s = (d₁, d₂, θ): how far its bed has slid and turned from where it
+      // was drawn; a node of no member's, kept out of the results' bodies.
+      const int anchor = model.addNode(fmt::format("supports.{}.anchor", s.name), NodeKind::Point, "ground.supports");
+      for (int i = 0; i < 3; ++i) q.push_back(model.nodes[anchor].q + i), v.push_back(model.nodes[anchor].v + i);
+      model.elements.push_back(std::make_unique<AnchoredSupportElement>(std::move(points), footprints, body, anchor, std::move(q), std::move(v)));
     }
   model.envelope.node_in_contact[static_cast<std::size_t>(body)] = true;
+  model.envelope.node_in_contact.resize(model.nodes.size(), true);  // the supports' anchors lie on the ground
   model.envelope.supports = std::move(supports);
 }
 

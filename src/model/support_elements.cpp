@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "cranesim/elements/friction_bound.hpp"
 #include "cranesim/math/rotation.hpp"
 #include "cranesim/model/forward_tangents.hpp"
 
@@ -24,12 +23,6 @@ double verticalForce(const PointState& s, const SupportBed& bed) {
   return penaltyForce<double>(bed.level - bed.up.dot(s.at), -bed.up.dot(s.moving), bed.law);
 }
 
-/// The point's horizontal displacement from where it was drawn.
-Vec3 shiftAcross(const Vec3& at, const SupportBed& bed) {
-  const Vec3 shift = at - bed.anchor;
-  return shift - bed.up * bed.up.dot(shift);
-}
-
 }  // namespace
 
 SupportElement::SupportElement(std::vector<SupportPoint> points, int node, std::vector<int> q_indices, std::vector<int> v_indices)
@@ -46,9 +39,7 @@ Eigen::Matrix<S, 6, 1> SupportElement::generalizedForce(const Eigen::Matrix<S, 6
     const Vec3T<S> moving = v.template head<3>() + R * (v.template tail<3>().cross(p));
     const S rising = up.dot(moving);
     const S normal = penaltyForce<S>(S(bed.level) - up.dot(at), -rising, bed.law);
-    const Vec3T<S> shift = at - bed.anchor.cast<S>();
-    const Vec3T<S> shear = -(shift - up * up.dot(shift)) * bed.shear_stiffness - (moving - up * rising) * bed.shear_damping;
-    const Vec3T<S> F = up * normal + frictionBounded<S>(shear, normal * bed.friction);
+    const Vec3T<S> F = up * normal;
     Q.template head<3>() += F;
     Q.template tail<3>() += p.cross(R.transpose() * F);
   }
@@ -95,26 +86,9 @@ double SupportElement::energy(const Local& q) const {
   for (const SupportPoint& s : points_) {
     const SupportBed& bed = s.bed;
     const Vec3 at = Vec3(q.head<3>()) + R * s.point;
-    const double settled = bed.level - bed.up.dot(at);
-    const double bound = bed.friction * penaltySpringForce(settled, bed.law);
-    sum += penaltyEnergy(settled, bed.law) + frictionBoundedEnergy(shiftAcross(at, bed).norm(), bed.shear_stiffness, bound);
+    sum += penaltyEnergy(bed.level - bed.up.dot(at), bed.law);
   }
   return sum;
-}
-
-double SupportElement::dissipatedPower(const ElementInput& in) const {
-  using Rate = Dual<double, 1>;
-  const Eigen::Matrix<double, 6, 1> q = gather(in.q, coordinateIndices()).head<6>(), v = gather(in.v, velocityIndices()).head<6>();
-  const Mat3 R = rotationMatrix<double>(Vec3(q.tail<3>()));
-  double unstored = 0.0;  // −∂Φ/∂B · Ḃ, Ḃ = μ f'(δ) δ̇
-  for (const SupportPoint& s : points_) {
-    const SupportBed& bed = s.bed;
-    const PointState p = pointState(q, v, R, s.point);
-    const Rate settled(bed.level - bed.up.dot(p.at), Rate::Derivatives::Constant(-bed.up.dot(p.moving)));
-    const Rate bound = penaltySpringForce(settled, bed.law) * bed.friction;
-    unstored -= frictionBoundedEnergyPerBound(shiftAcross(p.at, bed).norm(), bed.shear_stiffness, bound.value()) * bound.derivatives()(0);
-  }
-  return ContactElement::dissipatedPower(in) + unstored;
 }
 
 double SupportElement::normalForceAt(const Local& q, const Local& v) const {

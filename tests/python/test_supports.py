@@ -91,3 +91,41 @@ def test_study_figures_are_the_static_cases_supports(tmp_path):
         tipping = load_weight + supports["margin"][0] / -inside(centroid[:2])
         assert figures["tipping"] == pytest.approx(tipping, rel=1e-9)
         assert figures["fraction"] == pytest.approx(load_weight / tipping, rel=1e-9)
+
+
+def test_a_run_stops_where_the_carriage_tips(tmp_path):
+    # The thesis' combined motion (configs/crane_combined.yaml) luffs the 390 t load out to 23 m,
+    # beyond what the scene's 300 t counterweight holds: the right track lifts off from 25.6 s
+    # and is clear of the bed at 33.2 s, the carriage on the left track's line. crane-sim stops
+    # there (exit 1, results marked incomplete) and names the edge; the stability margin, 0 on
+    # that edge to rounding, does not tell. On main's law the run went on into the crash, at 14 s
+    # of CPU where it stops here within 1 s.
+    (tmp_path / "tips.yaml").write_text(
+        f"base: {SCENE}\n"
+        "remove: [loads.gust]\n"
+        "modify:\n"
+        "  members.luffing_rope.length: {type: trapezoid, from: 7.0608, distance: 5, t_start: 20, duration: 20, t_accel: 5, t_decel: 5}\n"
+        "  members.hoist_rope.length: {type: trapezoid, from: 53.9937, distance: -20, t_start: 0, duration: 40, t_accel: 5, t_decel: 5}\n"
+        "  constraints.slewing.drive: {type: trapezoid, from: 0, distance: 45, t_start: 10, duration: 20, t_accel: 5, t_decel: 5, unit: deg}\n"
+        "  solver.t_end: 60\n  solver.rtol: 1.0e-4\n  solver.atol: 1.0e-5\n")
+    done = subprocess.run([str(BINARY), "run", "tips.yaml", "-o", "tips.h5"], cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 1, done.stderr
+    assert "the carriage 'carriage' has tipped" in done.stderr
+    with h5py.File(tmp_path / "tips.h5", "r") as f:
+        assert f.attrs["status"] == "incomplete"
+        time = f["time"][...]
+        tipped = f["supports/tipped"][...]
+        assert tipped.shape == time.shape and tipped[-1] == 1 and not tipped[:-1].any()
+        assert 33.0 < time[-1] < 33.5
+        events = {e.attrs["what"]: dict(e.attrs) for e in f["envelope/events"].values()}
+        assert events["tipped"]["part"] == "carriage" and events["tipped"]["first_time"] == time[-1]
+        assert "(left (4.5 m of its 12 m)) stand in one line" in events["tipped"]["why"]
+        assert abs(f["supports/margin"][-1]) < 1e-3
+        right_contact = f["supports/tracks/right/contact_length"][...]
+        assert right_contact[-1] == 0.0 and right_contact[-2] > 0.0
+        # The left track stuck: its anchor has not moved from where it was drawn. The right one's
+        # caught up with the track as it unloaded, by less than a millimetre.
+        left, right = (f[f"supports/tracks/{track}/slide"][...] for track in ("left", "right"))
+        assert left.shape == right.shape == (time.size, 3)
+        assert not left.any()
+        assert 0.0 < np.abs(right[-1, :2]).max() < 1e-3

@@ -7,8 +7,10 @@
 // - the boom angle against the limit of the crane's envelope, and the backstop's moment;
 // - the lowest point of every part (a body's origin, a member's nodes) that does not rest on
 //   the ground through a contact, against the ground's surface; the contacts' normal forces;
-// - the supports' pad and track pressures against the soil's allowable pressure, and the
-//   carriage's stability margin against 0 (crane/support_reading.hpp).
+// - the supports' pad and track pressures against the soil's allowable pressure, the
+//   carriage's stability margin against 0 (crane/support_reading.hpp), and whether it has
+//   tipped: its carrying supports in one line or at one point seen from above, or none carrying
+//   (model/carriage_tipping.hpp) — a carriage on an edge, whose margin is 0 only to rounding.
 //
 // Events say what left the envelope, when first, and how far at worst; touching the backstop
 // or the ground is an event too, but one within the envelope.
@@ -23,7 +25,8 @@ namespace cranesim {
 
 struct EnvelopeEvent {
   /// "rope overload", "boom past its angle limit", "below ground", "on its backstop", "on the
-  /// ground", "over the allowable pressure", "stability margin below zero", "lifted off"
+  /// ground", "over the allowable pressure", "stability margin below zero", "lifted off",
+  /// "tipped"
   std::string what;
   std::string part;
   bool leaves_envelope = false;
@@ -36,6 +39,8 @@ struct EnvelopeEvent {
   /// compression (deg).
   double depth = 0.0;
   std::string depth_unit;
+  /// A tipped carriage's first tipped sample: which supports carried (model/carriage_tipping.hpp).
+  std::string why;
 };
 
 /// A named series, one value per sample.
@@ -57,6 +62,8 @@ class EnvelopeMonitor {
   std::vector<EnvelopeEvent> events() const;
   /// Whether the last sample lies outside the envelope (cheap: for stopping a run there).
   bool lastSampleOutside() const { return last_outside_; }
+  /// Whether the carriage had tipped at the last sample.
+  bool lastSampleTipped() const { return !tipped_.empty() && tipped_.back() > 0.0; }
 
   const std::vector<double>& time() const { return time_; }
   const std::vector<double>& boomAngle() const { return boom_angle_; }
@@ -67,6 +74,7 @@ class EnvelopeMonitor {
   const std::vector<EnvelopeSeries>& contactForces() const { return contact_force_; }  // N, each resting part's in all
   const std::vector<EnvelopeSeries>& contactDepths() const { return contact_depth_; }  // m, each resting part's deepest
   const std::vector<SupportReading>& supports() const { return supports_; }             // with ground.supports
+  const std::vector<double>& tipped() const { return tipped_; }                          // with ground.supports: 1 tipped, 0 standing
   bool empty() const;
 
  private:
@@ -75,6 +83,8 @@ class EnvelopeMonitor {
   std::vector<EnvelopeSeries> rope_tension_, lowest_, contact_force_, contact_depth_;
   std::vector<std::vector<int>> part_nodes_;  // per entry of lowest_: its nodes without a contact
   std::vector<SupportReading> supports_;
+  std::vector<double> tipped_;
+  std::vector<std::string> tipped_why_;  // per sample: model/carriage_tipping.hpp's reason, or empty
   bool last_outside_ = false;
 };
 

@@ -4,15 +4,12 @@
 // track), each
 //   k = k_s · A   (k_s the modulus of subgrade reaction, A the bed area the point bears on),
 // one-sided and smoothed as the ground's contacts are (elements/penalty_contact.hpp), so that a
-// point lifts off and sets down again; its settlement δ = level − up · P. Across the bed a
-// horizontal spring k_h and damper c_h tie each point to where it was drawn (the bed's shear
-// stiffness under it, which holds the carriage in the plane: without it a free carriage on
-// vertical springs has no static stiffness across them), their force held within the point's
-// friction μ N (elements/friction_bound.hpp): a point off the ground carries nothing, and a
-// point pushed harder than μ N slides. Per point, summed over the support's points:
-//   Q = [F, p × Rᵀ F],  F = up N + bounded(−k_h u_h − c_h u̇_h; μ N),  N = (f(δ) + c h(δ) δ̇)₊,
-// u_h the point's horizontal displacement from its drawn position. The energy is
-// Σ V(δ) + Φ(u_h; μ f(δ)). One element per support computes the body's rotation once.
+// point lifts off and sets down again; its settlement δ = level − up · P. Per point, summed over
+// the support's points:
+//   Q = [F, p × Rᵀ F],  F = up N,  N = (f(δ) + c h(δ) δ̇)₊,
+// with the energy Σ V(δ). One element per support computes the body's rotation once. The bed's
+// shear springs across it (k_h, c_h), which hold the carriage in the plane within friction, are
+// an AnchoredSupportElement's (model/anchored_support_element.hpp: friction with memory).
 
 #include "cranesim/model/contact_elements.hpp"
 
@@ -23,7 +20,7 @@ struct SupportBed {
   double level = 0.0;          // m along up: the point settles δ = level − up · P
   Vec3 anchor = Vec3::Zero();  // the point's drawn position, inertial
   PenaltyLaw law;              // the vertical spring, damper and smoothing
-  double shear_stiffness = 0.0;  // k_h, N/m
+  double shear_stiffness = 0.0;  // k_h, N/m (model/anchored_support_element.hpp)
   double shear_damping = 0.0;    // c_h, N·s/m
   double friction = 0.5;         // μ between the support and the bed
 };
@@ -49,8 +46,6 @@ class SupportElement final : public ContactElement {
   void force(const Local& q, const Local& v, double* Q) const override;
   void tangents(const Local& q, const Local& v, double* Qq, double* Qv) const override;
   double energy(const Local& q) const override;
-  /// The dampers' power and the friction bound's unstored work (elements/friction_bound.hpp).
-  double dissipatedPower(const ElementInput& in) const override;
   /// The deepest settlement of its points.
   double closureAt(const Local& q) const override;
   /// The vertical force of all its points.
