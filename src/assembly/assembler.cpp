@@ -559,4 +559,33 @@ double Assembler::drivePower(const Constraint& c, double t, const double* q, con
   return p;
 }
 
+
+void Assembler::hold(double t, const double* y) const {
+  const ElementInput in{y, y + vOffset(), nullptr, t, gravity()};
+  for (const auto& e : model_.elements) e->hold(in);
+}
+
+std::vector<double> Assembler::memory() const {
+  std::vector<double> out;
+  for (const auto& e : model_.elements) {
+    const std::vector<double> own = e->memory();
+    out.insert(out.end(), own.begin(), own.end());
+  }
+  return out;
+}
+
+void Assembler::setMemory(const std::vector<double>& memory) const {
+  std::size_t at = 0;
+  for (const auto& e : model_.elements) {
+    const std::size_t size = e->memory().size();
+    if (at + size > memory.size()) throw std::invalid_argument("the saved memory is not one of this model's elements");
+    e->setMemory(memory.data() + at);
+    at += size;
+  }
+}
+
+void Assembler::forgetMemory() const {
+  for (const auto& e : model_.elements) e->forgetMemory();
+}
+
 }  // namespace cranesim

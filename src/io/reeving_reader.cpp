@@ -97,7 +97,11 @@ ReevingSpec readReeving(const YamlField& f) {
   ReevingSpec r;
   r.elements_per_part = readElementsPerPart(f);
   const double efficiency = f.has("efficiency") ? readEfficiency(f.at("efficiency")) : 1.0;
-  if (const auto b = f.find("speed_band")) r.speed_band = b->positive();
+  if (const auto b = f.find("speed_band")) {
+    if (r.elements_per_part == 0)
+      b->fail("speed_band belongs to fidelity: massive; a massless rope's sheaves grip it (pre-sliding) instead");
+    r.speed_band = b->positive();
+  }
   if (f.has("path") == f.has("falls"))
     f.fail("a reeved rope has either a path (winch, sheaves, dead end) or falls between a head and a hook block");
   if (const auto path = f.find("path")) {

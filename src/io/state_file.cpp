@@ -12,7 +12,7 @@ namespace cranesim {
 namespace {
 
 constexpr const char* kFormat = "cranesim run state";
-constexpr long kStateFileVersion = 1;
+constexpr long kStateFileVersion = 2;
 constexpr int kInputFields = 6;  // t, u, r, x, z₁, z₂
 
 std::string inputNames(const Model& model) {
@@ -105,6 +105,7 @@ void writeStateFile(const std::string& path, const Model& model, const Simulatio
                                   static_cast<double>(state.sharing.wait), static_cast<double>(state.sharing.trial),
                                   static_cast<double>(state.sharing.before_trial), static_cast<double>(state.sharing.settling)};
     file.writeDoubles("/bookkeeping", {10}, bookkeeping);
+    if (!state.memory.empty()) file.writeDoubles("/memory", {state.memory.size()}, state.memory.data());
   });
 }
 
@@ -136,6 +137,9 @@ SimulationState readStateFile(const std::string& path, const Model& model) {
   state.sampled_end = b[3] != 0.0;
   state.sharing = {static_cast<long>(b[4]), static_cast<long>(b[5]), static_cast<long>(b[6]), static_cast<long>(b[7]),
                    static_cast<long>(b[8]), static_cast<long>(b[9])};
+  std::size_t memory = 0;
+  for (const auto& e : model.elements) memory += e->memory().size();
+  if (memory > 0) state.memory = file.doubles("/memory", memory);
   return state;
 }
 

@@ -72,7 +72,6 @@ void addMassless(Model& model, const MemberSpec& m) {
   k.section = m.section;
   k.material = m.material;
   k.damping = m.damping;
-  k.speed_band = m.reeving->speed_band;
   k.points = static_cast<int>(placed.joints.size());
   setFriction(k, *m.reeving);
   model.reeved_ropes.push_back(static_cast<int>(model.elements.size()));

@@ -76,6 +76,22 @@ double ReevedRopeElement::dissipatedPower(const ElementInput& in) const {
   return kernel_.dissipatedPower(p.x, p.xd, in.t);
 }
 
+void ReevedRopeElement::hold(const ElementInput& in) const {
+  const Path<double> p = path<double>(gather(in.q, q_), gather(in.v, v_));
+  kernel_.hold(p.x, p.xd, in.t);
+}
+
+std::vector<double> ReevedRopeElement::memory() const {
+  std::vector<double> out;
+  for (int i = 0; i + 2 < kernel_.points; ++i)
+    for (const double value : {kernel_.grip[i].travel, kernel_.grip[i].state, kernel_.grip[i].distance}) out.push_back(value);
+  return out;
+}
+
+void ReevedRopeElement::setMemory(const double* memory) const {
+  for (int i = 0; i + 2 < kernel_.points; ++i, memory += 3) kernel_.grip[i] = {memory[0], memory[1], memory[2]};
+}
+
 void ReevedRopeElement::partTensions(const ElementInput& in, double* tension) const {
   const Path<double> p = path<double>(gather(in.q, q_), gather(in.v, v_));
   kernel_.partTensions(p.x, p.xd, in.t, in.rates, tension);

@@ -48,6 +48,8 @@ Simulation::Simulation(const Assembler& assembler, const DynamicState& initial, 
     : assembler_(assembler), sink_(sink), t_(initial.t), t_start_(initial.t), sample_(assembler.size()) {
   const auto wall_start = std::chrono::steady_clock::now();
   stepper_ = makeTimeStepper(assembler, initial);
+  assembler_.forgetMemory();
+  assembler_.hold(t_, stepper_->state());
   breakpoints_ = assembler.model().breakpoints();
   stops_at_targets_ = !assembler.model().inputs.empty();
   while (next_break_ < breakpoints_.size() && breakpoints_[next_break_] <= t_) ++next_break_;
@@ -161,6 +163,7 @@ SimulationState Simulation::save() {
   stepper_->work(saved.work.data());
   saved.drive_impulses = drive_impulses_;
   for (const ModelInput& input : model.inputs) saved.inputs.push_back(input.signal->state());
+  saved.memory = assembler_.memory();
   saved.next_break = next_break_;
   saved.next_sample = next_sample_;
   saved.sampled_end = sampled_end_;
@@ -176,6 +179,7 @@ void Simulation::restore(const SimulationState& saved) {
                                             "({} coordinates, {} inputs)",
                                             saved.q.size(), saved.inputs.size(), model.nq, model.inputs.size()));
   for (std::size_t k = 0; k < saved.inputs.size(); ++k) model.inputs[k].signal->restore(saved.inputs[k]);
+  assembler_.setMemory(saved.memory);
   DynamicState s;
   s.t = saved.t;
   s.q = saved.q;
@@ -243,6 +247,7 @@ bool Simulation::step(double target, const SimulationControl& control) {
   }
   t_ = t_ret;
   double* y = stepper_->state();
+  if (!on_break) assembler_.hold(t_, y);
   if (model.m > 0)
     counts_.max_step_constraint_residual =
         std::max(counts_.max_step_constraint_residual, assembler_.constraintResidual(t_, y));

@@ -71,31 +71,6 @@ TEST_CASE("A capstan's wrap angle: given in degrees, or the drawn path's turn at
   CHECK(std::abs(test::reevedRopeNamed(drum).kernel().friction_exponent[0] - kFriction * 2.5 * std::numbers::pi) < 1e-15);
 }
 
-TEST_CASE("The friction band: a capstan's ratio is e^(±μθ) when slipping, 1 at rest", "[reeving][capstan]") {
-  // The kernel alone: the hook end of a winch → capstan → hook path moving at w over the capstan.
-  ReevedRopeKernel k;
-  k.total_length = Profile(ConstantProfile{17.9});
-  k.section.area = 3.14159265358979e-4;
-  k.material.youngs_modulus = 1.0e11;
-  k.points = 3;
-  k.friction_exponent[0] = kFriction * std::numbers::pi / 2.0;
-  ReevedRopeKernel::Points<double> x, xd;
-  x[0] = Vec3(-8, 0, 20), x[1] = Vec3(0, 0, 20), x[2] = Vec3(0, 0, 2);
-  for (auto& p : xd) p.setZero();
-  const auto ratio = [&](double w) {  // the hook moving down at w lengthens the rope beyond the capstan
-    xd[2] = Vec3(0, 0, -w);
-    double T[2];
-    k.partTensions(x, xd, 0.0, ParameterRates::Left, T);
-    return T[1] / T[0];
-  };
-  const double e = std::exp(k.friction_exponent[0]);
-  CHECK(ratio(0.0) == 1.0);
-  // 1 − tanh(12) = 7.6e-11: slipping from |w| = 12 b on, the ratio within 1e-9 of e^(±μθ).
-  CHECK(std::abs(ratio(12.0 * k.speed_band) / e - 1.0) < 1e-9);
-  CHECK(std::abs(ratio(-12.0 * k.speed_band) * e - 1.0) < 1e-9);
-  CHECK(std::abs(ratio(0.5 * k.speed_band) / std::exp(k.friction_exponent[0] * std::tanh(0.5)) - 1.0) < 1e-15);
-}
-
 TEST_CASE("Hoisting and lowering over a slipping capstan: T_tight/T_slack = e^(μθ), its loss in the books",
           "[reeving][capstan][dynamics]") {
   const std::string wrap = GENERATE(as<std::string>{}, "", "450");

@@ -209,7 +209,7 @@ TEST_CASE("As its density goes to zero the massive rope holds the hook as the ma
 namespace {
 
 /// The spread blocks' parts as massive chains of three cables each.
-const std::string kMassiveParts = "    fidelity: massive\n    elements_per_part: 3\n";
+const std::string kMassiveParts = "    fidelity: massive\n    elements_per_part: 3\n    speed_band: 0.05\n";
 
 /// A random state about the drawing: coordinates moved by 1e-2, velocities and accelerations 0.1.
 struct RandomState {

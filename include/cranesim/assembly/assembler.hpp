@@ -102,6 +102,12 @@ class Assembler {
   /// The powers of WorkTerms at y = [q, dq, λ, …], WorkTerms::kCount values into `out` in the
   /// order of its members: the integrands of the energy balance's quadratures.
   void workPowers(double t, const double* y, double* out) const;
+  /// Every element's memory (model/element.hpp) moved to y = [q, dq, …], a step accepted at t.
+  void hold(double t, const double* y) const;
+  /// The elements' memories one after the other, and back; forgotten: as compiled.
+  std::vector<double> memory() const;
+  void setMemory(const std::vector<double>& memory) const;
+  void forgetMemory() const;
 
  private:
   struct ConstraintBlocks {

@@ -10,25 +10,36 @@
 // - Strain of the whole path ε = Σℓ/L − 1, rate ε̇ = Σℓ̇/L − Σℓ L̇/L² (the material's, as the
 //   cable's); the lead part's tension T_0 = EA max(ε + η ε̇, 0) (Kelvin–Voigt η).
 // - Material speed over sheave i towards the dead end, for rigid parts: w_i = Σ_{k≥i} ℓ̇_k (the
-//   rope beyond the sheave lengthens). The sheave's friction holds the rope back:
-//   T_i = T_{i−1} e^(λ_i σ(w_i)), σ(w) = tanh(w / b), with λ_i = −ln η_i for a turning sheave
-//   of bearing efficiency η_i and λ_i = μ_i θ_i for a capstan (the rope sliding over a sheave
-//   that does not turn, wrap θ_i, Euler–Eytelwein T_tight/T_slack = e^(μθ)). Hoisting (w < 0)
-//   drops the tension by e^(−λ_i) at each sheave away from the winch and lowering raises it by
-//   e^(λ_i); at rest (|w| ≪ b) the ratio is 1, the middle of the friction band: no sticking,
-//   a tension ratio r is held while the rope creeps at w = b artanh(ln r / λ). b: `speed_band`.
+//   rope beyond the sheave lengthens), the rope's travel over it s_i = Σ_{k≥i} ℓ_k. The sheave's
+//   friction holds the rope back: T_i = T_{i−1} e^(λ_i φ_i), with λ_i = −ln η_i for a turning
+//   sheave of bearing efficiency η_i and λ_i = μ_i θ_i for a capstan (the rope sliding over a
+//   sheave that does not turn, wrap θ_i, Euler–Eytelwein T_tight/T_slack = e^(μθ)).
+// - φ_i ∈ [−1, 1], the sheave's grip, follows the rope's travel by Dahl's pre-sliding law
+//   dφ/ds = (1 − φ sgn ds)/δ_i: at rest it stays (the ratio is held: stick), running one way
+//   for a few δ_i it reaches ±1 (hoisting w < 0 drops the tension by e^(−λ_i) at each sheave
+//   away from the winch, lowering raises it by e^(λ_i)). Along a travel of one direction from
+//   where the grip was held, (s₀, φ₀), the law integrates in closed form:
+//   φ = σ + (φ₀ − σ) e^(−|s − s₀|/δ), σ = sgn(s − s₀); the memory (s₀, φ₀) is moved to the
+//   state each accepted step ends at (`hold`), so a step's φ is a function of its coordinates.
+// - δ_i, the pre-sliding distance: the rope's travel over which the elasticity of the two parts
+//   beside the sheave builds the tension difference λ_i T: moving u of rope over the sheave
+//   with the parts' ends held changes T_i − T_{i−1} by EA u (1/ℓ_{i−1} + 1/ℓ_i), so
+//   δ_i = λ_i T_{i−1} / (EA (1/ℓ_{i−1} + 1/ℓ_i)), taken at each held state.
 // - Forces: part k pulls its ends together, F = Σ T_k ∂ℓ_k/∂x (−T_k u_k on x_k, +T_k u_k on
 //   x_{k+1}); the rope has no mass and no weight.
 // - Energy books (model/element.hpp): V = ½ EA L max(ε, 0)². Summation by parts gives
 //   Σ T_k ℓ̇_k = T_0 Σℓ̇ + Σ_i (T_i − T_{i−1}) w_i, so with the lead part's law the books close
 //   exactly: the winch's power L̇ ∂V/∂L at fixed state (plus the damping stress' power on the
 //   stretch rate that L̇ causes, as the cable's), the dissipation
-//   L EA (σ − σ₀) ε̇ + Σ_i (T_i − T_{i−1}) w_i, each sheave's term ≥ 0 since
-//   T_i/T_{i−1} − 1 has the sign of w_i.
+//   L EA (σ − σ₀) ε̇ + Σ_i (T_i − T_{i−1}) w_i. A sheave's term is ≥ 0 while it slips
+//   (T_i/T_{i−1} − 1 has the sign of w_i); in pre-sliding back towards φ = 0 it is negative, by
+//   at most λ_i T δ_i over the travel δ_i: the rope's elastic pre-sliding energy, which the
+//   massless parts have no store for (docs/known-limits.md).
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "cranesim/elements/parts/reeled_length.hpp"
 #include "cranesim/elements/section.hpp"
@@ -57,10 +68,18 @@ struct ReevedRopeKernel : ReeledLength {
   Section section;
   Material material;
   double damping = 0.0;     // Kelvin–Voigt retardation time η, s
-  double speed_band = 1e-3;  // b of the direction's smoothing σ = tanh(w/b), m/s
   int points = 2;           // path points, winch and dead end included
   /// λ_i of the sheave at inner point i (index i − 1): −ln η_i or μ_i θ_i, 0 for a frictionless sheave.
   std::array<double, kMaxPoints> friction_exponent{};
+
+  /// A sheave's memory of its grip: the travel s₀ (the rope beyond it, m) and φ₀ when last held,
+  /// and δ (m). Not yet held (s₀ NaN), and in statics and modes (rates held), φ = φ₀.
+  struct Grip {
+    double travel = std::numeric_limits<double>::quiet_NaN();
+    double state = 0.0;
+    double distance = 1.0;
+  };
+  std::array<Grip, kMaxPoints> grip{};
 
   template <class S> using Points = std::array<Vec3T<S>, kMaxPoints>;
 
@@ -72,11 +91,39 @@ struct ReevedRopeKernel : ReeledLength {
     S strain = c.total / L - 1.0;
     if (damping > 0.0) strain += damping * (c.total_rate / L - c.total * segmentRate(t, rates) / (L * L));
     tension[0] = strain > 0.0 ? S(axialStiffness() * strain) : S(0.0);
-    S beyond = c.total_rate;  // w_i = Σ_{k≥i} ℓ̇_k
+    S beyond = c.total;  // s_i = Σ_{k≥i} ℓ_k
     for (int i = 1; i < parts(); ++i) {
-      beyond -= c.rate[i - 1];
-      tension[i] = tension[i - 1] * sheaveRatio(i, beyond);
+      beyond -= c.length[i - 1];
+      tension[i] = tension[i - 1] * sheaveRatio(i, beyond, rates);
     }
+  }
+
+  /// Moves every sheave's memory to the path at x (a step accepted there): φ₀ the grip reached,
+  /// s₀ the travel, δ from the tensions there.
+  void hold(const Points<double>& x, const Points<double>& xd, double t) {
+    std::array<double, kMaxPoints> tension;
+    partTensions(x, xd, t, ParameterRates::Left, tension.data());
+    const Chords<double> c = chords(x, xd);
+    const double EA = axialStiffness();
+    double beyond = c.total;
+    for (int i = 1; i < parts(); ++i) {
+      beyond -= c.length[i - 1];
+      Grip& g = grip[i - 1];
+      g.state = gripState(i, beyond, ParameterRates::Left);
+      g.travel = beyond;
+      const double pair = 1.0 / c.length[i - 1] + 1.0 / c.length[i];
+      g.distance = std::max(friction_exponent[i - 1] * tension[i - 1] / (EA * pair), kLeastPreSliding);
+    }
+  }
+
+  /// φ_i at the travel s over sheave i (file comment).
+  template <class S> S gripState(int i, const S& travel, ParameterRates rates) const {
+    const Grip& g = grip[i - 1];
+    if (rates == ParameterRates::Held || std::isnan(g.travel)) return S(g.state);
+    using std::exp;
+    const S moved = travel - g.travel;
+    if (moved >= 0.0) return 1.0 - (1.0 - g.state) * exp(-moved / g.distance);
+    return -1.0 + (1.0 + g.state) * exp(moved / g.distance);
   }
 
   /// Forces F on the path points (the left side's: the rope's resistance, −(force on the body)).
@@ -133,8 +180,11 @@ struct ReevedRopeKernel : ReeledLength {
   double axialStiffness() const { return material.youngs_modulus * section.area; }
 
  private:
+  /// δ of a slack rope, m: the grip turns within a micrometre of travel.
+  static constexpr double kLeastPreSliding = 1e-6;
+
   template <class S> struct Chords {
-    std::array<S, kMaxPoints> rate;  // ℓ̇_k
+    std::array<S, kMaxPoints> length, rate;  // ℓ_k, ℓ̇_k
     S total, total_rate;            // Σℓ, Σℓ̇
   };
 
@@ -145,6 +195,7 @@ struct ReevedRopeKernel : ReeledLength {
     for (int k = 0; k < parts(); ++k) {
       const Vec3T<S> d = x[k + 1] - x[k];
       const S length = sqrt(d.squaredNorm());
+      c.length[k] = length;
       c.rate[k] = d.dot(Vec3T<S>(xd[k + 1] - xd[k])) / length;
       c.total += length;
       c.total_rate += c.rate[k];
@@ -152,13 +203,12 @@ struct ReevedRopeKernel : ReeledLength {
     return c;
   }
 
-  /// T_i / T_{i−1} = e^(λ_i σ(w_i)) across the sheave at inner point i.
-  template <class S> S sheaveRatio(int i, const S& speed) const {
+  /// T_i / T_{i−1} = e^(λ_i φ_i) across the sheave at inner point i, s its travel.
+  template <class S> S sheaveRatio(int i, const S& travel, ParameterRates rates) const {
     const double exponent = friction_exponent[i - 1];
     if (exponent == 0.0) return S(1.0);
     using std::exp;
-    using std::tanh;
-    return exp(exponent * tanh(speed / speed_band));
+    return exp(exponent * gripState(i, travel, rates));
   }
 
   /// (σ − σ₀)/E: the damped law's stress less the elastic one.

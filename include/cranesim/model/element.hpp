@@ -113,6 +113,15 @@ class Element {
   virtual double explicitTimePower(const ElementInput&) const { return 0.0; }
   /// Power its material damping dissipates at (q, dq, t), ≥ 0, W.
   virtual double dissipatedPower(const ElementInput&) const { return 0.0; }
+  /// An element with memory (a sheave's grip on its rope) moves it to the state a step was
+  /// accepted at: its residual within the next step starts from there. The memory is the
+  /// model's, as its inputs' signals: one run at a time.
+  virtual void hold(const ElementInput&) const {}
+  /// The memory as numbers (saved with a run's state) and back.
+  virtual std::vector<double> memory() const { return {}; }
+  virtual void setMemory(const double*) const {}
+  /// Back to the memory it was compiled with.
+  virtual void forgetMemory() const {}
   /// A beam's section forces [N, V_y, V_z, T, M_y, M_z] at its two ends (12 values, N, N·m) in
   /// its co-rotated frame, at (q, dq, d(dq)/dt); false for an element that is no beam.
   virtual bool sectionForces(const ElementInput&, double*) const { return false; }

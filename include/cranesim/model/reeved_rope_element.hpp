@@ -5,7 +5,7 @@
 // [f, p × Rᵀ f] (the force at the point p on a node's [ṙ, ω]). Its tension ratios depend on the
 // direction the rope runs, not a polynomial in the velocities, so both tangents come from
 // forward AD of the same code, one node at a time (a node's coordinates or velocities seeded, at
-// most 7 directions).
+// most 7 directions). Its sheaves' grips (pre-sliding memory) are held at each accepted step.
 //   residual   r = F(q, dq, t): the rope's forces on the nodes (no mass)
 
 #include <string>
@@ -44,6 +44,10 @@ class ReevedRopeElement final : public ReevedRope {
   double potentialEnergy(const ElementInput& in) const override;
   double explicitTimePower(const ElementInput& in) const override;
   double dissipatedPower(const ElementInput& in) const override;
+  void hold(const ElementInput& in) const override;
+  std::vector<double> memory() const override;
+  void setMemory(const double* memory) const override;
+  void forgetMemory() const override { kernel_.grip = {}; }
 
   void partTensions(const ElementInput& in, double* tension) const override;
   std::vector<Vec3> pathPositions(const ElementInput& in) const override;
@@ -63,7 +67,7 @@ class ReevedRopeElement final : public ReevedRope {
   Local<double> gather(const double* x, const std::vector<int>& at) const;
 
   std::string name_;
-  ReevedRopeKernel kernel_;
+  mutable ReevedRopeKernel kernel_;  // its sheaves' grips move as the run goes (hold)
   RopePath path_;
   std::vector<int> nodes_, q_, v_;
 };

@@ -49,6 +49,7 @@ struct SimulationState {
   std::array<double, WorkTerms::kCount> work{};
   double drive_impulses = 0.0;
   std::vector<InputState> inputs;  // in the order of Model::inputs
+  std::vector<double> memory;      // the elements' (Assembler::memory)
   std::size_t next_break = 0;
   long next_sample = 1;
   bool sampled_end = false;
