@@ -15,6 +15,7 @@
 #include "cranesim/model/reeved_rope_element.hpp"
 #include "cranesim/solvers/dynamics.hpp"
 #include "cranesim/solvers/scene_equilibrium.hpp"
+#include "element_jacobian_error.hpp"
 #include "guided_hook.hpp"
 #include "random_states.hpp"
 #include "scene_fixtures.hpp"
@@ -110,21 +111,7 @@ TEST_CASE("Reeved rope with held grips: Jacobian equals central differences of t
     rope.setMemory(memory.data());
     const int n = rope.size();
     const ElementInput in{q.data(), v.data(), nullptr, t, model.gravity};
-    Eigen::MatrixXd J(n, 2 * n), fd(n, 2 * n);
-    rope.jacobian(in, 0.0, J.data());
-    const auto residual = [&](const VecX& qq, const VecX& vv) {
-      Eigen::VectorXd r(n);
-      rope.residual(ElementInput{qq.data(), vv.data(), nullptr, t, model.gravity}, r.data());
-      return r;
-    };
-    for (int c = 0; c < 2 * n; ++c) {
-      VecX qp = q, qm = q, vp = v, vm = v;
-      const double h = 1e-7;
-      if (c < n) qp(rope.coordinateIndices()[c]) += h, qm(rope.coordinateIndices()[c]) -= h;
-      else vp(rope.velocityIndices()[c - n]) += h, vm(rope.velocityIndices()[c - n]) -= h;
-      fd.col(c) = (residual(qp, vp) - residual(qm, vm)) / (2.0 * h);
-    }
-    const double error = (J - fd).cwiseAbs().maxCoeff() / fd.cwiseAbs().maxCoeff();
+    const double error = test::elementJacobianError(rope, q, v, t, model.gravity, 1e-7);
     // The grips must matter here: the forces differ from those of the drawing's grip.
     VecX held_forces(n), fresh_forces(n);
     rope.residual(in, held_forces.data());
@@ -168,7 +155,7 @@ struct StoppedCapstan final : SampleSink {
 
 }  // namespace
 
-TEST_CASE("A capstan whose winch stops keeps the ratio it slipped at; its hook does not creep",
+TEST_CASE("A capstan whose winch stops keeps the ratio it slipped at, its hook does not creep",
           "[reeving][capstan][grip][dynamics]") {
   const Scene scene = test::guidedHook(
       "    path: [ground.winch, {joint: ground.head, radius: 0.3, friction: 0.1}, hook.sheaves]\n"
