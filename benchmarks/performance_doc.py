@@ -424,6 +424,31 @@ massless one's path.
 """
 
 
+def sheave_grip(r: Results) -> str:
+    rows = r.csv("sheave_grip.csv")
+    law = {"band": "friction band, 1 cm/s", "grip": "grip (pre-sliding)"}
+    body = table(["sections", "sheave law", "steps", "nonlinear failures", "wall", "CPU", "real-time factor (CPU)",
+                  "load off its rtol 1e-7 run", "load average"],
+                 [[x["sections"], law[x["binary"]], x["steps"], x["nonlinear_failures"], seconds(x["wall_median_s"]),
+                   seconds(x["cpu_median_s"]), f"{sig(60.0 / num(x['cpu_median_s']), 3)}×", metres(x["load_error_m"]),
+                   x["load_average"]] for x in rows])
+    apart = {x["sections"]: x["load_apart_m"] for x in rows}
+    return f"""## Reeved ropes: the sheaves' grip
+
+The reeved thesis crane's 60 s combined motion (`crane_reeved_combined.yaml`, rtol 1e-4) with
+the massless ropes' sheaves gripping the rope ([scene-format.md](scene-format.md#reeved-ropes)),
+against a build whose sheaves pass their ratio through a friction band of 1 cm/s, with
+condensed and with super truss sections, alternating run by run. Wall: the integration's; CPU:
+the whole process's; medians of the runs. The load's path with the grip ends
+{metres(apart.get("condensed", "nan"))} (condensed) and {metres(apart.get("super truss", "nan"))}
+(super truss) from the band's (rtol 1e-7 runs of both): the band's creep after the hoist stops.
+
+{body}
+
+{r.source("python3 benchmarks/sheave_grip.py --before-bin OTHER_BUILD/crane-sim --before-configs OTHER_BUILD_SOURCE/configs --reps 3", "sheave_grip.csv", rows)}
+"""
+
+
 def session_stepping(r: Results) -> str:
     rows = r.csv("session_stepping.csv")
     method = {"profiles": "the scene's profiles (`crane-sim run`)", "inputs": "inputs, commanded every sample",
@@ -697,7 +722,7 @@ for parsing it, no longer for its tangents.
 
 
 SECTIONS = [combined_motion, fidelities, equilibrium_grid, map_parallel, jacobian_ratio, truss_reduction,
-            element_bending, slender_statics, element_vibration, pendulum_chain, reeving_cost, session_stepping, anti_sway,
+            element_bending, slender_statics, element_vibration, pendulum_chain, reeving_cost, sheave_grip, session_stepping, anti_sway,
             operator_assistance, plan_tracking, sway_sensor, setup_times]
 
 

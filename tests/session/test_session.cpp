@@ -482,3 +482,26 @@ TEST_CASE("Commands at times summed from a sample period pass a breakpoint withi
   CHECK(session.outcome().statistics.restarts == 2);
   CHECK(std::abs(session.jointPosition(session.joint("load.origin")).y()) > 0.05);  // the gust pushed the load
 }
+
+TEST_CASE("A restored run goes on with the sheaves' grips it was saved with", "[session][reeving][grip]") {
+  // configs/hook_block.yaml: hoisting steadily at 5 s every sheave slips (grip −1); by 12 s the
+  // winch has stopped and the block's settling has turned the grips part of the way back. Restored
+  // to 5 s after that, the run must take up the 5 s grips, not the 12 s ones (from where the rope
+  // stood at 12 s, the 5 s state lies 1 m of lowering back: grips +1, the ratios reversed).
+  Session session(std::string(CRANESIM_SOURCE_DIR) + "/configs/hook_block.yaml", false);
+  session.advanceTo(5.0);
+  const SimulationState saved = session.save();
+  const std::vector<double> straight = session.ropeTensions("hoist");
+  session.advanceTo(12.0);
+  const std::vector<double> stopped = session.ropeTensions("hoist");
+  session.restore(saved);
+  const std::vector<double> restored = session.ropeTensions("hoist");
+  double apart = 0.0, moved = 0.0;
+  for (std::size_t k = 0; k < straight.size(); ++k) {
+    apart = std::max(apart, std::abs(restored[k] / straight[k] - 1.0));
+    moved = std::max(moved, std::abs(stopped[k] / straight[k] - 1.0));
+  }
+  INFO("restored tensions off the straight run's by " << apart << "; the stopped run's grips moved them by " << moved);
+  CHECK(moved > 1e-3);
+  CHECK(apart < 1e-6);
+}
