@@ -14,7 +14,6 @@ Writes benchmarks/results/sheave_grip.csv, a row per section fidelity and binary
 """
 
 import argparse
-import csv
 import os
 import resource
 import statistics
@@ -24,6 +23,8 @@ from pathlib import Path
 
 import h5py
 import numpy as np
+
+from benchmark_csv import write_rows
 
 ROOT = Path(__file__).resolve().parents[1]
 SECTIONS = ["boom1", "boom2", "boom3", "boom4", "boom5", "derrick1", "derrick2", "derrick3"]
@@ -94,11 +95,7 @@ def main() -> None:
                        "load_average": f"{os.getloadavg()[0]:.2f}"}
                 print({k: row[k] for k in COLUMNS}, flush=True)
                 rows.append(row)
-    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
-    with open(args.out, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore")
-        writer.writeheader()
-        writer.writerows(rows)
+    write_rows(args.out, rows)
     print(f"wrote {args.out}")
 
 
