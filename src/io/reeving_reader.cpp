@@ -102,6 +102,11 @@ ReevingSpec readReeving(const YamlField& f) {
       b->fail("speed_band belongs to fidelity: massive; a massless rope's sheaves grip it (pre-sliding) instead");
     r.speed_band = b->positive();
   }
+  if (const auto d = f.find("pre_sliding")) {
+    if (r.elements_per_part > 0)
+      d->fail("pre_sliding belongs to a massless rope, whose sheaves grip it; a massive rope's take speed_band");
+    r.pre_sliding = d->positive();
+  }
   if (f.has("path") == f.has("falls"))
     f.fail("a reeved rope has either a path (winch, sheaves, dead end) or falls between a head and a hook block");
   if (const auto path = f.find("path")) {

@@ -11,7 +11,7 @@ namespace cranesim {
 /// The keys of a reeved rope member besides name, type, element, section, material, length
 /// and damping.
 inline constexpr const char* kReevingKeys[] = {"path", "falls", "winch", "head", "hook", "efficiency", "speed_band",
-                                                  "fidelity", "elements_per_part"};
+                                                  "pre_sliding", "fidelity", "elements_per_part"};
 
 /// Reads the path of the rope member `f` (its joints are resolved when the scene is placed).
 ReevingSpec readReeving(const YamlField& f);

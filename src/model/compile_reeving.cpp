@@ -73,6 +73,7 @@ void addMassless(Model& model, const MemberSpec& m) {
   k.material = m.material;
   k.damping = m.damping;
   k.points = static_cast<int>(placed.joints.size());
+  k.pre_sliding = m.reeving->pre_sliding;
   setFriction(k, *m.reeving);
   model.reeved_ropes.push_back(static_cast<int>(model.elements.size()));
   model.elements.push_back(std::make_unique<ReevedRopeElement>(m.name, std::move(k), std::move(placed.path), std::move(nodes),

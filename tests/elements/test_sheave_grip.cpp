@@ -84,6 +84,12 @@ TEST_CASE("A sheave's grip: Dahl's law in the rope's travel, the pre-sliding dis
     CHECK(std::abs(std::log(c.ratio(10.0 + 21.0 * delta - u)) / lambda - (-1.0 + (1.0 + phi) * std::exp(-u / delta2))) <
           1e-12);
   CHECK(std::abs(std::log(c.ratio(10.0 + 21.0 * delta - delta2 * std::log(1.0 + phi)))) < 1e-12);
+  // A scene's own pre-sliding distance replaces the parts' for every sheave.
+  CapstanKernel given;
+  given.k.pre_sliding = 0.02;
+  given.k.hold(given.x, given.xd, 0.0);
+  CHECK(given.k.grip[0].distance == 0.02);
+  CHECK(std::abs(std::log(given.ratio(10.0 + 0.02)) / lambda - (1.0 - std::exp(-1.0))) < 1e-12);
   // Held rates (statics, modes): the held grip, whatever the travel.
   double T[2];
   c.at(10.2);

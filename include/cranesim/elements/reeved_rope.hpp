@@ -24,7 +24,8 @@
 // - δ_i, the pre-sliding distance: the rope's travel over which the elasticity of the two parts
 //   beside the sheave builds the tension difference λ_i T: moving u of rope over the sheave
 //   with the parts' ends held changes T_i − T_{i−1} by EA u (1/ℓ_{i−1} + 1/ℓ_i), so
-//   δ_i = λ_i T_{i−1} / (EA (1/ℓ_{i−1} + 1/ℓ_i)), taken at each held state.
+//   δ_i = λ_i T_{i−1} / (EA (1/ℓ_{i−1} + 1/ℓ_i)), taken at each held state, unless the scene
+//   gives every sheave its own (`pre_sliding`: the groove's and bearing's compliance on top).
 // - Forces: part k pulls its ends together, F = Σ T_k ∂ℓ_k/∂x (−T_k u_k on x_k, +T_k u_k on
 //   x_{k+1}); the rope has no mass and no weight.
 // - Energy books (model/element.hpp): V = ½ EA L max(ε, 0)². Summation by parts gives
@@ -69,6 +70,7 @@ struct ReevedRopeKernel : ReeledLength {
   Material material;
   double damping = 0.0;     // Kelvin–Voigt retardation time η, s
   int points = 2;           // path points, winch and dead end included
+  double pre_sliding = 0.0;  // δ of every sheave, m; 0: from the parts' elasticity (file comment)
   /// λ_i of the sheave at inner point i (index i − 1): −ln η_i or μ_i θ_i, 0 for a frictionless sheave.
   std::array<double, kMaxPoints> friction_exponent{};
 
@@ -112,7 +114,8 @@ struct ReevedRopeKernel : ReeledLength {
       g.state = gripState(i, beyond, ParameterRates::Left);
       g.travel = beyond;
       const double pair = 1.0 / c.length[i - 1] + 1.0 / c.length[i];
-      g.distance = std::max(friction_exponent[i - 1] * tension[i - 1] / (EA * pair), kLeastPreSliding);
+      g.distance = pre_sliding > 0.0 ? pre_sliding
+                                     : std::max(friction_exponent[i - 1] * tension[i - 1] / (EA * pair), kLeastPreSliding);
     }
   }
 

@@ -70,6 +70,7 @@ struct ReevingSpec {
   SourceLocation where_winch, where_dead_end;
   std::vector<SheaveSpec> sheaves;
   double speed_band = 1e-3;  // m/s: the rope's running speed over which a sheave's loss turns
+  double pre_sliding = 0.0;  // m: every sheave's pre-sliding distance (massless); 0: from the parts' elasticity
   double drawn_length = 0.0;  // Σ of the parts' drawn chords (placeMemberEnds)
   int elements_per_part = 0;  // fidelity massive: each part's cable elements; 0: massless parts
 };
