@@ -141,7 +141,7 @@ TEST_CASE("A drawing 10 % off is refused naming the constraint that does not clo
   }
 }
 
-TEST_CASE("A truss drawn to millimetres keeps its type's length; one drawn 1 % short is refused", "[assembly]") {
+TEST_CASE("A truss drawn to millimetres keeps its type's length, one drawn 1 % short is refused", "[assembly]") {
   Drawing short_jib = kExact;
   short_jib.jib_tip = "[-9.9, 0, 17.147]";  // 19.8 m
   try {

@@ -79,7 +79,7 @@ TEST_CASE("A carriage whose load tips it has no equilibrium: the statics say it 
   CHECK(resultantX(kTippingLoad) == Approx(2.5).epsilon(1e-12));
 }
 
-TEST_CASE("A carriage resting on two pads in one line counts as tipped; on three it stands", "[supports][statics]") {
+TEST_CASE("A carriage resting on two pads in one line counts as tipped, on three it stands", "[supports][statics]") {
   // The carriage drawn tilted about its front edge by 1 mrad: the rear pads 5 m behind it rise
   // 5 mm, off the bed; the front ones carry (their settlement is the drawing's own).
   const Scene scene = carriageScene(9000.0);

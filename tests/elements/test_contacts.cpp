@@ -289,7 +289,7 @@ TEST_CASE("A boom raised onto its backstop rests where the stop's moment holds i
   }
 }
 
-TEST_CASE("A fast payout: the backstop holds the boom; without it the boom goes over, reported",
+TEST_CASE("A fast payout: the backstop holds the boom, without it the boom goes over, reported",
           "[contact][crane]") {
   // The shipped hard case, its first 4.5 s: the rope snatches the falling load at about 2 s with
   // more than its breaking force; the boom springs back onto its backstop. Without the backstop

@@ -146,7 +146,7 @@ solver: {{t_end: 1, initial_state: equilibrium}}
   CHECK(std::abs(fall.bottom / (500.0 * kGravity) - 1.0) < 1e-9);
 }
 
-TEST_CASE("A massive hook block hoisted at v rises at v/n; the books close", "[reeving][massive][dynamics]") {
+TEST_CASE("A massive hook block hoisted at v rises at v/n, the books close", "[reeving][massive][dynamics]") {
   // Reeling in 2.8 m at 0.4 m/s (trapezoid, 1 s ramps) from 1.5 s: steady from 2.5 s to 8.5 s.
   const int falls = GENERATE(2, 4);
   const double efficiency = GENERATE(1.0, 0.96);

@@ -305,7 +305,7 @@ TEST_CASE("A ball dropped on a slack rope: caught without solver failure, energy
   }
 }
 
-TEST_CASE("A ball reeled up by the rope's length drive tracks the length; the rope's mass follows it",
+TEST_CASE("A ball reeled up by the rope's length drive tracks the length, the rope's mass follows it",
           "[scenes][rope][dynamics]") {
   const RopeAndBall c;
   Scene scene = test::loadScene("rope_reeling.yaml");

@@ -110,7 +110,7 @@ TEST_CASE("Transverse damping: the element Jacobian against central differences"
   CHECK((J - fd).cwiseAbs().maxCoeff() < 1e-6 * J.cwiseAbs().maxCoeff());
 }
 
-TEST_CASE("A pendulum's swing on a transversely damped rope is not damped; the balance closes", "[rope][energy][scenes]") {
+TEST_CASE("A pendulum's swing on a transversely damped rope is not damped, the balance closes", "[rope][energy][scenes]") {
   Scene damped = test::loadScene("rope_pendulum.yaml"), plain = damped;
   for (Scene* s : {&damped, &plain}) {
     s->solver.t_end = 3.3;  // half a swing

@@ -77,7 +77,7 @@ TEST_CASE("Flat pendulum at rest: the rope plumb, the tip on the boom's circle",
   CHECK_THROWS_AS(flatPendulumControls(kJib, Eigen::Vector2d(-30.0, 0.0), Eigen::Vector2d::Zero()), std::domain_error);
 }
 
-TEST_CASE("Flat controls carry the load along its path and leave it still; quasi-static ones do not",
+TEST_CASE("Flat controls carry the load along its path and leave it still, quasi-static ones do not",
           "[planning][flatness]") {
   // Measured: the load within 1.9e-7 m of its path and 1.2e-7 m of the target after arrival (the
   // integration's error); with the tip held straight above the load, ±0.77 m of sway.

@@ -89,7 +89,7 @@ TEST_CASE("A degree (3, 1) surface needs the 3-1 fit", "[planning][fit]") {
     CHECK(cubic(p.x(), p.y()) == Approx(f(p.x(), p.y())).epsilon(1e-9).margin(1e-9 * scale));
 }
 
-TEST_CASE("Polynomial orders 1..5 reproduce polynomials of their degree; other orders are rejected", "[planning][fit]") {
+TEST_CASE("Polynomial orders 1..5 reproduce polynomials of their degree, other orders are rejected", "[planning][fit]") {
   for (int order_u = 1; order_u <= 5; ++order_u)
     for (int order_v = 1; order_v <= 5; ++order_v) {
       const auto f = [&](double u, double v) {
@@ -115,7 +115,7 @@ TEST_CASE("Polynomial orders 1..5 reproduce polynomials of their degree; other o
   CHECK_NOTHROW(FittedSurface::fit(five_v, polynomial(2, 4)));
 }
 
-TEST_CASE("Malformed grids are rejected; a failed map point is reported with its grid index", "[planning][fit]") {
+TEST_CASE("Malformed grids are rejected, a failed map point is reported with its grid index", "[planning][fit]") {
   const auto f = [](double u, double v) { return u - v; };
   GridData data = mapGrid(f);
   data.values(3, 7) = std::numeric_limits<double>::quiet_NaN();
