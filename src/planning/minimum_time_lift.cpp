@@ -506,7 +506,8 @@ LiftTrajectory solveMinimumTimeLift(const LiftProblem& problem, const LiftGuess&
   // L-BFGS's low-rank term goes into the KKT matrix that MUMPS factors (2m more rows) instead of
   // being applied by Sherman–Morrison–Woodbury, which costs 2m more solves per factorisation; on
   // these matrices MUMPS' solves took longer than its factorisations. Measured on the shipped
-  // lifts: the same iterates, Ipopt's linear algebra 2.3–3.3× faster (docs/planning.md).
+  // lifts: Ipopt's linear algebra 1.9–3.3× faster, the iterates the same on all but one
+  // (docs/planning.md).
   ipopt->Options()->SetStringValue("limited_memory_aug_solver", "extended");
   // Around obstacles the soft minima's curvature leaves L-BFGS creeping: t_f settles while the
   // dual infeasibility keeps jumping back above 1e-3. So the solve stops once t_f has changed by
