@@ -117,8 +117,8 @@ void writeEnvelope(Hdf5File& file, const Model& model, const EnvelopeMonitor& en
 
 /// /supports: what each pad and track carries, and the carriage's stability, per sample
 /// (crane/support_reading.hpp).
-/// Each support's anchor (model/anchored_support_element.hpp, the node supports.<name>.anchor):
-/// `column(k)` gives coordinate k of the state per sample.
+/// Each support's anchor (model/anchored_support_element.hpp): `column(k)` gives coordinate k of
+/// the state per sample.
 void writeSupports(Hdf5File& file, const Model& model, const EnvelopeSupports& supports, const EnvelopeMonitor& envelope,
                    const std::function<std::vector<double>(int)>& column) {
   const std::vector<SupportReading>& readings = envelope.supports();
@@ -128,12 +128,10 @@ void writeSupports(Hdf5File& file, const Model& model, const EnvelopeSupports& s
     for (const SupportReading& r : readings) values.push_back(value(r));
     file.writeDoubles(path, {N}, values.data());
   };
-  const auto writeSlide = [&](const std::string& path, const std::string& support) {
-    const auto anchor = std::find_if(model.nodes.begin(), model.nodes.end(),
-                                     [&](const Node& n) { return n.name == fmt::format("supports.{}.anchor", support); });
-    if (anchor == model.nodes.end()) return;
+  const auto writeSlide = [&](const std::string& path, const EnvelopeSupport& support) {
+    if (support.anchor < 0) return;
     std::vector<std::vector<double>> coordinates;
-    for (int k = 0; k < 3; ++k) coordinates.push_back(column(anchor->q + k));
+    for (int k = 0; k < 3; ++k) coordinates.push_back(column(model.nodes[static_cast<std::size_t>(support.anchor)].q + k));
     std::vector<double> slide;
     for (hsize_t i = 0; i < N; ++i)
       for (int k = 0; k < 3; ++k) slide.push_back(coordinates[static_cast<std::size_t>(k)][i]);
@@ -148,7 +146,7 @@ void writeSupports(Hdf5File& file, const Model& model, const EnvelopeSupports& s
     file.attribute(path, "area", supports.pads[p].bearing_area);
     write(path + "/force", [&](const SupportReading& r) { return r.pads[p].force; });
     write(path + "/pressure", [&](const SupportReading& r) { return r.pads[p].pressure; });
-    writeSlide(path, supports.pads[p].name);
+    writeSlide(path, supports.pads[p]);
   }
   for (std::size_t t = 0; t < supports.tracks.size(); ++t) {
     const EnvelopeSupport& track = supports.tracks[t];
@@ -159,7 +157,7 @@ void writeSupports(Hdf5File& file, const Model& model, const EnvelopeSupports& s
     write(path + "/peak_pressure", [&](const SupportReading& r) { return r.tracks[t].peak_pressure; });
     write(path + "/peak_at", [&](const SupportReading& r) { return r.tracks[t].peak_at; });
     write(path + "/contact_length", [&](const SupportReading& r) { return r.tracks[t].contact_length; });
-    writeSlide(path, track.name);
+    writeSlide(path, track);
   }
   file.writeDoubles("/supports/tipped", {N}, envelope.tipped().data());
   std::vector<double> resultant, line;

@@ -128,9 +128,9 @@ void compileSupports(Model& model, const Scene& scene) {
       model.elements.push_back(std::make_unique<SupportElement>(points, body, q, v));
       // The support's anchor s = (d₁, d₂, θ): how far its bed has slid and turned from where it
       // was drawn; a node of no member's, kept out of the results' bodies.
-      const int anchor = model.addNode(fmt::format("supports.{}.anchor", s.name), NodeKind::Point, "ground.supports");
-      for (int i = 0; i < 3; ++i) q.push_back(model.nodes[anchor].q + i), v.push_back(model.nodes[anchor].v + i);
-      model.elements.push_back(std::make_unique<AnchoredSupportElement>(std::move(points), footprints, body, anchor, std::move(q), std::move(v)));
+      s.anchor = model.addNode(fmt::format("supports.{}.anchor", s.name), NodeKind::Point, "ground.supports");
+      for (int i = 0; i < 3; ++i) q.push_back(model.nodes[s.anchor].q + i), v.push_back(model.nodes[s.anchor].v + i);
+      model.elements.push_back(std::make_unique<AnchoredSupportElement>(std::move(points), footprints, body, s.anchor, std::move(q), std::move(v)));
     }
   model.envelope.node_in_contact[static_cast<std::size_t>(body)] = true;
   model.envelope.node_in_contact.resize(model.nodes.size(), true);  // the supports' anchors lie on the ground

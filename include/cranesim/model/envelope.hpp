@@ -48,6 +48,7 @@ struct EnvelopeSupport {
   double length = 0.0;        // m: a track's length; 0 for a pad
   std::vector<Vec3> outline;  // in the body's axes: the pad's centre, or the track's two ends
   int element = -1;           // the element that carries all its points
+  int anchor = -1;            // the node its bed slides by (model/anchored_support_element.hpp)
 };
 
 /// The carriage's supports on the ground and the pressure the soil allows.
