@@ -215,8 +215,7 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
                     IndexStyleEnum& index_style) override {
     n = finalTimeIndex() + 1;
     m = firstClearanceRow() + clearance_rows_ * (N_ - 1);
-    nnz_jac_g = kStateSize * N_ * (2 * kNodeSize + 1) + (static_cast<int>(rows_.size()) * (N_ + 1) + clearance_rows_ * (N_ - 1)) * kStateSize +
-                luffingJerkRows() * (kStateSize + 2);
+    nnz_jac_g = jacobianLayout().total;
     nnz_h_lag = 0;
     index_style = C_STYLE;
     return true;
@@ -261,12 +260,13 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
     const int drive_rows = static_cast<int>(rows_.size());
     eachNode([&](int k) {
       const double* node = z + kNodeSize * k;
-      nodes[k] = evaluateNode(p_.crane, statesOf(nodeOf(node)));
+      const std::array<double, kStateSize> states = statesOf(nodeOf(node));
+      nodes[k] = evaluateNode(p_.crane, states);
       for (int c = 0; c < kStateSize; ++c) rates[k][c] = rateVariable(c) >= 0 ? node[rateVariable(c)] : nodes[k].swing_acceleration[c - 11];
       double* drive = g + kStateSize * N_ + drive_rows * k;
       for (const DriveRow& row : rows_) *drive++ = row.acceleration ? nodes[k].acceleration[row.drive] : nodes[k].speed[row.drive];
       if (luffingJerkRows() > 0) {
-        const LuffingJerk<double> j = luffingJerk(p_.crane, statesOf(nodeOf(node)));
+        const LuffingJerk<double> j = luffingJerk(p_.crane, states);
         g[firstLuffingJerkRow() + k] = j.rest + j.slope_u * node[kJerk] + j.slope_v * node[kJerk + 1];
       }
       if (clearance_rows_ > 0 && k > 0 && k < N_) {
@@ -309,9 +309,8 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
     // the luffing rope's jerk and the clearances, written where the structure above puts them.
     std::vector<std::array<std::array<double, kNodeSize>, kStateSize>> rate_gradients(N_ + 1);
     std::vector<std::array<double, kStateSize>> rates(N_ + 1);
-    const int defect_entries = kStateSize * N_ * (2 * kNodeSize + 1), drive_rows = static_cast<int>(rows_.size());
-    const int jerk_entries = kStateSize + 2, first_jerk_entry = defect_entries + drive_rows * (N_ + 1) * kStateSize;
-    const int first_clearance_entry = first_jerk_entry + luffingJerkRows() * jerk_entries;
+    const JacobianLayout layout = jacobianLayout();
+    const int drive_rows = static_cast<int>(rows_.size());
     eachNode([&](int k) {
       const double* node = z + kNodeSize * k;
       const std::array<Gradient, kStateSize> states = gradientStates(node);
@@ -328,21 +327,21 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
         rates[k][c] = f.value();
         for (int i = 0; i < kStateSize; ++i) gradient[stateVariable(i)] = f.derivatives()(i);
       }
-      double* value = values + defect_entries + drive_rows * kStateSize * k;
+      double* value = values + layout.drives + drive_rows * kStateSize * k;
       for (const DriveRow& row : rows_) {
         const Gradient& drive = row.acceleration ? evaluation.acceleration[row.drive] : evaluation.speed[row.drive];
         for (int c = 0; c < kStateSize; ++c) *value++ = drive.derivatives()(c);
       }
       if (luffingJerkRows() > 0) {
         const LuffingJerk<Gradient> j = luffingJerk(p_.crane, states);
-        value = values + first_jerk_entry + jerk_entries * k;
+        value = values + layout.jerks + kJerkRowEntries * k;
         for (int c = 0; c < kStateSize; ++c)
           *value++ = j.rest.derivatives()(c) + j.slope_u.derivatives()(c) * node[kJerk] + j.slope_v.derivatives()(c) * node[kJerk + 1];
         *value++ = j.slope_u.value();
         *value++ = j.slope_v.value();
       }
       if (clearance_rows_ > 0 && k > 0 && k < N_) {
-        value = values + first_clearance_entry + clearance_rows_ * kStateSize * (k - 1);
+        value = values + layout.clearances + clearance_rows_ * kStateSize * (k - 1);
         for (const Gradient& clearance : clearanceGradients(p_, sampling_, states, evaluation.load))
           for (int c = 0; c < kStateSize; ++c) *value++ = clearance.derivatives()(c);
       }
@@ -359,6 +358,22 @@ class MinimumTimeLiftNlp final : public FinalTimeTnlp {
   }
 
  private:
+  /// Where each block of rows starts among the Jacobian's entries, in the order eval_jac_g's
+  /// structure lists them (the defects first), and their number.
+  struct JacobianLayout {
+    int drives, jerks, clearances, total;
+  };
+  JacobianLayout jacobianLayout() const {
+    JacobianLayout l;
+    l.drives = kStateSize * N_ * (2 * kNodeSize + 1);
+    l.jerks = l.drives + static_cast<int>(rows_.size()) * (N_ + 1) * kStateSize;
+    l.clearances = l.jerks + luffingJerkRows() * kJerkRowEntries;
+    l.total = l.clearances + clearance_rows_ * (N_ - 1) * kStateSize;
+    return l;
+  }
+  /// A luffing-jerk row's entries: the node's states and the jerks of u and v.
+  static constexpr int kJerkRowEntries = kStateSize + 2;
+
   /// Runs `body` on every node 0 … N on TBB's threads. Each node writes only its own results,
   /// so they are the same, bit for bit, on any number of threads.
   template <class Body> void eachNode(const Body& body) const {
